@@ -1,0 +1,27 @@
+#pragma once
+// The aamap filter chain on the CPU: the reference the GPU passes are tested against, the
+// fallback when no Vulkan device is usable, and the CPU side of the filter benchmark.
+// Each stage exists as a scalar single-threaded version (the reference) and a TBB-parallel,
+// vectorisable version; both follow glsl/shared/aamap_filter.h exactly.
+#include "core/image.h"
+#include "passes/filter_params.h"
+
+namespace aamap::cpu {
+
+enum class Mode { Scalar, Parallel };
+
+ImageGrey greyscale(const ImageRGB& rgb, float exposure, Mode mode = Mode::Parallel);
+ImageGrey laplacianMagnitude(const ImageGrey& grey, Mode mode = Mode::Parallel);  // e = |L|
+ImageGrey boxBlur(const ImageGrey& edges, int radius, Mode mode = Mode::Parallel);
+ImageGrey deadZone(const ImageGrey& blurred, float noiseFloor, float gain, Mode mode = Mode::Parallel);
+ImageGrey reduceMax(const ImageGrey& map, int width, int height, Mode mode = Mode::Parallel);
+
+struct AamapImages {
+    ImageGrey grey;       // snapshot resolution
+    ImageGrey laplacian;  // |L|, snapshot resolution
+    ImageGrey aamap;      // render resolution, in [0,1]
+};
+AamapImages buildAamap(const ImageRGB& snapshot, int width, int height, const FilterParams& params,
+                       Mode mode = Mode::Parallel);
+
+}  // namespace aamap::cpu

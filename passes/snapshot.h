@@ -1,0 +1,55 @@
+#pragma once
+// The Snapshot: rasterise the scene on Vulkan through the render graph, build the aamap on the
+// GPU, read it back. This is the integration-facing API; the passes live beside it.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/image.h"
+#include "passes/filter_params.h"
+#include "scene/scene.h"
+
+namespace aamap {
+
+class VulkanContext;  // engine/vk/context.h
+
+struct SnapshotSettings {
+    float scale = 1.5f;          // snapshot resolution / render resolution (768 for 512)
+    int areaLightSamples = 5;    // point samples per area light (the paper used 5)
+    FilterParams filter;
+    bool keepDebugImages = true;  // also read back snapshot colour and laplacian
+};
+
+struct PassTiming {
+    std::string pass;
+    double gpuMilliseconds = 0.0;  // from timestamp queries
+};
+
+struct SnapshotResult {
+    ImageRGB snapshot;     // linear colour at snapshot resolution (if keepDebugImages)
+    ImageGrey laplacian;   // |L| at snapshot resolution (if keepDebugImages)
+    ImageGrey aamap;       // render resolution, values in [0,1]
+    std::vector<PassTiming> passTimes;
+    double totalSeconds = 0.0;     // CPU wall time: graph build, upload, execute, readback
+    double readbackSeconds = 0.0;  // CPU wall time of the readback alone
+    std::string deviceName;
+    std::string explain;  // the compiled graph, CompiledGraph::explain()
+};
+
+// Builds the graph for what the scene needs and runs it. Holds per-scene GPU state (vertex
+// buffers, pipelines) so that rendering several views or sizes reuses it.
+class SnapshotRenderer {
+public:
+    SnapshotRenderer(VulkanContext& context, const Scene& scene);
+    ~SnapshotRenderer();
+    SnapshotRenderer(const SnapshotRenderer&) = delete;
+    SnapshotRenderer& operator=(const SnapshotRenderer&) = delete;
+
+    SnapshotResult render(const View& view, int width, int height, const SnapshotSettings& settings);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace aamap

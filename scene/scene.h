@@ -1,0 +1,89 @@
+#pragma once
+// The scene model shared by the Snapshot passes and the tracer. Loaders (OBJ, glTF, view files,
+// light lists, the built-in scenes) produce it; nothing downstream knows which format it came from.
+//
+// Units: positions are in scene units (metres for the built-in scenes; a scene may declare its
+// own scale). Radiance is in W/(sr m^2) per RGB channel, point-light intensity in W/sr.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace aamap {
+
+enum class MaterialKind : std::uint8_t {
+    Diffuse,  // Lambert (+ optional glossy lobe from ks/ns, used by later tracer work)
+    Mirror,   // ideal specular reflector (MTL illum 3 or 5)
+    Glass,    // dielectric (MTL illum 7)
+};
+
+struct Material {
+    std::string name;
+    MaterialKind kind = MaterialKind::Diffuse;
+    glm::vec3 kd{0.8f};   // diffuse albedo
+    glm::vec3 ks{0.0f};   // specular albedo
+    float ns = 0.0f;      // Phong exponent
+    glm::vec3 ke{0.0f};   // emitted radiance; non-zero makes its triangles area lights
+    float ior = 1.5f;
+    int diffuseTexture = -1;  // index into Scene::textures, -1 if untextured
+};
+
+// One merged triangle mesh: the scene is small enough that Embree and Vulkan both take it whole.
+struct TriangleMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;     // per vertex, same count as positions
+    std::vector<glm::vec2> uvs;         // per vertex, empty if the scene has no UVs
+    std::vector<glm::uvec3> triangles;  // indices into positions
+    std::vector<std::uint32_t> materialIds;  // per triangle, index into Scene::materials
+    std::vector<std::uint32_t> objectIds;    // per triangle, the OBJ group / glTF node it came from
+};
+
+struct PointLight {
+    std::string name;
+    glm::vec3 position{0.0f};
+    glm::vec3 intensity{0.0f};  // W/sr per channel, isotropic
+};
+
+// A group of emissive triangles with one radiance (one OBJ object with a Ke material, say).
+// The tracer samples it by area; the Snapshot approximates it with k point samples.
+struct AreaLight {
+    std::string name;
+    std::vector<std::uint32_t> triangles;  // indices into TriangleMesh::triangles
+    glm::vec3 radiance{0.0f};              // W/(sr m^2), one-sided, along the triangle normal
+    float area = 0.0f;                     // total area in scene units^2
+};
+
+// A Radiance view (rview/rpict -v options). Only perspective (-vtv) views for now.
+struct View {
+    std::string name;             // "" or the name given in the view file / config
+    glm::vec3 position{0.0f};     // -vp
+    glm::vec3 direction{0, 0, -1};  // -vd (not necessarily unit length in the file; stored normalised)
+    glm::vec3 up{0, 1, 0};        // -vu
+    float horizontalFovDeg = 45;  // -vh, full angle
+    float verticalFovDeg = 45;    // -vv, full angle
+    float shiftX = 0, shiftY = 0;  // -vs, -vl (fractions of the view)
+};
+
+struct Texture {
+    std::filesystem::path path;
+    int width = 0, height = 0;
+    std::vector<float> rgba;  // linear, row 0 at the top
+};
+
+struct Scene {
+    std::string name;
+    std::filesystem::path source;  // file it was loaded from, "" for built-in scenes
+    TriangleMesh mesh;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<PointLight> pointLights;
+    std::vector<AreaLight> areaLights;
+    std::vector<View> views;  // views that came with the scene (glTF cameras, built-in default view)
+
+    bool hasTextures() const { return !textures.empty(); }
+};
+
+}  // namespace aamap
