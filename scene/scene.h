@@ -44,7 +44,10 @@ struct TriangleMesh {
 struct PointLight {
     std::string name;
     glm::vec3 position{0.0f};
-    glm::vec3 intensity{0.0f};  // W/sr per channel, isotropic
+    glm::vec3 intensity{0.0f};  // W/sr per channel: isotropic, or along `normal` for a lobe
+    // Zero: isotropic. Non-zero (unit): emits intensity * max(0, cos) around it, as a point sample
+    // of a one-sided Lambertian area light does.
+    glm::vec3 normal{0.0f};
 };
 
 // A group of emissive triangles with one radiance (one OBJ object with a Ke material, say).

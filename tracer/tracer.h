@@ -2,6 +2,7 @@
 // The high-fidelity renderer: Embree BVH, TBB tiles, deterministic per-(pixel, sample, seed)
 // random numbers. Integration-facing API; no Vulkan here.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -37,6 +38,8 @@ struct TraceSettings {
     std::uint64_t seed = 1;
     int threads = 0;  // 0: all hardware threads
     ShadingSettings shading;
+    // Called from worker threads as tiles finish (for progress bars); may be empty.
+    std::function<void(int tilesDone, int tilesTotal)> onTileDone;
 };
 
 struct TraceResult {

@@ -1,0 +1,47 @@
+#pragma once
+// The Vulkan 1.3 instance, device and queue, with the Khronos validation layer switchable.
+// Integration-facing part; the engine may add members but keeps these signatures.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace aamap {
+
+struct ContextOptions {
+    bool validation = false;  // enable VK_LAYER_KHRONOS_validation and count its messages
+    // "" picks the first discrete GPU, else integrated, else virtual, else CPU (lavapipe).
+    // Otherwise a device index ("0") or a case-insensitive substring of the device name.
+    std::string device;
+};
+
+class VulkanContext {
+public:
+    explicit VulkanContext(const ContextOptions& options);  // throws EnvironmentError with a clear message
+    ~VulkanContext();
+    VulkanContext(const VulkanContext&) = delete;
+    VulkanContext& operator=(const VulkanContext&) = delete;
+
+    // Names of all physical devices, in enumeration order (for --device and error messages).
+    static std::vector<std::string> listDevices();
+
+    const std::string& deviceName() const;
+    bool validationEnabled() const;
+    // Validation-layer messages of severity warning or error so far (each is also logged).
+    std::uint64_t validationMessageCount() const;
+
+    VkInstance instance() const;
+    VkPhysicalDevice physicalDevice() const;
+    VkDevice device() const;
+    VkQueue queue() const;  // one queue with graphics + compute + transfer
+    std::uint32_t queueFamily() const;
+    double timestampPeriodNs() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace aamap
