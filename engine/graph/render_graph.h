@@ -103,12 +103,14 @@ struct CompiledPass {
     std::string name;
     std::vector<Barrier> barriersBefore;
     std::string keptBecause;  // e.g. "writes 'edges', read by 'blur' -> ... -> output 'aamap'"
+    std::vector<Access> accesses;  // copied from its PassDesc (DOT edges, executor bindings)
 };
 
 struct CulledPass {
     PassId id = 0;
     std::string name;
     std::string reason;  // e.g. "none of its writes ('debug') reaches a requested output"
+    std::vector<Access> accesses;  // copied from its PassDesc (DOT edges)
 };
 
 struct CompiledGraph {

@@ -6,7 +6,8 @@
 //   2. edges e = |L|,  L = sum over the 24 off-centre taps o of the 5x5 window of (g(p+o) - g(p)),
 //      accumulated in row-major order (dy, then dx, from -2 to 2). Written as differences so a
 //      constant image gives exactly 0 (24*g - sum(g) would not, in floating point).
-//   3. blur  b = mean of e over the (2r+1)^2 box around p (r = blur radius, 0 = no blur).
+//   3. blur  b = mean of e over the (2r+1)^2 box around p (r = blur radius, 0 = no blur), summed in
+//      row-major order and divided once by (2r+1)^2.
 //   4. map   m = clamp(gain * (b - noiseFloor), 0, 1): the dead zone removes the tiny responses of
 //      smooth shading, so flat regions are exactly 0.
 // Then reduce to the render resolution (W x H): aamap(x, y) = max of m over every snapshot texel
