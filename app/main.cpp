@@ -1,0 +1,131 @@
+// The `aamap` command line. Results go to files; stderr carries logs and, on failure, one
+// "aamap: error: ..." line. Exit codes: 0 ok, 1 environment, 2 bad input, 3 validation messages.
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "aamap/git_revision.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "engine/vk/context.h"
+#include "eval/config.h"
+#include "eval/experiment.h"
+
+namespace {
+
+constexpr int kExitEnvironment = 1;
+constexpr int kExitInput = 2;
+constexpr int kExitValidation = 3;
+
+const char* const kRunFooter = R"(CONFIG is a YAML experiment (configs/cornell.yaml is the default one; full schema in
+docs/config.md). Paths in it are relative to the config file. Keys:
+  scene: builtin:cornell | path to .obj      view: path to a Radiance .vf, or null (scene's view)
+  view_index: 0                              seed: 1          threads: 0 (all cores)
+  lights: [{type: point, name, position: [x,y,z], intensity: [r,g,b] W/sr, normal: [x,y,z]}]
+  image: {width: 512, height: 512, exposure: 1.0}   (the view's aspect ratio fits inside)
+  snapshot: {scale: 1.5, area_light_samples: 5, blur_radius: 1, noise_floor: 0.02, gain: 1.0}
+  shading: {area_light_samples: 16}
+  renders: [{name: NAME, strategy: uniform|aamap, rpp: n*n (1, 4, 9, ..., 1024)}]
+--set overrides one value, e.g. --set image.width=256 --set renders.1.rpp=16 (the value is YAML).
+
+Writes into OUTDIR: snapshot.png, laplacian.png, aamap.exr, aamap.png, and per render NAME.exr
+(linear), NAME.png (sRGB), NAME.rpp.png (rays per pixel in false colour), plus results.json.
+
+Environment: AAMAP_VALIDATION=1 turns on --validation; AAMAP_DEVICE sets the default --device.
+Exit codes: 0 success, 1 environment error (no GPU, disk), 2 bad input (config, scene, options),
+3 Vulkan validation messages.)";
+
+bool envFlag(const char* name) {
+    const char* v = std::getenv(name);
+    if (v == nullptr) return false;
+    const std::string s = v;
+    return s == "1" || s == "true" || s == "on" || s == "yes" || s == "TRUE" || s == "ON" || s == "YES";
+}
+
+std::string envString(const char* name) {
+    const char* v = std::getenv(name);
+    return v ? v : "";
+}
+
+int fail(int code, const std::string& message) {
+    std::fflush(stdout);
+    fmt::print(stderr, "aamap: error: {}\n", message);
+    return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"aamap: analytic antialiasing maps for selective high-fidelity rendering.\n"
+                 "A Vulkan snapshot of the scene finds the edges that need antialiasing; an Embree\n"
+                 "tracer spends its rays there.",
+                 "aamap"};
+    app.set_version_flag("--version", fmt::format("aamap 0.1.0 ({})", AAMAP_GIT_REVISION));
+    app.require_subcommand(1);
+    app.fallthrough();  // -v/-q work after the subcommand too
+    app.footer("Run 'aamap run --help' for the experiment options and config keys.");
+    bool verbose = false, quiet = false;
+    app.add_flag("-v,--verbose", verbose, "Debug logging");
+    app.add_flag("-q,--quiet", quiet, "Warnings and errors only");
+
+    CLI::App* run = app.add_subcommand("run", "Run an experiment: snapshot, aamap, renders, results.json");
+    std::string configPath, outDir, device = envString("AAMAP_DEVICE");
+    std::vector<std::string> overrides;
+    bool validation = envFlag("AAMAP_VALIDATION"), listDevices = false;
+    int threads = -1;
+    run->add_option("CONFIG", configPath, "Experiment YAML file");
+    run->add_option("-o,--out", outDir, "Output folder (default: out/<config stem>)")->type_name("OUTDIR");
+    run->add_option("--set", overrides, "Override a config value: key.path=value (repeatable)")
+        ->expected(1)
+        ->allow_extra_args(false)  // "--set a=1 CONFIG": CONFIG is not a second override
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->type_name("KEY=VALUE");
+    run->add_option("--device", device, "Vulkan device: index or name substring (default: best GPU)")
+        ->type_name("NAME");
+    run->add_flag("--validation", validation, "Enable the Vulkan validation layer; any message fails the run (exit 3)");
+    run->add_option("--threads", threads, "Tracer threads (overrides the config; 0 = all)")->check(CLI::NonNegativeNumber);
+    run->add_flag("--list-devices", listDevices, "Print the Vulkan devices and exit");
+    run->footer(kRunFooter);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        return fail(kExitInput, fmt::format("{}\nRun 'aamap --help' for usage.", e.what()));
+    }
+    aamap::initLogging(verbose ? spdlog::level::debug : quiet ? spdlog::level::warn : spdlog::level::info);
+
+    try {
+        if (listDevices) {
+            const std::vector<std::string> devices = aamap::VulkanContext::listDevices();
+            for (std::size_t i = 0; i < devices.size(); ++i) fmt::print("{}: {}\n", i, devices[i]);
+            if (devices.empty()) return fail(kExitEnvironment, "no Vulkan devices found");
+            if (configPath.empty()) return 0;
+        }
+        if (configPath.empty()) return fail(kExitInput, "run: CONFIG is required\nRun 'aamap run --help' for usage.");
+        const aamap::ExperimentConfig config = aamap::loadConfig(configPath, overrides);
+        const std::filesystem::path out =
+            outDir.empty() ? std::filesystem::path("out") / std::filesystem::path(configPath).stem() : std::filesystem::path(outDir);
+        aamap::RunOptions options;
+        options.validation = validation;
+        options.device = device;
+        options.threads = threads;
+        options.gitRevision = AAMAP_GIT_REVISION;
+        spdlog::info("config {} (hash {}), output {}", configPath, config.hash(), out.string());
+        aamap::runExperiment(config, out, options);
+        return 0;
+    } catch (const aamap::InputError& e) {
+        return fail(kExitInput, e.what());
+    } catch (const aamap::ValidationFailure& e) {
+        return fail(kExitValidation, e.what());
+    } catch (const aamap::EnvironmentError& e) {
+        return fail(kExitEnvironment, e.what());
+    } catch (const std::exception& e) {
+        return fail(kExitEnvironment, e.what());
+    }
+}

@@ -1,0 +1,269 @@
+// Checks on a finished `aamap run configs/cornell.yaml` (Outputs.*, folder in AAMAP_E2E_OUT) and
+// on the command line's error paths (CliErrors.*, executable in AAMAP_EXE).
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/image_io.h"
+#include "eval/config.h"
+#include "scene/camera.h"
+#include "scene/load_scene.h"
+
+namespace aamap {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string env(const char* name) {
+    const char* v = std::getenv(name);
+    return v ? v : "";
+}
+
+std::vector<std::string> overrides() {
+    std::vector<std::string> list;
+    std::stringstream in(AAMAP_E2E_OVERRIDES);
+    for (std::string item; std::getline(in, item, ',');) list.push_back(item);
+    return list;
+}
+
+// Film point (u, v) of a world point, inverting PinholeCamera::direction().
+glm::vec2 project(const PinholeCamera& cam, const glm::vec3& p) {
+    const glm::vec3 d = p - cam.origin;
+    const float z = glm::dot(d, cam.forward);
+    const float sx = glm::dot(d, cam.right) / z, sy = glm::dot(d, cam.up) / z;
+    return {(sx / cam.tanHalfH + 1.0f) * 0.5f - cam.shiftX, (1.0f - sy / cam.tanHalfV) * 0.5f + cam.shiftY};
+}
+
+class Outputs : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        out_ = env("AAMAP_E2E_OUT");
+        config_ = loadConfig(AAMAP_E2E_CONFIG, overrides());
+    }
+    static fs::path out_;
+    static ExperimentConfig config_;
+};
+fs::path Outputs::out_;
+ExperimentConfig Outputs::config_;
+
+TEST_F(Outputs, EveryFileExists) {
+    ASSERT_FALSE(out_.empty()) << "set AAMAP_E2E_OUT";
+    std::vector<std::string> expected{"snapshot.png", "laplacian.png", "aamap.exr", "aamap.png", "results.json"};
+    for (const RenderConfig& r : config_.renders)
+        for (const char* suffix : {".exr", ".png", ".rpp.png"}) expected.push_back(r.name + suffix);
+    for (const std::string& name : expected) {
+        EXPECT_TRUE(fs::is_regular_file(out_ / name)) << name;
+        if (fs::is_regular_file(out_ / name)) {
+            EXPECT_GT(fs::file_size(out_ / name), 0u) << name;
+        }
+    }
+    for (const auto& entry : fs::directory_iterator(out_))  // no temporaries left behind
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
+}
+
+TEST_F(Outputs, ResultsJsonHasTheRequiredFields) {
+    std::ifstream in(out_ / "results.json");
+    ASSERT_TRUE(in) << out_ / "results.json";
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["config_hash"], config_.hash());
+    const ImageGrey map = readExrGrey(out_ / "aamap.exr");
+    ASSERT_EQ(j["renders"].size(), config_.renders.size());
+    for (std::size_t i = 0; i < config_.renders.size(); ++i) {
+        const nlohmann::json& r = j["renders"][i];
+        const RenderConfig& rc = config_.renders[i];
+        SCOPED_TRACE(rc.name);
+        for (const char* key : {"name", "scene", "view", "width", "height", "strategy", "parameters",
+                                "max_rays_per_pixel", "times_s", "rays", "mean_primary_rpp", "non_finite_samples",
+                                "git_revision", "config_hash", "vulkan_device", "machine"})
+            EXPECT_TRUE(r.contains(key)) << key;
+        for (const char* key : {"load", "bvh_build", "snapshot_total", "snapshot_passes_gpu_ms", "readback", "trace",
+                                "total"})
+            EXPECT_TRUE(r["times_s"].contains(key)) << key;
+        EXPECT_EQ(r["name"], rc.name);
+        EXPECT_EQ(r["strategy"], rc.strategy);
+        EXPECT_EQ(r["width"], map.width());
+        EXPECT_EQ(r["height"], map.height());
+        EXPECT_EQ(r["max_rays_per_pixel"], rc.rpp);
+        EXPECT_EQ(r["non_finite_samples"], 0);
+        EXPECT_FALSE(r["git_revision"].get<std::string>().empty());
+        EXPECT_GT(r["times_s"]["trace"].get<double>(), 0.0);
+        EXPECT_GE(r["times_s"]["total"].get<double>(), r["times_s"]["trace"].get<double>());
+        const double pixels = static_cast<double>(map.width()) * map.height();
+        EXPECT_EQ(r["rays"]["total"].get<double>(),
+                  r["rays"]["primary"].get<double>() + r["rays"]["shadow"].get<double>() +
+                      r["rays"]["other"].get<double>());
+        EXPECT_DOUBLE_EQ(r["mean_primary_rpp"].get<double>(), r["rays"]["primary"].get<double>() / pixels);
+        if (rc.strategy == "uniform") {
+            EXPECT_DOUBLE_EQ(r["mean_primary_rpp"].get<double>(), rc.rpp);
+        } else {
+            EXPECT_GE(r["mean_primary_rpp"].get<double>(), 1.0);
+            EXPECT_LT(r["mean_primary_rpp"].get<double>(), rc.rpp);  // the point of the method
+            EXPECT_FALSE(r["vulkan_device"].get<std::string>().empty());
+            EXPECT_GT(r["times_s"]["snapshot_total"].get<double>(), 0.0);
+            EXPECT_FALSE(r["times_s"]["snapshot_passes_gpu_ms"].empty());
+        }
+    }
+}
+
+TEST_F(Outputs, ImagesHaveTheRenderSizeAndFiniteValues) {
+    const ImageGrey map = readExrGrey(out_ / "aamap.exr");
+    EXPECT_LE(map.width(), config_.image.width);
+    EXPECT_LE(map.height(), config_.image.height);
+    EXPECT_TRUE(map.width() == config_.image.width || map.height() == config_.image.height);
+    for (float v : map.pixels()) ASSERT_TRUE(v >= 0.0f && v <= 1.0f) << v;
+    const ImageRGB8 mapPng = readPng(out_ / "aamap.png");
+    EXPECT_EQ(mapPng.width(), map.width());
+    for (const RenderConfig& r : config_.renders) {
+        SCOPED_TRACE(r.name);
+        const ImageRGB img = readExr(out_ / (r.name + ".exr"));
+        ASSERT_EQ(img.width(), map.width());
+        ASSERT_EQ(img.height(), map.height());
+        double sum = 0;
+        for (const glm::vec3& p : img.pixels()) {
+            ASSERT_TRUE(std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b));
+            sum += p.r + p.g + p.b;
+        }
+        EXPECT_GT(sum, 0.0);
+        EXPECT_EQ(readPng(out_ / (r.name + ".png")).width(), img.width());
+        const ImageRGB8 rpp = readPng(out_ / (r.name + ".rpp.png"));
+        EXPECT_GT(rpp.height(), img.height());  // the legend strip
+    }
+}
+
+TEST_F(Outputs, AamapMarksTheBoxEdgesAndLeavesTheBackWallAlone) {
+    const ImageGrey map = readExrGrey(out_ / "aamap.exr");
+    const Scene scene = loadScene(config_.resolvedScene());
+    ASSERT_FALSE(scene.views.empty());
+    const PinholeCamera cam = PinholeCamera::fromView(scene.views.at(static_cast<std::size_t>(config_.viewIndex)));
+    auto pixelOf = [&](const glm::vec3& p) {
+        const glm::vec2 uv = project(cam, p);
+        return glm::ivec2(static_cast<int>(std::floor(uv.x * map.width())), static_cast<int>(std::floor(uv.y * map.height())));
+    };
+    auto maxAround = [&](glm::ivec2 c, int r) {
+        float m = 0.0f;
+        for (int y = std::max(0, c.y - r); y <= std::min(map.height() - 1, c.y + r); ++y)
+            for (int x = std::max(0, c.x - r); x <= std::min(map.width() - 1, c.x + r); ++x) m = std::max(m, map.at(x, y));
+        return m;
+    };
+
+    // The middle of the back wall, above the tall block: flat shading, so exactly zero.
+    const glm::ivec2 centre = pixelOf({0.278f, 0.4f, 0.559f});
+    ASSERT_TRUE(centre.x > 0 && centre.x + 1 < map.width() && centre.y >= 0 && centre.y < map.height());
+    for (int dx = -1; dx <= 1; ++dx)
+        EXPECT_EQ(map.at(centre.x + dx, centre.y), 0.0f) << "pixel " << centre.x + dx << "," << centre.y;
+
+    // The creases where the red and green walls meet the back wall, at mid height.
+    glm::vec3 lo(1e30f), hi(-1e30f);
+    for (const glm::vec3& p : scene.mesh.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    const float zBack = cam.forward.z > 0 ? hi.z : lo.z;
+    const float yMid = 0.5f * (lo.y + hi.y);
+    for (float x : {lo.x, hi.x}) {
+        const glm::ivec2 crease = pixelOf({x, yMid, zBack});
+        EXPECT_GT(maxAround(crease, 1), 0.0f) << "crease at pixel " << crease.x << "," << crease.y;
+    }
+
+    std::size_t flagged = 0;
+    for (float v : map.pixels()) flagged += v > 0.0f;
+    const double fraction = static_cast<double>(flagged) / static_cast<double>(map.size());
+    EXPECT_GT(fraction, 0.01);
+    EXPECT_LT(fraction, 0.9);  // edges are a few pixels wide, so at 64x64 they cover a lot
+}
+
+// ---- command-line errors -----------------------------------------------------------------------
+
+struct CommandResult {
+    int exitCode = -1;
+    std::string stderrText;
+};
+
+CommandResult aamap(const std::string& args) {
+    const std::string exe = env("AAMAP_EXE");
+    EXPECT_FALSE(exe.empty()) << "set AAMAP_EXE";
+    const std::string command = fmt::format("'{}' {} 2>&1 1>/dev/null", exe, args);
+    CommandResult run;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (pipe == nullptr) return run;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) run.stderrText.append(buffer, n);
+    const int status = ::pclose(pipe);
+    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+class CliErrors : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::path(env("AAMAP_E2E_TMP").empty() ? ::testing::TempDir() : env("AAMAP_E2E_TMP")) /
+               ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    fs::path write(const std::string& name, const std::string& text) {
+        std::ofstream(dir_ / name) << text;
+        return dir_ / name;
+    }
+    fs::path dir_;
+};
+
+TEST_F(CliErrors, MissingConfigIsBadInputNamingTheFile) {
+    const fs::path missing = dir_ / "no_such.yaml";
+    const CommandResult run = aamap("run '" + missing.string() + "' -o '" + (dir_ / "out").string() + "'");
+    EXPECT_EQ(run.exitCode, 2) << run.stderrText;
+    EXPECT_NE(run.stderrText.find("aamap: error: " + missing.string()), std::string::npos) << run.stderrText;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));  // nothing written for bad input
+}
+
+TEST_F(CliErrors, MalformedYamlGivesFileAndLine) {
+    const fs::path config = write("bad.yaml", "scene: builtin:cornell\nrenders: [{strategy: uniform, rpp: 4}\n");
+    const CommandResult run = aamap("run '" + config.string() + "' -o '" + (dir_ / "out").string() + "'");
+    EXPECT_EQ(run.exitCode, 2) << run.stderrText;
+    EXPECT_NE(run.stderrText.find("aamap: error: " + config.string() + ":3:"), std::string::npos) << run.stderrText;
+}
+
+TEST_F(CliErrors, SchemaErrorsGiveLineAndColumn) {
+    const fs::path config = write("typo.yaml", "scene: builtin:cornell\nimage: {widht: 64}\nrenders: [{strategy: uniform, rpp: 4}]\n");
+    const CommandResult run = aamap("run '" + config.string() + "'");
+    EXPECT_EQ(run.exitCode, 2) << run.stderrText;
+    EXPECT_NE(run.stderrText.find(config.string() + ":2:9: unknown key 'widht'"), std::string::npos) << run.stderrText;
+    const CommandResult set = aamap("run '" + config.string() + "' --set image.width=abc");
+    EXPECT_EQ(set.exitCode, 2) << set.stderrText;
+    EXPECT_NE(set.stderrText.find("--set image.width=abc"), std::string::npos) << set.stderrText;
+}
+
+TEST_F(CliErrors, UsageErrorsAndHelp) {
+    EXPECT_EQ(aamap("").exitCode, 2);
+    EXPECT_EQ(aamap("run").exitCode, 2);
+    EXPECT_EQ(aamap("run x.yaml --no-such-option").exitCode, 2);
+    EXPECT_EQ(aamap("run x.yaml --threads -3").exitCode, 2);
+    EXPECT_EQ(aamap("--help").exitCode, 0);
+    EXPECT_EQ(aamap("--version").exitCode, 0);
+    // Help goes to stdout; read it there.
+    const std::string command = fmt::format("'{}' run --help", env("AAMAP_EXE"));
+    FILE* pipe = ::popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string help;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) help.append(buffer, n);
+    EXPECT_EQ(::pclose(pipe), 0);
+    for (const char* word : {"docs/config.md", "--set", "--device", "--validation", "--threads", "--list-devices",
+                             "scene:", "view:", "view_index:", "lights:", "image:", "seed:", "threads:", "snapshot:",
+                             "shading:", "renders:", "AAMAP_VALIDATION"})
+        EXPECT_NE(help.find(word), std::string::npos) << word;
+}
+
+}  // namespace
+}  // namespace aamap
