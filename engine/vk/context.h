@@ -31,6 +31,9 @@ public:
     bool validationEnabled() const;
     // Validation-layer messages of severity warning or error so far (each is also logged).
     std::uint64_t validationMessageCount() const;
+    // The same count over every context of the process, including messages raised while a
+    // context is destroyed (leaks): what tests check after tearing their context down.
+    static std::uint64_t processValidationMessageCount();
 
     VkInstance instance() const;
     VkPhysicalDevice physicalDevice() const;
@@ -38,6 +41,12 @@ public:
     VkQueue queue() const;  // one queue with graphics + compute + transfer
     std::uint32_t queueFamily() const;
     double timestampPeriodNs() const;
+
+    // Engine-side additions (not needed by integration code).
+    std::uint32_t timestampValidBits() const;
+    const VkPhysicalDeviceMemoryProperties& memoryProperties() const;
+    VkCommandPool commandPool() const;  // resettable buffers, for the queue family above
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet() const;  // VK_KHR_push_descriptor entry point
 
 private:
     struct Impl;

@@ -1,0 +1,20 @@
+#include "passes/blur.h"
+
+#include <aamap/spirv.h>
+
+namespace aamap::passes {
+
+BlurPass::BlurPass(VulkanContext& context) : pass_(context, spirv::blur_comp, "blur") {}
+
+graph::PassId BlurPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
+                            const std::string& edges, const std::string& map, int radius, float noiseFloor,
+                            float gain) const {
+    gpu::FilterPush push{};
+    push.radius = radius;
+    push.noiseFloor = noiseFloor;
+    push.gain = gain;
+    return pass_.add(graph, executor, "blur", edges, map, push,
+                     "blur (the edges of the edge map alias too) and dead zone");
+}
+
+}  // namespace aamap::passes

@@ -1,0 +1,35 @@
+#pragma once
+// A compute pass of the aamap filter chain: one storage image in, one r32f storage image out,
+// FilterPush constants. The concrete passes (luminance, laplacian, blur, reduce) only choose the
+// shader and the constants.
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "engine/graph/render_graph.h"
+#include "engine/vk/graph_executor.h"
+#include "engine/vk/pipeline.h"
+#include "glsl/shared/snapshot_interface.h"
+
+namespace aamap::passes {
+
+class FilterPass {
+public:
+    FilterPass(VulkanContext& context, std::span<const std::uint32_t> spirv, std::string kind);
+
+    // Declares pass `name` (reads `input` as StorageRead, writes `output` as StorageWrite) and
+    // registers its recording. inSize/outSize of `push` are filled from the live images. The
+    // FilterPass must outlive the graph's execution.
+    graph::PassId add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& name,
+                      const std::string& input, const std::string& output, const gpu::FilterPush& push,
+                      std::string purpose) const;
+
+    const std::string& kind() const { return kind_; }
+
+private:
+    VulkanContext* context_;
+    vk::Pipeline pipeline_;
+    std::string kind_;
+};
+
+}  // namespace aamap::passes

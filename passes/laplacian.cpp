@@ -1,0 +1,15 @@
+#include "passes/laplacian.h"
+
+#include <aamap/spirv.h>
+
+namespace aamap::passes {
+
+LaplacianPass::LaplacianPass(VulkanContext& context) : pass_(context, spirv::laplacian_comp, "laplacian") {}
+
+graph::PassId LaplacianPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
+                                 const std::string& grey, const std::string& edges) const {
+    return pass_.add(graph, executor, "laplacian", grey, edges, gpu::FilterPush{},
+                     "5x5 Laplacian: the edges to antialias");
+}
+
+}  // namespace aamap::passes

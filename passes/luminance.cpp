@@ -1,0 +1,17 @@
+#include "passes/luminance.h"
+
+#include <aamap/spirv.h>
+
+namespace aamap::passes {
+
+LuminancePass::LuminancePass(VulkanContext& context) : pass_(context, spirv::luminance_comp, "luminance") {}
+
+graph::PassId LuminancePass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
+                                 const std::string& colour, const std::string& grey, float exposure) const {
+    gpu::FilterPush push{};
+    push.exposure = exposure;
+    return pass_.add(graph, executor, "luminance", colour, grey, push,
+                     "greyscale of the snapshot for the edge filter");
+}
+
+}  // namespace aamap::passes
