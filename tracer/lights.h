@@ -1,0 +1,83 @@
+#pragma once
+// Light sources as the integrator samples them. An area light is a set of emissive triangles with
+// one radiance; a 2D sample in [0,1)^2 picks a triangle by area (CDF over the triangles) and
+// reuses the rescaled remainder to place a uniform point on it, so a stratified 2D pattern stays
+// stratified over the whole light.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "scene/scene.h"
+
+namespace aamap {
+
+class EmbreeScene;
+
+struct LightPoint {
+    glm::vec3 position;
+    glm::vec3 normal;  // unit, the emitting side
+};
+
+class AreaLightSampler {
+public:
+    // Throws std::invalid_argument for triangle indices outside the mesh.
+    AreaLightSampler(const AreaLight& light, const EmbreeScene& geometry);
+
+    const glm::vec3& radiance() const { return radiance_; }
+    float area() const { return area_; }  // sum of the triangle areas, the 1/pdf of sample()
+    bool empty() const { return tris_.empty(); }
+
+    // A point distributed uniformly by area over the light; u in [0,1)^2. Inline: it runs once
+    // per light sample.
+    LightPoint sample(glm::vec2 u) const {
+        // Pick the triangle whose CDF interval holds u.x, then stretch that interval back to
+        // [0,1). Few triangles (the usual quad light): a branchless count, since u.x is random
+        // and a search would mispredict half its branches.
+        std::size_t i = 0;
+        const std::size_t n = tris_.size();
+        if (n <= 16) {
+            for (std::size_t k = 0; k + 1 < n; ++k) i += u.x >= tris_[k].cdf ? 1 : 0;
+        } else {
+            const auto it = std::upper_bound(cdfs_.begin(), cdfs_.end(), u.x);
+            i = std::min(static_cast<std::size_t>(it - cdfs_.begin()), n - 1);
+        }
+        const Tri& t = tris_[i];
+        const float ux = std::min(std::max((u.x - t.cdfLow) * t.invCdfWidth, 0.0f), 0x1.fffffep-1f);
+        // Uniform point on the triangle (square-root warp).
+        const float su = std::sqrt(ux);
+        return {t.v0 + (su * (1.0f - u.y)) * t.e1 + (su * u.y) * t.e2, t.normal};
+    }
+
+private:
+    struct Tri {
+        glm::vec3 v0, e1, e2, normal;
+        float cdfLow;       // CDF before this triangle
+        float cdf;          // CDF up to and including it
+        float invCdfWidth;  // 1 / (cdf - cdfLow), 0 for an empty interval
+    };
+    glm::vec3 radiance_{0.0f};
+    float area_ = 0.0f;
+    std::vector<Tri> tris_;
+    std::vector<float> cdfs_;  // Tri::cdf of each triangle, for the binary search; the last is exactly 1
+};
+
+// Point lights with the lobe factor resolved once.
+struct PointLightSource {
+    glm::vec3 position;
+    glm::vec3 intensity;
+    glm::vec3 normal;  // zero: isotropic
+    bool lobe;
+};
+
+struct LightSet {
+    std::vector<PointLightSource> points;
+    std::vector<AreaLightSampler> areas;  // empty (zero-area) lights are dropped
+};
+
+LightSet buildLights(const Scene& scene, const EmbreeScene& geometry);
+
+}  // namespace aamap

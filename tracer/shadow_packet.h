@@ -1,0 +1,51 @@
+#pragma once
+// Shadow rays that share an origin (the m x m samples of one area light seen from one hit) are
+// traced as 8-wide Embree packets: one traversal serves the lot, and the rays are coherent since
+// they aim at the same light. The batch keeps lane i = sample i, so results do not depend on
+// which samples were culled, and the per-lane math is plain loops over float arrays that the
+// compiler vectorises.
+#include <cstdint>
+
+#include <embree3/rtcore.h>
+#include <glm/vec3.hpp>
+
+#include "tracer/tracer.h"
+
+namespace aamap {
+
+struct ShadowBatch8 {
+    static constexpr int kWidth = 8;
+
+    alignas(32) float qx[kWidth], qy[kWidth], qz[kWidth];  // light sample positions
+    alignas(32) float nx[kWidth], ny[kWidth], nz[kWidth];  // light normals at the samples
+    alignas(32) float weight[kWidth];                      // cos cos' / d^2 where valid
+    alignas(32) int valid[kWidth];                         // -1: trace this lane
+    RTCRay8 packet;                                        // carries its own 32-byte alignment
+
+    void setSample(int i, const glm::vec3& q, const glm::vec3& n) {
+        qx[i] = q.x;
+        qy[i] = q.y;
+        qz[i] = q.z;
+        nx[i] = n.x;
+        ny[i] = n.y;
+        nz[i] = n.z;
+    }
+    // Fills lanes [count, 8) with copies of lane count - 1, so every lane holds finite data.
+    void padFrom(int count) {
+        const int last = count - 1;
+        for (int i = count; i < kWidth; ++i)
+            setSample(i, {qx[last], qy[last], qz[last]}, {nx[last], ny[last], nz[last]});
+    }
+
+    // For lanes [0, count): computes the weights and the shadow segments from `origin` (the
+    // offset hit point) to each sample, stopping short of the light by the scale-aware offset;
+    // `position`, `geometric`, `shading` describe the hit. Lanes that face away are invalid.
+    void prepare(int count, const glm::vec3& position, const glm::vec3& origin, const glm::vec3& geometric,
+                 const glm::vec3& shading);
+
+    // Traces the valid lanes and returns the sum of the weights of the unoccluded ones, in lane
+    // order. Adds the rays traced to rays.shadow.
+    float trace(RTCScene scene, int count, RayCounts& rays);
+};
+
+}  // namespace aamap
