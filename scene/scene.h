@@ -35,7 +35,8 @@ struct Material {
 struct TriangleMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;     // per vertex, same count as positions
-    std::vector<glm::vec2> uvs;         // per vertex, empty if the scene has no UVs
+    std::vector<glm::vec2> uvs;         // per vertex, empty if none; v = 0 is the image's top row
+                                        // (glTF/Vulkan convention; OBJ vt is flipped on load)
     std::vector<glm::uvec3> triangles;  // indices into positions
     std::vector<std::uint32_t> materialIds;  // per triangle, index into Scene::materials
     std::vector<std::uint32_t> objectIds;    // per triangle, the OBJ group / glTF node it came from

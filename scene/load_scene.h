@@ -1,0 +1,14 @@
+#pragma once
+// One entry point from a scene spec to the Scene model.
+#include <string>
+
+#include "scene/scene.h"
+
+namespace aamap {
+
+// spec: "builtin:<name>" (see builtin_scenes.h) or a file path: .obj, .gltf or .glb (case-
+// insensitive extension). For an OBJ, a Radiance view file "<stem>.vf" next to it supplies
+// Scene::views. Throws InputError for unknown formats and for anything the loaders reject.
+Scene loadScene(const std::string& spec);
+
+}  // namespace aamap

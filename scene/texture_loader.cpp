@@ -1,0 +1,123 @@
+#include "scene/texture_loader.h"
+
+#include <array>
+#include <cmath>
+#include <system_error>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+#include <stb_image.h>  // the implementation is in libstb
+
+#include "scene/text_util.h"
+
+namespace aamap {
+namespace fs = std::filesystem;
+
+std::optional<fs::path> resolveCaseInsensitive(const fs::path& baseDir, std::string_view name) {
+    std::string cleaned(text::trim(name));
+    for (char& c : cleaned) {
+        if (c == '\\') c = '/';  // MTL files written on Windows
+    }
+    if (cleaned.empty()) return std::nullopt;
+    const fs::path relative(cleaned);
+    const fs::path direct = relative.is_absolute() ? relative : baseDir / relative;
+    std::error_code ec;
+    if (fs::is_regular_file(direct, ec)) return direct.lexically_normal();
+
+    // Walk the components, matching each one case-insensitively where the exact name is missing.
+    fs::path current = relative.is_absolute() ? relative.root_path() : baseDir;
+    for (const fs::path& part : relative.relative_path()) {
+        const std::string partName = part.string();
+        if (partName == "." || partName.empty()) continue;
+        if (partName == "..") {
+            current /= part;
+            continue;
+        }
+        if (fs::exists(current / part, ec)) {
+            current /= part;
+            continue;
+        }
+        const std::string wanted = text::toLower(partName);
+        std::optional<fs::path> match;
+        for (fs::directory_iterator it(current.empty() ? fs::path(".") : current, ec), end; !ec && it != end; it.increment(ec)) {
+            if (text::toLower(it->path().filename().string()) == wanted) {
+                match = it->path();
+                break;
+            }
+        }
+        if (!match) return std::nullopt;
+        current = *match;
+    }
+    if (!fs::is_regular_file(current, ec)) return std::nullopt;
+    return current.lexically_normal();
+}
+
+namespace {
+
+float srgbToLinear(float c) {
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+}  // namespace
+
+std::optional<Texture> loadTexture(const fs::path& path, std::string* error) {
+    const std::string name = path.string();
+    int width = 0, height = 0, channels = 0;
+    Texture texture;
+    texture.path = path;
+    if (stbi_is_hdr(name.c_str())) {
+        float* pixels = stbi_loadf(name.c_str(), &width, &height, &channels, 4);
+        if (!pixels) {
+            if (error) *error = stbi_failure_reason() ? stbi_failure_reason() : "unknown stb_image error";
+            return std::nullopt;
+        }
+        texture.rgba.assign(pixels, pixels + static_cast<std::size_t>(width) * height * 4);
+        stbi_image_free(pixels);
+    } else {
+        unsigned char* pixels = stbi_load(name.c_str(), &width, &height, &channels, 4);
+        if (!pixels) {
+            if (error) *error = stbi_failure_reason() ? stbi_failure_reason() : "unknown stb_image error";
+            return std::nullopt;
+        }
+        std::array<float, 256> toLinear{};
+        for (int i = 0; i < 256; ++i) toLinear[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
+        const std::size_t count = static_cast<std::size_t>(width) * height * 4;
+        texture.rgba.resize(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            texture.rgba[i] = (i % 4 == 3) ? static_cast<float>(pixels[i]) / 255.0f : toLinear[pixels[i]];
+        }
+        stbi_image_free(pixels);
+    }
+    texture.width = width;
+    texture.height = height;
+    return texture;
+}
+
+int TextureCache::get(const fs::path& baseDir, std::string_view name, const fs::path& referrer,
+                      std::vector<std::string>* warnings) {
+    const auto warn = [&](const std::string& message) {
+        spdlog::warn("{}", message);
+        if (warnings) warnings->push_back(message);
+    };
+    const auto resolved = resolveCaseInsensitive(baseDir, name);
+    if (!resolved) {
+        warn(fmt::format("{}: texture '{}' not found (looked in {}); using the plain colour instead", referrer.string(),
+                         name, baseDir.string()));
+        return -1;
+    }
+    if (const auto it = byPath_.find(*resolved); it != byPath_.end()) return it->second;
+    std::string error;
+    auto texture = loadTexture(*resolved, &error);
+    if (!texture) {
+        warn(fmt::format("{}: texture '{}' could not be decoded ({}); using the plain colour instead",
+                         referrer.string(), resolved->string(), error));
+        byPath_[*resolved] = -1;
+        return -1;
+    }
+    const int index = static_cast<int>(textures_.size());
+    textures_.push_back(std::move(*texture));
+    byPath_[*resolved] = index;
+    return index;
+}
+
+}  // namespace aamap

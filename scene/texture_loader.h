@@ -1,0 +1,39 @@
+#pragma once
+// Texture files for the scene loaders: path resolution that forgives the usual OBJ/MTL habits
+// (Windows backslashes, a different letter case than on disk) and decoding to linear RGBA.
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace aamap {
+
+// Finds `name` (relative to `baseDir`, or absolute) on disk; where the exact path does not exist,
+// each path component is matched case-insensitively against its folder. nullopt if not found.
+std::optional<std::filesystem::path> resolveCaseInsensitive(const std::filesystem::path& baseDir, std::string_view name);
+
+// Decodes an image with stb_image to linear RGBA floats, row 0 at the top. 8-bit images are taken
+// to be sRGB-encoded (colour channels linearised, alpha left as is); .hdr files are already linear.
+// On failure returns nullopt and sets `error`.
+std::optional<Texture> loadTexture(const std::filesystem::path& path, std::string* error = nullptr);
+
+// De-duplicates textures by resolved path while a scene is loaded.
+class TextureCache {
+public:
+    explicit TextureCache(std::vector<Texture>& textures) : textures_(textures) {}
+
+    // Index into the scene's textures, or -1 (after a spdlog warning naming the texture and the
+    // referring file, also appended to `warnings` if given) when it is missing or unreadable.
+    int get(const std::filesystem::path& baseDir, std::string_view name, const std::filesystem::path& referrer,
+            std::vector<std::string>* warnings = nullptr);
+
+private:
+    std::vector<Texture>& textures_;
+    std::map<std::filesystem::path, int> byPath_;
+};
+
+}  // namespace aamap
