@@ -53,8 +53,8 @@ public:
         for (const ForwardRef& ref : forward_) {
             if (static_cast<std::size_t>(ref.index) > totals[ref.kind]) {
                 throw InputError(file_, ref.line, ref.column,
-                                 fmt::format("{} index {} is out of range (the file has {} {}s)",
-                                             kKindNames[ref.kind], ref.index, totals[ref.kind], kKindNames[ref.kind]));
+                                 fmt::format("{} index {} is out of range (the file declares {} of them)",
+                                             kKindNames[ref.kind], ref.index, totals[ref.kind]));
             }
         }
         return std::move(result_);
