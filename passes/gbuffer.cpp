@@ -1,5 +1,6 @@
 #include "passes/gbuffer.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <vector>
@@ -23,7 +24,7 @@ struct Vertex {
     glm::vec3 kd;
     glm::vec3 ke;
 };
-static_assert(sizeof(Vertex) == 48);
+static_assert(sizeof(Vertex) == GBufferPass::kVertexStride);
 
 std::vector<Vertex> flatten(const TriangleMesh& mesh, const std::vector<Material>& materials) {
     const Material fallback;  // for ids past the material list
@@ -52,12 +53,10 @@ std::span<const std::byte> bytesOf(const std::vector<T>& v) {
     return std::as_bytes(std::span<const T>(v));
 }
 
-}  // namespace
-
-GBufferPass::GBufferPass(VulkanContext& context, const Scene& scene) : context_(&context) {
+vk::Pipeline makePipeline(VulkanContext& context, bool shadowed) {
     vk::GraphicsDesc desc;
     desc.vertexSpirv = spirv::gbuffer_vert;
-    desc.fragmentSpirv = spirv::gbuffer_frag;
+    desc.fragmentSpirv = shadowed ? spirv::gbuffer_shadowed_frag : spirv::gbuffer_frag;
     desc.vertexInput.stride = sizeof(Vertex);
     desc.vertexInput.attributes = {
         {GBUFFER_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
@@ -65,14 +64,21 @@ GBufferPass::GBufferPass(VulkanContext& context, const Scene& scene) : context_(
         {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, kd)},
         {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, ke)},
     };
-    desc.colorFormats = {vk::toVkFormat(kColourFormat)};
-    desc.depthFormat = vk::toVkFormat(kDepthFormat);
+    desc.colorFormats = {vk::toVkFormat(GBufferPass::kColourFormat)};
+    desc.depthFormat = vk::toVkFormat(GBufferPass::kDepthFormat);
     desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth
-    pipeline_ = vk::Pipeline(context, desc,
-                             vk::LayoutDesc{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                                            static_cast<std::uint32_t>(sizeof(gpu::GBufferPush)),
-                                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT});
+    std::vector<VkDescriptorType> bindings{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};  // GBUFFER_BINDING_LIGHTS
+    static_assert(GBUFFER_BINDING_LIGHTS == 0 && GBUFFER_BINDING_SHADOW == 1);
+    if (shadowed) bindings.push_back(VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);  // texelFetch only: no sampler
+    return vk::Pipeline(context, desc,
+                        vk::LayoutDesc{bindings, static_cast<std::uint32_t>(sizeof(gpu::GBufferPush)),
+                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT});
+}
 
+}  // namespace
+
+GBufferPass::GBufferPass(VulkanContext& context, const Scene& scene) : context_(&context) {
+    pipeline_ = makePipeline(context, false);
     const std::vector<Vertex> vertices = flatten(scene.mesh, scene.materials);
     vertexCount_ = static_cast<std::uint32_t>(vertices.size());
     vertices_ = vk::uploadBuffer(context, bytesOf(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
@@ -95,12 +101,16 @@ void GBufferPass::setLights(std::span<const PointLight> lights) {
 
 graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour,
                                const std::string& depth, const PinholeCamera& camera, float nearPlane,
-                               float farPlane) const {
-    const graph::PassId id = graph.addPass({"gbuffer",
-                                            graph::QueueKind::Graphics,
-                                            {graph::writes(colour, graph::Usage::ColorAttachment),
-                                             graph::writes(depth, graph::Usage::DepthAttachment)},
-                                            "rasterise the scene with local illumination"});
+                               float farPlane, const GBufferShadows& shadows) {
+    const bool shadowed = !shadows.resource.empty();
+    std::vector<graph::Access> accesses{graph::writes(colour, graph::Usage::ColorAttachment),
+                                        graph::writes(depth, graph::Usage::DepthAttachment)};
+    if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
+    const graph::PassId id = graph.addPass(
+        {"gbuffer", graph::QueueKind::Graphics, accesses,
+         shadowed ? "rasterise the scene with local illumination and shadow-map visibility per light"
+                  : "rasterise the scene with local illumination"});
+    if (shadowed && !shadowedPipeline_.handle()) shadowedPipeline_ = makePipeline(*context_, true);
     gpu::GBufferPush push{};
     // Reversed depth (z' = w - z, cleared to 0, GREATER wins): float depth then has about uniform
     // relative precision, so a small near plane does not cost z-fighting far away.
@@ -110,7 +120,12 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
     push.viewProj = reverse * camera.projectionMatrix(nearPlane, farPlane) * camera.viewMatrix();
     push.cameraPos = glm::vec4(camera.origin, 1.0f);
     push.lightCount = lightCount_;
-    executor.setRecord("gbuffer", [this, colour, depth, push](vk::PassContext& pc) {
+    push.shadowPcf = std::max(shadows.pcf, 1u);
+    push.shadow = glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias,
+                            static_cast<float>(shadows.faceSize));
+    const vk::Pipeline& pipeline = shadowed ? shadowedPipeline_ : pipeline_;
+    executor.setRecord("gbuffer", [this, colour, depth, push, &pipeline, shadow = shadows.resource](
+                                      vk::PassContext& pc) {
         const vk::Image& target = pc.image(colour);
         const vk::Image& z = pc.image(depth);
         const VkExtent2D extent{target.info().width, target.info().height};
@@ -141,9 +156,14 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
         if (vertexCount_ > 0) {
-            pipeline_.bind(cmd);
-            vk::DescriptorPush().uniformBuffer(GBUFFER_BINDING_LIGHTS, lights_.handle()).push(*context_, cmd, pipeline_);
-            pipeline_.pushConstants(cmd, push);
+            pipeline.bind(cmd);
+            vk::DescriptorPush descriptors;
+            descriptors.uniformBuffer(GBUFFER_BINDING_LIGHTS, lights_.handle());
+            if (!shadow.empty())
+                descriptors.sampledImage(GBUFFER_BINDING_SHADOW, pc.image(shadow).view(),
+                                         VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+            descriptors.push(*context_, cmd, pipeline);
+            pipeline.pushConstants(cmd, push);
             const VkBuffer vb = vertices_.handle();
             const VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -13,6 +14,7 @@
 #include "engine/vk/graph_executor.h"
 #include "passes/gbuffer.h"
 #include "passes/gpu_aamap.h"
+#include "passes/shadow_cube.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
 
@@ -53,6 +55,26 @@ void clipPlanes(const Bounds& bounds, glm::vec3 eye, bool empty, float& nearPlan
     nearPlane = std::max((distance - radius) * 0.99f, farPlane * 1e-6f);
 }
 
+void validate(const ShadowSettings& s) {
+    if (!s.enabled) return;
+    if (s.resolution < 1 || s.resolution > 8192)
+        throw std::invalid_argument("ShadowSettings::resolution must be in [1, 8192], got " +
+                                    std::to_string(s.resolution));
+    if (s.pcf < 1 || s.pcf > 16)
+        throw std::invalid_argument("ShadowSettings::pcf must be in [1, 16], got " + std::to_string(s.pcf));
+    if (!(s.depthBias >= 0.0f) || !(s.slopeBias >= 0.0f) || !std::isfinite(s.depthBias) ||
+        !std::isfinite(s.slopeBias))
+        throw std::invalid_argument("ShadowSettings::depthBias and slopeBias must be finite and non-negative");
+}
+
+// The compiled graph plus why the scene needs each kept pass (the shadow passes name their lights).
+std::string explainWithPurposes(const graph::RenderGraph& graph, const graph::CompiledGraph& compiled) {
+    std::string text = compiled.explain() + "pass purposes:\n";
+    for (const graph::CompiledPass& p : compiled.passes)
+        text += "  '" + p.name + "': " + graph.passes()[p.id].purpose + "\n";
+    return text;
+}
+
 }  // namespace
 
 struct SnapshotRenderer::Impl {
@@ -64,6 +86,8 @@ struct SnapshotRenderer::Impl {
     passes::FilterChain chain;
     vk::GraphExecutor executor;
     int lightSamples = -1;  // k the light buffer was built for
+    std::vector<std::string> lightNames;     // of the light buffer, in order
+    std::optional<passes::ShadowCubePass> shadows;  // built on first use (needs a light)
 
     Impl(VulkanContext& c, const Scene& scene)
         : context(c),
@@ -85,6 +109,8 @@ struct SnapshotRenderer::Impl {
             lights.insert(lights.end(), samples.begin(), samples.end());
         }
         gbuffer.setLights(lights);
+        lightNames.clear();
+        for (const PointLight& l : lights) lightNames.push_back(l.name);
         lightSamples = k;
     }
 };
@@ -100,6 +126,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
                                     std::to_string(height));
     if (!(settings.scale > 0.0f) || !std::isfinite(settings.scale))
         throw std::invalid_argument("SnapshotSettings::scale must be positive");
+    validate(settings.shadows);
     Impl& s = *impl_;
     s.updateLights(settings.areaLightSamples);
 
@@ -123,7 +150,23 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     depth.format = passes::GBufferPass::kDepthFormat;
     depth.size = graph::Size::relative(kSnapshot);
     graph.addResource(depth);
-    s.gbuffer.add(graph, s.executor, kSnapshot, kDepth, camera, nearPlane, farPlane);
+    // Shadow maps only for what is there: no lights (or no geometry to cast), no shadow pass.
+    passes::GBufferShadows shadows;
+    const bool shadowed = settings.shadows.enabled && s.gbuffer.lightCount() > 0 && !s.emptyMesh;
+    if (shadowed) {
+        if (!s.shadows) s.shadows.emplace(s.context);
+        shadows.resource = passes::kShadowCubes;
+        // Geometry within this distance of a light (its own emitter, for area-light samples) casts
+        // no shadow; the stored near/ma keeps float precision at every distance.
+        shadows.nearPlane = std::max(1e-4f * glm::length(s.bounds.extent()), 1e-6f);
+        shadows.faceSize = static_cast<std::uint32_t>(settings.shadows.resolution);
+        shadows.depthBias = settings.shadows.depthBias;
+        shadows.slopeBias = settings.shadows.slopeBias;
+        shadows.pcf = static_cast<std::uint32_t>(settings.shadows.pcf);
+        s.shadows->add(graph, s.executor, shadows.resource, s.gbuffer, s.lightNames, shadows.faceSize,
+                       shadows.nearPlane);
+    }
+    s.gbuffer.add(graph, s.executor, kSnapshot, kDepth, camera, nearPlane, farPlane, shadows);
     s.chain.add(graph, s.executor, kSnapshot, width, height, settings.filter);
 
     std::vector<std::string> outputs{passes::kAamap};
@@ -145,7 +188,8 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     result.readbackSeconds = run.readbackSeconds + secondsSince(convert);
     for (const vk::PassTime& t : run.passTimes) result.passTimes.push_back({t.pass, t.milliseconds});
     result.deviceName = s.context.deviceName();
-    result.explain = compiled.explain();
+    result.explain = explainWithPurposes(graph, compiled);
+    result.shadowCubeMaps = shadowed ? static_cast<int>(s.gbuffer.lightCount()) : 0;
     result.totalSeconds = secondsSince(start);
     return result;
 }

@@ -13,11 +13,21 @@ namespace aamap {
 
 class VulkanContext;  // engine/vk/context.h
 
+// Shadow cube maps, one per point light and per area-light sample (config: snapshot.shadows.*).
+struct ShadowSettings {
+    bool enabled = true;     // no lights: no shadow pass either way
+    int resolution = 256;    // texels per cube-face side
+    float depthBias = 0.5f;  // constant bias, in shadow-map texels at the receiver
+    float slopeBias = 1.0f;  // times tan(incidence angle), in texels (slope-scaled bias)
+    int pcf = 1;             // percentage-closer filter kernel side in texels; 1 = one tap
+};
+
 struct SnapshotSettings {
     float scale = 1.5f;          // snapshot resolution / render resolution (768 for 512)
     int areaLightSamples = 5;    // point samples per area light (the paper used 5)
     FilterParams filter;
     bool keepDebugImages = true;  // also read back snapshot colour and laplacian
+    ShadowSettings shadows;
 };
 
 struct PassTiming {
@@ -33,7 +43,8 @@ struct SnapshotResult {
     double totalSeconds = 0.0;     // CPU wall time: graph build, upload, execute, readback
     double readbackSeconds = 0.0;  // CPU wall time of the readback alone
     std::string deviceName;
-    std::string explain;  // the compiled graph, CompiledGraph::explain()
+    std::string explain;  // the compiled graph, CompiledGraph::explain(), and each kept pass's purpose
+    int shadowCubeMaps = 0;  // cube maps rendered: one per shadowed point light / area-light sample
 };
 
 // Builds the graph for what the scene needs and runs it. Holds per-scene GPU state (vertex

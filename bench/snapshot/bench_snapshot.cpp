@@ -20,6 +20,10 @@ int main(int argc, char** argv) {
     app.add_option("--size", size, "render resolution (square)");
     app.add_option("--scale", options.settings.scale, "snapshot resolution / render resolution");
     app.add_option("--area-samples", options.settings.areaLightSamples, "point samples per area light");
+    app.add_option("--shadow-resolution", options.settings.shadows.resolution, "shadow cube-face size (texels)");
+    app.add_option("--shadow-pcf", options.settings.shadows.pcf, "shadow PCF kernel side (1: one tap)");
+    bool noShadows = false;
+    app.add_flag("--no-shadows", noShadows, "snapshot without shadow cube maps");
     app.add_option("--warmup", options.warmup, "untimed runs first");
     app.add_option("--iterations", options.iterations, "timed runs (the median is reported)");
     app.add_option("--device", contextOptions.device, "Vulkan device index or name substring");
@@ -27,6 +31,7 @@ int main(int argc, char** argv) {
     app.add_flag("--explain", explain, "print the compiled render graph");
     CLI11_PARSE(app, argc, argv);
     options.width = options.height = size;
+    options.settings.shadows.enabled = !noShadows;
     options.settings.keepDebugImages = false;  // the aamap alone, as the experiment pipeline reads it
 
     try {

@@ -56,9 +56,14 @@ std::string formatSnapshotBench(const SnapshotBenchResult& result, const Snapsho
     const long sw = std::lround(options.settings.scale * static_cast<float>(options.width));
     const long sh = std::lround(options.settings.scale * static_cast<float>(options.height));
     std::string out = fmt::format("device: {}\nsnapshot {}x{} for a {}x{} render, {} area-light samples, "
-                                  "median of {} runs after {} warm-up\n",
+                                  "{}, median of {} runs after {} warm-up\n",
                                   result.deviceName, sw, sh, options.width, options.height,
-                                  options.settings.areaLightSamples, options.iterations, options.warmup);
+                                  options.settings.areaLightSamples,
+                                  options.settings.shadows.enabled
+                                      ? fmt::format("shadows {}^2 per face, pcf {}", options.settings.shadows.resolution,
+                                                    options.settings.shadows.pcf)
+                                      : std::string("no shadows"),
+                                  options.iterations, options.warmup);
     out += fmt::format("{:<12} {:>10}\n", "pass", "GPU ms");
     for (const PassTiming& t : result.medianPassTimes) out += fmt::format("{:<12} {:>10.3f}\n", t.pass, t.gpuMilliseconds);
     out += fmt::format("{:<12} {:>10.3f}\n", "sum", result.medianGpuMilliseconds);

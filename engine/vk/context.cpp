@@ -278,6 +278,15 @@ VulkanContext::VulkanContext(const ContextOptions& options) : impl_(std::make_un
         f13.dynamicRendering = VK_TRUE;
         f13.synchronization2 = VK_TRUE;
         f13.maintenance4 = VK_TRUE;  // glslc's SPIR-V 1.6 declares workgroup sizes with LocalSizeId
+        // gl_Layer from the vertex shader: all shadow cube faces in one draw. Optional; the shadow
+        // pass checks for it and says so when a device lacks it.
+        VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+        vkGetPhysicalDeviceFeatures2(s.physical, &supported);
+        const VkBool32 outputLayer = f12.shaderOutputLayer;
+        f12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        f12.shaderOutputLayer = outputLayer;
+        f13.pNext = &f12;
         VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
         const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
         VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};

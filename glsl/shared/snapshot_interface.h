@@ -28,6 +28,8 @@ using uint = std::uint32_t;
 #define GBUFFER_LOCATION_NORMAL 1    // vec3
 #define GBUFFER_LOCATION_KD 2        // vec3, diffuse albedo of the vertex's triangle
 #define GBUFFER_LOCATION_KE 3        // vec3, emitted radiance of the vertex's triangle
+// Only in the shadowed variant (gbuffer.shadowed.frag): without shadows there is no binding 1.
+#define GBUFFER_BINDING_SHADOW 1     // texture2DArray (depth), 6 layers per light, SHADOW_* below
 
 struct GpuLight {
     vec4 position;   // xyz
@@ -39,6 +41,20 @@ struct GBufferPush {
     mat4 viewProj;   // world -> Vulkan clip space
     vec4 cameraPos;  // xyz
     uint lightCount;
+    uint shadowPcf;  // PCF kernel side in texels (1: one tap)
+    uint pad1, pad2;
+    vec4 shadow;     // x: cube-map near plane, y: depth bias, z: slope bias (texels), w: face size
+};
+
+// --- Shadow cube maps (shadow_cube.vert / .frag) ----------------------------------------------
+// One D32 2D-array image: light i owns layers 6i..6i+5 in the face order of Vulkan cube maps
+// (+X -X +Y -Y +Z -Z). A face stores near / ma, ma the distance along the face's axis (reversed,
+// infinite-far projection: clear 0, nearer wins); the receiver turns it back into a distance.
+#define SHADOW_BINDING_LIGHTS 0     // uniform GpuLights, the G-buffer's light buffer
+#define SHADOW_LOCATION_POSITION 0  // vec3, the G-buffer's vertex buffer (position only)
+
+struct ShadowPush {
+    float nearPlane;  // geometry nearer to the light than this along the face axis casts no shadow
     uint pad0, pad1, pad2;
 };
 
@@ -57,7 +73,8 @@ struct FilterPush {
 
 #ifdef __cplusplus
 static_assert(sizeof(GpuLight) == 48);
-static_assert(sizeof(GBufferPush) == 96);
+static_assert(sizeof(GBufferPush) == 112);
+static_assert(sizeof(ShadowPush) == 16);
 static_assert(sizeof(FilterPush) == 32);
 }  // namespace aamap::gpu
 #endif

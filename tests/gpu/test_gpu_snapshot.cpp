@@ -72,8 +72,9 @@ TEST_F(GpuTest, RasterAgreesWithCameraRays) {
     ASSERT_EQ(r.aamap.height(), 48);
     EXPECT_FALSE(r.deviceName.empty());
     EXPECT_FALSE(r.explain.empty());
-    ASSERT_EQ(r.passTimes.size(), 5u);
-    EXPECT_EQ(r.passTimes.front().pass, "gbuffer");
+    ASSERT_EQ(r.passTimes.size(), 6u);  // shadow cube maps for the light, then the raster
+    EXPECT_EQ(r.passTimes.front().pass, "shadow");
+    EXPECT_EQ(r.passTimes[1].pass, "gbuffer");
     EXPECT_EQ(r.passTimes.back().pass, "reduce");
 
     // Every snapshot pixel: the tracer's ray through the pixel centre hits the quad iff the raster

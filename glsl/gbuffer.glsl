@@ -1,0 +1,87 @@
+// The Snapshot's shading, included by gbuffer.frag (no shadows) and gbuffer.shadowed.frag
+// (GBUFFER_SHADOWS: per-light visibility from the shadow cube maps). Two variants rather than a
+// branch, so that a scene without lights has no shadow binding to fill.
+//
+// Local illumination as the paper's snapshot: Lambert from point lights (cosine lobes for the
+// point samples of area lights) plus the emission of emissive surfaces, in linear radiance.
+// Surfaces are two-sided: the normal is flipped towards the camera, as the tracer does.
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_samplerless_texture_functions : require
+#include "snapshot_interface.h"
+#include "shadow_cube.glsl"
+
+layout(location = 0) in vec3 worldPosition;
+layout(location = 1) in vec3 worldNormal;
+layout(location = 2) flat in vec3 kd;
+layout(location = 3) flat in vec3 ke;
+
+layout(location = 0) out vec4 outColour;
+
+layout(push_constant) uniform Push { GBufferPush pc; };
+layout(std140, binding = GBUFFER_BINDING_LIGHTS) uniform Lights { GpuLight lights[GBUFFER_MAX_LIGHTS]; };
+
+const float kInvPi = 0.31830988618379067;
+
+#ifdef GBUFFER_SHADOWS
+layout(binding = GBUFFER_BINDING_SHADOW) uniform texture2DArray shadowCubes;
+
+// Fraction of the PCF kernel (pcf x pcf nearest texels of the light's cube face) that sees no
+// occluder nearer than the receiver. `r` runs from the light to the surface.
+float visibility(uint light, vec3 r, vec3 n) {
+    uint face;
+    const vec3 f = cubeLookup(r, face);
+    const float ma = f.z;
+    const int size = int(pc.shadow.w);
+    const int pcf = int(pc.shadowPcf);
+    // Slope-scaled bias in texels at the receiver: the stored distance runs along the face's
+    // axis, so a receiver tilted by theta from that axis changes it across one texel (and across
+    // the wider PCF footprint) by about texel * tan(theta).
+    const float texel = 2.0 * ma / float(size);
+    const float cosAxis = abs(n[face >> 1u]);
+    const float tanTheta = min(sqrt(max(1.0 - cosAxis * cosAxis, 0.0)) / max(cosAxis, 1e-4), 10.0);
+    const float bias = texel * (pc.shadow.y + pc.shadow.z * tanTheta * 0.5 * float(pcf + 1));
+    // Stored near/m_occ > near/(ma - bias) <=> occluder nearer than ma - bias.
+    const float threshold = pc.shadow.x / max(ma - bias, pc.shadow.x);
+    const vec2 st = (f.xy / ma * 0.5 + 0.5) * float(size);
+    const int layer = int(light * 6u + face);
+    if (pcf == 1) {  // uniform branch: one tap without the loop
+        const ivec2 t = clamp(ivec2(st), ivec2(0), ivec2(size - 1));
+        return texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0.0 : 1.0;
+    }
+    const ivec2 lo = ivec2(floor(st - 0.5 * float(pcf - 1)));
+    int lit = 0;
+    for (int y = 0; y < pcf; ++y) {
+        for (int x = 0; x < pcf; ++x) {
+            const ivec2 t = clamp(lo + ivec2(x, y), ivec2(0), ivec2(size - 1));
+            lit += texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0 : 1;
+        }
+    }
+    return float(lit) / float(pcf * pcf);
+}
+#endif
+
+void main() {
+    vec3 n = normalize(worldNormal);
+    const vec3 toCamera = pc.cameraPos.xyz - worldPosition;
+    const bool front = dot(n, toCamera) >= 0.0;
+    if (!front) n = -n;
+
+    // Emitters are one-sided along their normal.
+    vec3 colour = front ? ke : vec3(0.0);
+    for (uint i = 0u; i < pc.lightCount; ++i) {
+        const vec3 toLight = lights[i].position.xyz - worldPosition;
+        const float d2 = dot(toLight, toLight);
+        if (d2 <= 0.0) continue;
+        const vec3 wi = toLight * inversesqrt(d2);
+        const float cosSurface = max(dot(n, wi), 0.0);
+        float lobe = 1.0;
+        const vec3 axis = lights[i].normal.xyz;
+        if (dot(axis, axis) > 0.0) lobe = max(dot(axis, -wi), 0.0);
+        float weight = cosSurface * lobe / d2;
+#ifdef GBUFFER_SHADOWS
+        if (weight > 0.0) weight *= visibility(i, -toLight, n);  // no lookups for unlit sides
+#endif
+        colour += kd * kInvPi * lights[i].intensity.rgb * weight;
+    }
+    outColour = vec4(colour, 1.0);
+}

@@ -1,0 +1,3 @@
+#version 460
+// Depth only: the rasteriser writes near / ma; nothing to shade.
+void main() {}
