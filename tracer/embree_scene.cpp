@@ -1,5 +1,6 @@
 #include "tracer/embree_scene.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -37,21 +38,92 @@ void validate(const Scene& scene) {
     }
 }
 
+bool positive(const glm::vec3& c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
+float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
+    ShadingMaterial s;
+    s.kind = mat.kind;
+    s.ke = glm::max(mat.ke, glm::vec3(0.0f));
+    s.emissive = positive(s.ke);
+    glm::vec3 kd = mat.kd, ks = glm::max(mat.ks, glm::vec3(0.0f));  // kd unclamped: a NaN must show
+    // MTL illum 3/5/7 without Ks: a perfect mirror or clear glass is what such files mean.
+    if (mat.kind != MaterialKind::Diffuse && !positive(ks)) ks = glm::vec3(1.0f);
+    if (mat.kind == MaterialKind::Glass) kd = glm::vec3(0.0f);  // a dielectric has no Lambert lobe
+    // Energy conservation: kd + ks <= 1 per channel (Glass: ks is a transmission/reflection tint).
+    const glm::vec3 sum = kd + ks;
+    const float most = std::max(sum.x, std::max(sum.y, sum.z));
+    if (mat.kind != MaterialKind::Glass && most > 1.0f) {
+        spdlog::debug("material '{}': kd + ks = {} > 1, scaled down to conserve energy", mat.name, most);
+        kd /= most;
+        ks /= most;
+    }
+    s.kd = kd;
+    s.kdOverPi = kd * std::numbers::inv_pi_v<float>;
+    s.ks = mat.kind == MaterialKind::Glass ? glm::min(ks, glm::vec3(1.0f)) : ks;
+    s.ior = mat.ior > 0.0f ? mat.ior : 1.5f;
+    if (mat.diffuseTexture >= 0 && static_cast<std::size_t>(mat.diffuseTexture) < textureCount && positive(kd))
+        s.texture = mat.diffuseTexture;
+    s.diffuse = kd.x != 0.0f || kd.y != 0.0f || kd.z != 0.0f;  // true for NaN: bad data is counted, not hidden
+    s.glossy = mat.kind == MaterialKind::Diffuse && positive(ks);
+    s.ns = std::max(mat.ns, 0.0f);
+    s.phongNorm = (s.ns + 2.0f) * 0.5f * std::numbers::inv_pi_v<float>;
+    s.phongPdfNorm = (s.ns + 1.0f) * 0.5f * std::numbers::inv_pi_v<float>;
+    if (s.glossy) {
+        const float d = luminance(kd), g = luminance(ks);
+        s.diffuseWeight = d + g > 0.0f ? d / (d + g) : 0.0f;
+    }
+    return s;
+}
+
 }  // namespace
+
+std::string SceneFeatures::describe() const {
+    const auto on = [](bool b) { return b ? "on" : "off"; };
+    return fmt::format(
+        "textures {} ({}), glossy {} ({}), mirror {} ({}), glass {} ({}), emitters {} ({})", on(textures),
+        textures ? "a used material has a diffuse texture and the mesh has uvs" : "no textured material in use",
+        on(glossy), glossy ? "a used diffuse material has Ks > 0" : "no Ks", on(mirror),
+        mirror ? "a used material is a mirror" : "no mirror", on(glass), glass ? "a used material is glass" : "no glass",
+        on(emissive), emissive ? "a used material has Ke > 0" : "no Ke");
+}
 
 EmbreeScene::EmbreeScene(const Scene& scene) {
     validate(scene);
     const TriangleMesh& m = scene.mesh;
 
     materials_.reserve(scene.materials.size());
-    for (const Material& mat : scene.materials) {
-        ShadingMaterial s;
-        s.kind = mat.kind;
-        s.kdOverPi = mat.kd * std::numbers::inv_pi_v<float>;
-        s.ke = mat.ke;
-        s.emissive = mat.ke.x > 0.0f || mat.ke.y > 0.0f || mat.ke.z > 0.0f;
-        materials_.push_back(s);
+    for (const Material& mat : scene.materials) materials_.push_back(convertMaterial(mat, scene.textures.size()));
+    std::vector<char> used(materials_.size(), 0);
+    for (std::uint32_t id : m.materialIds) used[id] = 1;
+    const bool hasUvs = !m.uvs.empty() && m.uvs.size() == m.positions.size();
+    for (std::size_t i = 0; i < materials_.size(); ++i) {
+        ShadingMaterial& s = materials_[i];
+        if (!used[i]) continue;
+        if (s.texture >= 0 && !hasUvs) {
+            spdlog::warn("material '{}' is textured but the mesh has no uvs; texture ignored", scene.materials[i].name);
+            s.texture = -1;
+        }
+        features_.textures |= s.texture >= 0;
+        features_.glossy |= s.glossy;
+        features_.mirror |= s.kind == MaterialKind::Mirror;
+        features_.glass |= s.kind == MaterialKind::Glass;
+        features_.emissive |= s.emissive;
     }
+    if (features_.textures) {
+        textures_.resize(scene.textures.size());
+        for (std::size_t i = 0; i < scene.textures.size(); ++i) {
+            const Texture& t = scene.textures[i];
+            TextureData& d = textures_[i];
+            const std::size_t texels = static_cast<std::size_t>(std::max(t.width, 0)) * std::max(t.height, 0);
+            if (t.rgba.size() < 4 * texels || texels == 0) continue;  // unusable: albedo stays kd
+            d.width = t.width;
+            d.height = t.height;
+            d.rgb.resize(texels);
+            for (std::size_t k = 0; k < texels; ++k) d.rgb[k] = {t.rgba[4 * k], t.rgba[4 * k + 1], t.rgba[4 * k + 2]};
+        }
+    }
+    spdlog::info("tracer features: {}", features_.describe());
 
     triangles_.reserve(m.triangles.size());
     const bool hasNormals = !m.normals.empty();
@@ -66,9 +138,19 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
         const float len = glm::length(n);
         tri.normal = len > 0.0f ? n / len : glm::vec3(0.0f);  // degenerate: never hit by Embree
         tri.material = m.materialIds[t];
+        tri.vertexScale = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+            const glm::vec3& p = m.positions[idx[c]];
+            tri.vertexScale = std::max({tri.vertexScale, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        }
+        tri.flat = true;
+        if (hasNormals)
+            for (int c = 0; c < 3; ++c) tri.flat &= glm::dot(m.normals[idx[c]], tri.normal) > 1.0f - 1e-6f;
         triangles_.push_back(tri);
         if (hasNormals)
             for (int c = 0; c < 3; ++c) vertexNormals_.push_back(m.normals[idx[c]]);
+        if (features_.textures)
+            for (int c = 0; c < 3; ++c) vertexUvs_.push_back(m.uvs[idx[c]]);
     }
 
     device_ = rtcNewDevice(nullptr);
@@ -115,12 +197,34 @@ EmbreeScene::~EmbreeScene() {
 
 glm::vec3 EmbreeScene::shadingNormal(std::uint32_t id, float u, float v) const {
     const Triangle& tri = triangles_[id];
-    if (vertexNormals_.empty()) return tri.normal;
+    if (tri.flat || vertexNormals_.empty()) return tri.normal;  // the common case: planar faces
     const glm::vec3* n = &vertexNormals_[3 * static_cast<std::size_t>(id)];
     const glm::vec3 interp = (1.0f - u - v) * n[0] + u * n[1] + v * n[2];
     const float len2 = glm::dot(interp, interp);
     if (!(len2 > 1e-12f) || !std::isfinite(len2)) return tri.normal;
     return interp / std::sqrt(len2);
+}
+
+glm::vec3 EmbreeScene::texel(int texture, std::uint32_t id, float u, float v) const {
+    const TextureData& t = textures_[static_cast<std::size_t>(texture)];
+    if (t.rgb.empty()) return glm::vec3(1.0f);
+    const glm::vec2* uv = &vertexUvs_[3 * static_cast<std::size_t>(id)];
+    const glm::vec2 st = (1.0f - u - v) * uv[0] + u * uv[1] + v * uv[2];
+    // Bilinear with repeat; texel centres at (i + 0.5) / width. v = 0 is row 0 (the top).
+    const float x = st.x * static_cast<float>(t.width) - 0.5f, y = st.y * static_cast<float>(t.height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const auto wrap = [](float i, int n) {
+        const long k = static_cast<long>(i) % n;
+        return static_cast<std::size_t>(k < 0 ? k + n : k);
+    };
+    if (!std::isfinite(x) || !std::isfinite(y)) return glm::vec3(1.0f);
+    const std::size_t x0 = wrap(fx, t.width), x1 = wrap(fx + 1.0f, t.width);
+    const std::size_t y0 = wrap(fy, t.height), y1 = wrap(fy + 1.0f, t.height);
+    const std::size_t w = static_cast<std::size_t>(t.width);
+    const glm::vec3 top = (1.0f - ax) * t.rgb[y0 * w + x0] + ax * t.rgb[y0 * w + x1];
+    const glm::vec3 bottom = (1.0f - ax) * t.rgb[y1 * w + x0] + ax * t.rgb[y1 * w + x1];
+    return (1.0f - ay) * top + ay * bottom;
 }
 
 }  // namespace aamap

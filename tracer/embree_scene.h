@@ -1,22 +1,38 @@
 #pragma once
 // The Embree side of the tracer: one device, the merged mesh as one triangle geometry, and the
 // per-triangle data that shading needs (kept here so the tracer does not depend on the Scene
-// outliving it).
+// outliving it). Also decides which shading features the scene needs (textures, glossy, mirror,
+// glass): code paths for the others are never entered.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <embree3/rtcore.h>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "scene/scene.h"
 
 namespace aamap {
 
-// What shading reads per material; precomputed so the hot path only multiplies.
+// What shading reads per material; precomputed so the hot path only multiplies. Mapping from the
+// Scene's Material (see docs/tracer.md): Diffuse = Lambert kd (x texture) + modified-Phong glossy
+// lobe ks, ns; Mirror = Lambert kd + ideal reflection ks; Glass = dielectric (Fresnel, ior) tinted
+// by ks. When kd + ks exceeds 1 in a channel both are scaled down so no material creates energy.
 struct ShadingMaterial {
     MaterialKind kind = MaterialKind::Diffuse;
     bool emissive = false;
-    glm::vec3 kdOverPi{0.0f};  // Lambert BRDF
+    bool diffuse = false;  // a non-zero Lambert lobe (kd > 0 or textured)
+    bool glossy = false;   // Diffuse kind with ks > 0: Phong lobe
+    int texture = -1;      // index into the scene's textures, modulates kd
+    glm::vec3 kd{0.0f};
+    glm::vec3 kdOverPi{0.0f};  // Lambert BRDF (untextured)
+    glm::vec3 ks{0.0f};        // glossy albedo, mirror reflectance or glass tint
+    float ns = 0.0f;
+    float phongNorm = 0.0f;    // (ns + 2) / (2 pi): BRDF normalisation
+    float phongPdfNorm = 0.0f; // (ns + 1) / (2 pi): sampling pdf normalisation
+    float diffuseWeight = 1.0f;  // probability of sampling the Lambert lobe (vs glossy)
+    float ior = 1.5f;
     glm::vec3 ke{0.0f};
 };
 
@@ -24,6 +40,19 @@ struct Triangle {
     glm::vec3 v0, e1, e2;  // v1 = v0 + e1, v2 = v0 + e2
     glm::vec3 normal;      // unit geometric normal, cross(e1, e2): counter-clockwise is the front
     std::uint32_t material;
+    float vertexScale;     // max |coordinate| of its vertices: sets the float error of a rebuilt hit point
+    bool flat;             // its vertex normals equal `normal` (or there are none): skip interpolation
+};
+
+// Which optional shading paths the scene needs, and why (logged once per scene).
+struct SceneFeatures {
+    bool textures = false, glossy = false, mirror = false, glass = false, emissive = false;
+    std::string describe() const;
+};
+
+struct TextureData {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> rgb;  // linear, row 0 at the top (v = 0)
 };
 
 class EmbreeScene {
@@ -35,21 +64,33 @@ public:
 
     RTCScene handle() const { return scene_; }
     double buildSeconds() const { return buildSeconds_; }
+    const SceneFeatures& features() const { return features_; }
 
     const Triangle& triangle(std::uint32_t id) const { return triangles_[id]; }
     std::size_t triangleCount() const { return triangles_.size(); }
     const ShadingMaterial& material(std::uint32_t id) const { return materials_[id]; }
+    std::size_t materialCount() const { return materials_.size(); }
     // Unit interpolated vertex normal at barycentrics (u, v); the geometric normal if the mesh has
     // no usable normals there.
     glm::vec3 shadingNormal(std::uint32_t id, float u, float v) const;
+    // Diffuse albedo at barycentrics (u, v): kd, times the bilinear (repeating) texel for a textured
+    // material. Only textured materials fetch.
+    glm::vec3 albedo(const ShadingMaterial& m, std::uint32_t id, float u, float v) const {
+        return m.texture < 0 ? m.kd : m.kd * texel(m.texture, id, u, v);
+    }
 
 private:
+    glm::vec3 texel(int texture, std::uint32_t id, float u, float v) const;
+
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     double buildSeconds_ = 0.0;
+    SceneFeatures features_;
     std::vector<Triangle> triangles_;
     std::vector<ShadingMaterial> materials_;
     std::vector<glm::vec3> vertexNormals_;  // 3 per triangle, empty without normals
+    std::vector<glm::vec2> vertexUvs_;      // 3 per triangle, only when a used material is textured
+    std::vector<TextureData> textures_;     // only when a used material is textured
 };
 
 }  // namespace aamap

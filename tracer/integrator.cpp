@@ -5,22 +5,19 @@
 #include <limits>
 
 #include <glm/geometric.hpp>
+#include <spdlog/spdlog.h>
 
+#include "tracer/bsdf.h"
 #include "tracer/shadow_packet.h"
 
 namespace aamap {
+namespace {
 
-Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading)
-    : geometry_(geometry),
-      lights_(lights),
-      scene_(geometry.handle()),
-      // m = round(sqrt(N)) in [1, 1024]: m x m samples, within the sampler's dimension layout.
-      lightGrid_(std::clamp(static_cast<int>(std::lround(std::sqrt(std::max(1, shading.areaLightSamples)))), 1, 1024)) {}
+// Direct/Cache mode: specular branches whose weight (product of reflectances) falls below this
+// are dropped, as Radiance's -lw does; it bounds the glass split tree (docs/tracer.md).
+constexpr float kSpecularCutoff = 1e-3f;
 
-glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler,
-                              RayCounts& rays) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+RTCRayHit makeRay(const glm::vec3& origin, const glm::vec3& dir) {
     RTCRayHit rh;
     rh.ray.org_x = origin.x;
     rh.ray.org_y = origin.y;
@@ -36,55 +33,159 @@ glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, con
     rh.ray.flags = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
-    ++rays.primary;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return glm::vec3(0.0f);  // misses are black
+    return rh;
+}
 
+}  // namespace
+
+const char* toString(ShadingMode mode) {
+    switch (mode) {
+        case ShadingMode::Direct: return "direct";
+        case ShadingMode::Path: return "path";
+        case ShadingMode::Cache: return "cache";
+    }
+    return "?";
+}
+
+Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading,
+                       const IndirectDiffuseSource* indirect)
+    : geometry_(geometry),
+      lights_(lights),
+      shading_(shading),
+      indirect_(indirect),
+      scene_(geometry.handle()),
+      // m = round(sqrt(N)) in [1, 1024]: m x m samples, within the sampler's dimension layout.
+      lightGrid_(std::clamp(static_cast<int>(std::lround(std::sqrt(std::max(1, shading.areaLightSamples)))), 1, 1024)) {
+    shading_.maxDepth = std::max(shading_.maxDepth, 1);
+    shading_.maxSpecularDepth = std::max(shading_.maxSpecularDepth, 0);
+    if (shading_.mode == ShadingMode::Cache && !indirect_)
+        spdlog::warn("shading mode 'cache' without an irradiance cache: indirect diffuse light is left out");
+    spdlog::debug("integrator: mode {}, {} lights ({}), {}x{} area samples, max depth {}, max specular depth {}",
+                  toString(shading_.mode), lights_.count(),
+                  lights_.many() ? "many: power-CDF selection" : "few: every light per hit", lightGrid_, lightGrid_,
+                  shading_.maxDepth, shading_.maxSpecularDepth);
+}
+
+void Integrator::fillHit(const RTCRayHit& rh, const glm::vec3& dir, SurfaceHit& hit) const {
     const Triangle& tri = geometry_.triangle(rh.hit.primID);
     const ShadingMaterial& mat = geometry_.material(tri.material);
-    const bool frontFacing = glm::dot(tri.normal, dir) < 0.0f;
-    // One-sided emitters: the front shows Ke; the back is an ordinary surface of that material.
-    if (mat.emissive && frontFacing) return mat.ke;
-
-    // Rebuild the hit point from the triangle (error relative to its vertices, not to t * |dir|).
     const float u = rh.hit.u, v = rh.hit.v;
-    const glm::vec3 p = tri.v0 + u * tri.e1 + v * tri.e2;
-    const glm::vec3 ng = frontFacing ? tri.normal : -tri.normal;
-    glm::vec3 ns = geometry_.shadingNormal(rh.hit.primID, u, v);
-    if (glm::dot(ns, ng) < 0.0f) ns = -ns;  // vertex normals may disagree with the winding
-    const SurfacePoint sp{p, p + rayOffset(p) * ng, ng, ns, &mat};
-    return shadeSurface(sp, sampler, 0, rays);
+    hit.front = glm::dot(tri.normal, dir) < 0.0f;
+    // Rebuild the hit point from the triangle (error relative to its vertices, not to t * |dir|).
+    hit.position = tri.v0 + u * tri.e1 + v * tri.e2;
+    hit.geometric = hit.front ? tri.normal : -tri.normal;
+    hit.shading = geometry_.shadingNormal(rh.hit.primID, u, v);
+    if (glm::dot(hit.shading, hit.geometric) < 0.0f) hit.shading = -hit.shading;  // normals may disagree with the winding
+    hit.wo = -dir;
+    hit.albedo = mat.diffuse ? geometry_.albedo(mat, rh.hit.primID, u, v) : glm::vec3(0.0f);
+    hit.offset = rayOffset(hit.position, tri.vertexScale);
+    hit.distance = rh.ray.tfar;
+    hit.primitive = rh.hit.primID;
+    hit.material = &mat;
 }
 
-glm::vec3 Integrator::shadeSurface(const SurfacePoint& sp, const Sampler& sampler, int depth, RayCounts& rays) const {
-    switch (sp.material->kind) {
-        case MaterialKind::Diffuse: return directDiffuse(sp, sampler, depth, rays);
-        // Specular transport is not modelled yet: mirrors and glass are shaded as their diffuse
-        // part, which keeps their Kd visible and the ray budget honest.
-        case MaterialKind::Mirror: return directDiffuse(sp, sampler, depth, rays);
-        case MaterialKind::Glass: return directDiffuse(sp, sampler, depth, rays);
+bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit,
+                           std::uint64_t& counter) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh = makeRay(origin, dir);
+    rtcIntersect1(scene_, &context, &rh);
+    ++counter;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;  // misses are black
+    fillHit(rh, dir, hit);
+    return true;
+}
+
+glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler,
+                              RayCounts& rays) const {
+    SurfaceHit hit;
+    if (!intersect(origin, dir, hit, rays.primary)) return glm::vec3(0.0f);
+    if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
+    return shadeDirect(hit, sampler, 0, 0, 1.0f, rays);
+}
+
+glm::vec3 Integrator::radianceDirect(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
+                                     RayCounts& rays) const {
+    SurfaceHit hit;
+    if (!intersect(origin, dir, hit, rays.other)) return glm::vec3(0.0f);
+    // weight 0 marks "not under a primary ray": no cache lookup (the cache's own rays land here).
+    return shadeDirect(hit, sampler, depth, 0, 0.0f, rays);
+}
+
+glm::vec3 Integrator::traceSpecular(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
+                                    int specular, float weight, RayCounts& rays) const {
+    SurfaceHit hit;
+    if (!intersect(origin, dir, hit, rays.other)) return glm::vec3(0.0f);
+    return shadeDirect(hit, sampler, depth, specular, weight, rays);
+}
+
+glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
+                                  RayCounts& rays) const {
+    const ShadingMaterial& m = *hit.material;
+    glm::vec3 L(0.0f);
+    // One-sided emitters: the front emits Ke; both sides also reflect like their material.
+    if (m.emissive && hit.front) L += m.ke;
+    if (m.diffuse || m.glossy) L += directLight(hit, sampler, depth, rays);
+    if (m.diffuse && weight > 0.0f && indirect_ && shading_.mode == ShadingMode::Cache)
+        L += hit.albedo * bsdf::kInvPi * indirect_->indirectIrradiance(*this, hit, sampler, depth, rays);
+    if (specular >= shading_.maxSpecularDepth || m.kind == MaterialKind::Diffuse) return L;
+    // Branch weights only cut off specular trees; under radianceDirect (weight 0) use the
+    // reflectance alone so the same cutoff applies.
+    const float w = weight > 0.0f ? weight : 1.0f;
+    const auto follow = [&](const glm::vec3& dir, const glm::vec3& tint, float branch) {
+        const float next = w * branch * bsdf::maxComponent(tint);
+        if (next < kSpecularCutoff) return glm::vec3(0.0f);
+        const glm::vec3 Li = traceSpecular(hit.originFor(dir), dir, sampler, depth + 1, specular + 1,
+                                           weight > 0.0f ? next : 0.0f, rays);
+        return tint * branch * Li;
+    };
+    if (m.kind == MaterialKind::Mirror) {
+        const glm::vec3 r = bsdf::reflect(hit.wo, hit.shading);
+        if (glm::dot(r, hit.geometric) > 0.0f) L += follow(r, m.ks, 1.0f);
+        return L;
     }
-    return glm::vec3(0.0f);
+    // Glass: both the Fresnel-reflected and the refracted branch, deterministically (no noise).
+    const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
+    if (!(cosI > 0.0f)) return L;
+    const float eta = hit.front ? m.ior : 1.0f / m.ior;
+    float cosT = 0.0f;
+    const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
+    const glm::vec3 r = bsdf::reflect(hit.wo, hit.shading);
+    if (glm::dot(r, hit.geometric) > 0.0f) L += follow(r, m.ks, F);
+    if (F < 1.0f) {
+        const glm::vec3 t = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
+        if (glm::dot(t, hit.geometric) < 0.0f) L += follow(t, m.ks, 1.0f - F);
+    }
+    return L;
 }
 
-glm::vec3 Integrator::directDiffuse(const SurfacePoint& sp, const Sampler& sampler, int depth, RayCounts& rays) const {
-    glm::vec3 irradiance(0.0f);  // sum of E_i = L_i cos / d^2 (point: I cos / d^2)
+glm::vec3 Integrator::directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
+    return lights_.many() ? directManyLights(hit, sampler, depth, rays) : directFewLights(hit, sampler, depth, rays);
+}
+
+glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
+    const ShadingMaterial& mat = *hit.material;
+    const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
+    glm::vec3 irradiance(0.0f);  // sum of E_i = L_i cos / d^2 (point: I cos / d^2), for the Lambert lobe
+    glm::vec3 glossy(0.0f);      // sum of the Phong lobe times the same terms
 
     for (const PointLightSource& light : lights_.points) {
         // Geometry from the true hit point; the shadow ray leaves from the offset origin.
-        const glm::vec3 w = light.position - sp.position;
+        const glm::vec3 w = light.position - hit.position;
         const float d2 = glm::dot(w, w);
         if (!(d2 > 0.0f)) continue;
         const glm::vec3 l = w * (1.0f / std::sqrt(d2));
         // The geometric test decides the side (a shadow ray into the surface would self-hit);
         // the shading normal weights.
-        if (glm::dot(sp.geometric, l) <= 0.0f) continue;
-        const float cosSurface = glm::dot(sp.shading, l);
+        if (glm::dot(hit.geometric, l) <= 0.0f) continue;
+        const float cosSurface = glm::dot(hit.shading, l);
         if (cosSurface <= 0.0f) continue;
         const float lobe = light.lobe ? glm::dot(light.normal, -l) : 1.0f;
         if (lobe <= 0.0f) continue;
-        if (!unoccluded(sp.origin, light.position, rays)) continue;
-        irradiance += light.intensity * (lobe * cosSurface / d2);
+        if (!unoccluded(origin, light.position, 1.0f, rays)) continue;  // a point: nothing to stop short of
+        const glm::vec3 E = light.intensity * (lobe * cosSurface / d2);
+        irradiance += E;
+        if (mat.glossy) glossy += E * bsdf::phongLobe(mat, hit.wo, hit.shading, l);
     }
 
     const int m = lightGrid_;
@@ -95,6 +196,7 @@ glm::vec3 Integrator::directDiffuse(const SurfacePoint& sp, const Sampler& sampl
     for (std::size_t li = 0; li < lights_.areas.size(); ++li) {
         const AreaLightSampler& light = lights_.areas[li];
         float sum = 0.0f;  // sum of cos cos' / d^2 over the visible samples, in sample order
+        float sumGlossy = 0.0f;
         for (int first = 0; first < count; first += ShadowBatch8::kWidth) {
             const int lanes = std::min(ShadowBatch8::kWidth, count - first);
             for (int i = 0; i < lanes; ++i) {
@@ -104,15 +206,74 @@ glm::vec3 Integrator::directDiffuse(const SurfacePoint& sp, const Sampler& sampl
                 batch.setSample(i, q.position, q.normal);
             }
             batch.padFrom(lanes);
-            batch.prepare(lanes, sp.position, sp.origin, sp.geometric, sp.shading);
+            batch.prepare(lanes, hit.position, origin, hit.geometric, hit.shading, light.vertexScale());
             sum += batch.trace(scene_, lanes, rays);
+            if (mat.glossy)
+                for (int i = 0; i < lanes; ++i)
+                    if (batch.visible(i)) {
+                        const glm::vec3 l = glm::normalize(glm::vec3(batch.qx[i], batch.qy[i], batch.qz[i]) - hit.position);
+                        sumGlossy += batch.weight[i] * bsdf::phongLobe(mat, hit.wo, hit.shading, l);
+                    }
         }
         irradiance += light.radiance() * (sum * light.area() * invCount);
+        if (mat.glossy) glossy += light.radiance() * (sumGlossy * light.area() * invCount);
     }
-    return sp.material->kdOverPi * irradiance;
+    glm::vec3 L = hit.albedo * bsdf::kInvPi * irradiance;
+    if (mat.glossy) L += mat.ks * mat.phongNorm * glossy;
+    return L;
 }
 
-bool Integrator::unoccluded(const glm::vec3& origin, const glm::vec3& target, RayCounts& rays) const {
+glm::vec3 Integrator::directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
+    // N = m x m stratified samples over [0,1)^2; u.x picks a light on the power CDF and, rescaled,
+    // also places the point on it, so the pattern stays stratified over lights and their areas.
+    const ShadingMaterial& mat = *hit.material;
+    const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
+    const int m = lightGrid_;
+    const float invM = 1.0f / static_cast<float>(m);
+    const std::size_t nPoints = lights_.points.size();
+    glm::vec3 sum(0.0f);
+    for (int j = 0; j < m * m; ++j) {
+        glm::vec2 u = sampler.jittered2D(dims::path(depth, dims::PathSlot::ManyLights, j), j % m, j / m, invM);
+        const std::size_t l = lights_.select(u.x);
+        const float pick = lights_.selectPdf[l];
+        glm::vec3 target, Le;
+        float geometry = 0.0f, tfar = 1.0f;  // cos' / d^2 / pdf_area (point: lobe / d^2)
+        if (l < nPoints) {
+            const PointLightSource& p = lights_.points[l];
+            target = p.position;
+            Le = p.intensity;
+            const glm::vec3 w = target - hit.position;
+            const float d2 = glm::dot(w, w);
+            const float lobe = p.lobe ? glm::dot(p.normal, -glm::normalize(w)) : 1.0f;
+            if (!(d2 > 0.0f) || lobe <= 0.0f) continue;
+            geometry = lobe / d2;
+        } else {
+            const AreaLightSampler& a = lights_.areas[l - nPoints];
+            const LightPoint q = a.sample(u);
+            target = q.position;
+            Le = a.radiance();
+            const glm::vec3 w = target - hit.position;
+            const float d2 = glm::dot(w, w);
+            if (!(d2 > 0.0f)) continue;
+            const float d = std::sqrt(d2);
+            const float cosLight = -glm::dot(q.normal, w) / d;
+            if (cosLight <= 0.0f) continue;
+            geometry = cosLight * a.area() / d2;
+            tfar = 1.0f - rayOffset(target, a.vertexScale()) / d;
+        }
+        const glm::vec3 l3 = glm::normalize(target - hit.position);
+        if (glm::dot(hit.geometric, l3) <= 0.0f) continue;
+        const float cosSurface = glm::dot(hit.shading, l3);
+        if (cosSurface <= 0.0f || !(tfar > 0.0f)) continue;
+        if (!unoccluded(origin, target, tfar, rays)) continue;
+        glm::vec3 f = hit.albedo * bsdf::kInvPi;
+        if (mat.glossy) f += mat.ks * (mat.phongNorm * bsdf::phongLobe(mat, hit.wo, hit.shading, l3));
+        sum += f * Le * (geometry * cosSurface / pick);
+    }
+    return sum * (invM * invM);
+}
+
+bool Integrator::unoccluded(const glm::vec3& origin, const glm::vec3& target, float tfar, RayCounts& rays) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray;
@@ -124,7 +285,7 @@ bool Integrator::unoccluded(const glm::vec3& origin, const glm::vec3& target, Ra
     ray.dir_y = target.y - origin.y;
     ray.dir_z = target.z - origin.z;
     ray.tnear = 0.0f;
-    ray.tfar = 1.0f;
+    ray.tfar = tfar;
     ray.time = 0.0f;
     ray.mask = ~0u;
     ray.id = 0;

@@ -1,9 +1,13 @@
 #pragma once
 // Radiance along a ray: the shading budget of DESIGN.md section 2, separate from the primary-ray
-// (antialiasing) budget. Direct light only for now: point lights with one shadow ray each and area
-// lights with a stratified m x m pattern of shadow rays per hit, traced as 8-wide packets.
-#include <algorithm>
-#include <cmath>
+// (antialiasing) budget. Three modes (ShadingSettings::mode):
+// - Direct: emission, direct light from every light type (point lights one shadow ray each, area
+//   lights an m x m stratified pattern per hit traced as 8-wide packets, or power-CDF selection
+//   when there are many lights) and mirror/glass recursion;
+// - Cache: Direct plus indirect diffuse from an IndirectDiffuseSource (the irradiance cache);
+// - Path: unbiased path tracing with next-event estimation, MIS and Russian roulette
+//   (path_integrator.cpp).
+#include <cstdint>
 
 #include <embree3/rtcore.h>
 #include <glm/vec3.hpp>
@@ -16,34 +20,92 @@
 
 namespace aamap {
 
+// Random-number dimensions of the integrator beyond dims::areaLight (bit 63). Bit 62 marks these.
+namespace dims {
+enum class PathSlot : std::uint64_t { Light = 0, Bsdf = 1, Lobe = 2, Roulette = 3, ManyLights = 4 };
+// Slot `slot` at path vertex `depth` (< 2^20), sample `sample` (< 2^24) within the slot.
+constexpr std::uint64_t path(int depth, PathSlot slot, int sample = 0) {
+    return (1ull << 62) | (static_cast<std::uint64_t>(depth) << 36) | (static_cast<std::uint64_t>(slot) << 28) |
+           (2ull * static_cast<std::uint64_t>(sample));
+}
+}  // namespace dims
+
+// A ray's first hit, with what shading needs. Normals face the side the ray came from.
+struct SurfaceHit {
+    glm::vec3 position;   // rebuilt from the triangle (error relative to its vertices)
+    glm::vec3 geometric;  // unit geometric normal on the viewer's side
+    glm::vec3 shading;    // unit shading normal on the viewer's side
+    glm::vec3 wo;         // unit direction back to the viewer
+    glm::vec3 albedo;     // diffuse albedo here (texture applied)
+    float offset;         // scale-aware self-intersection offset (ray_offset.h)
+    float distance;       // along the (unit) ray
+    std::uint32_t primitive;
+    bool front;           // the triangle's front side (its winding) was hit
+    const ShadingMaterial* material;
+
+    // Where a ray leaving in direction `dir` starts: pushed off the surface to dir's side.
+    glm::vec3 originFor(const glm::vec3& dir) const {
+        const float s = dir.x * geometric.x + dir.y * geometric.y + dir.z * geometric.z;
+        return position + (s >= 0.0f ? offset : -offset) * geometric;
+    }
+};
+
+class Integrator;
+
+// The hook for indirect diffuse light in Cache mode (implemented by the irradiance cache).
+class IndirectDiffuseSource {
+public:
+    virtual ~IndirectDiffuseSource() = default;
+    // Indirect irradiance E (W/m^2) at a diffuse hit, about hit.shading; the integrator reflects
+    // hit.albedo / pi * E. May call back into the integrator (radianceDirect, directLight).
+    virtual glm::vec3 indirectIrradiance(const Integrator& integrator, const SurfaceHit& hit, const Sampler& sampler,
+                                         int depth, RayCounts& rays) const = 0;
+};
+
 class Integrator {
 public:
-    Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading);
+    // `indirect` is used in Cache mode only (not owned; may be null: then Cache shades as Direct).
+    Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading,
+               const IndirectDiffuseSource* indirect = nullptr);
 
     // Radiance arriving at `origin` from unit direction -dir. Counts every ray it traces in `rays`
     // (the primary ray in rays.primary). Allocates nothing.
     glm::vec3 primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays) const;
 
+    // Building blocks (also for the irradiance cache). intersect: false on a miss; counts the ray
+    // in rays.other. radianceDirect: what Direct mode sees along a secondary ray (emission + direct
+    // light + specular recursion; no cache), depth = path vertex index for the sampler dimensions.
+    bool intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit, std::uint64_t& counter) const;
+    glm::vec3 radianceDirect(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
+                             RayCounts& rays) const;
+    // Reflected radiance towards hit.wo from direct light (all light types), smooth lobes only.
+    glm::vec3 directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
+
     int areaLightGrid() const { return lightGrid_; }  // m: m x m samples per area light per hit
+    const ShadingSettings& settings() const { return shading_; }
 
 private:
-    struct SurfacePoint {
-        glm::vec3 position;   // the hit point, where shading geometry is measured
-        glm::vec3 origin;     // hit point pushed off the surface towards the viewer: rays start here
-        glm::vec3 geometric;  // unit geometric normal on the viewer's side
-        glm::vec3 shading;    // unit shading normal on the viewer's side
-        const ShadingMaterial* material;
-    };
-
-    glm::vec3 shadeSurface(const SurfacePoint& sp, const Sampler& sampler, int depth, RayCounts& rays) const;
-    // Reflected direct light (point + area lights) for a Lambertian surface.
-    glm::vec3 directDiffuse(const SurfacePoint& sp, const Sampler& sampler, int depth, RayCounts& rays) const;
-    // True if nothing blocks the segment from origin to target (a point light: nothing to stop
-    // short of). Traces one shadow ray.
-    bool unoccluded(const glm::vec3& origin, const glm::vec3& target, RayCounts& rays) const;
+    // Direct/Cache shading of a hit, following mirror/glass bounces up to maxSpecularDepth.
+    glm::vec3 shadeDirect(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
+                          RayCounts& rays) const;
+    glm::vec3 traceSpecular(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
+                            int specular, float weight, RayCounts& rays) const;
+    glm::vec3 directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
+    glm::vec3 directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
+    // Path mode (path_integrator.cpp): the whole path from a primary hit.
+    glm::vec3 tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const;
+    // One next-event sample for path mode, MIS-weighted against BSDF sampling.
+    glm::vec3 nextEvent(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                        RayCounts& rays) const;
+    // True if nothing blocks the segment from origin to target (shortened by `shorten` at the
+    // target end). Traces one shadow ray.
+    bool unoccluded(const glm::vec3& origin, const glm::vec3& target, float shorten, RayCounts& rays) const;
+    void fillHit(const RTCRayHit& rh, const glm::vec3& dir, SurfaceHit& hit) const;
 
     const EmbreeScene& geometry_;
     const LightSet& lights_;
+    ShadingSettings shading_;
+    const IndirectDiffuseSource* indirect_;
     RTCScene scene_;
     int lightGrid_;
 };

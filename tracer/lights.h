@@ -29,6 +29,8 @@ public:
 
     const glm::vec3& radiance() const { return radiance_; }
     float area() const { return area_; }  // sum of the triangle areas, the 1/pdf of sample()
+    // Max |coordinate| of its vertices: float error scale of a sampled point (see ray_offset.h).
+    float vertexScale() const { return vertexScale_; }
     bool empty() const { return tris_.empty(); }
 
     // A point distributed uniformly by area over the light; u in [0,1)^2. Inline: it runs once
@@ -61,6 +63,7 @@ private:
     };
     glm::vec3 radiance_{0.0f};
     float area_ = 0.0f;
+    float vertexScale_ = 0.0f;
     std::vector<Tri> tris_;
     std::vector<float> cdfs_;  // Tri::cdf of each triangle, for the binary search; the last is exactly 1
 };
@@ -73,9 +76,35 @@ struct PointLightSource {
     bool lobe;
 };
 
+// All lights, plus what light selection and MIS need. Light index l < points.size() is a point
+// light, the rest are areas[l - points.size()].
 struct LightSet {
     std::vector<PointLightSource> points;
     std::vector<AreaLightSampler> areas;  // empty (zero-area) lights are dropped
+
+    // Up to this many lights, direct lighting takes every light at every hit (the exact stratified
+    // per-light estimator); beyond it, samples pick lights from the power CDF (docs/tracer.md).
+    static constexpr std::size_t kFewLights = 8;
+    std::size_t count() const { return points.size() + areas.size(); }
+    bool many() const { return count() > kFewLights; }
+
+    // Power-proportional selection over all lights: cdf.back() == 1, pdf[l] = P(l).
+    std::vector<float> selectCdf, selectPdf;
+    // Area light index (into `areas`) per scene triangle, -1 if the triangle is not a light. Only
+    // filled when the scene has area lights (MIS needs the pdf of hitting a light).
+    std::vector<std::int32_t> areaOfTriangle;
+
+    // The light holding u in [0,1) on the CDF; u is rescaled to [0,1) within the light's interval
+    // so one stratified number serves both the choice and the point on the light.
+    std::size_t select(float& u) const {
+        const std::size_t n = selectCdf.size();
+        std::size_t i = static_cast<std::size_t>(std::upper_bound(selectCdf.begin(), selectCdf.end(), u) - selectCdf.begin());
+        i = std::min(i, n - 1);
+        const float low = i == 0 ? 0.0f : selectCdf[i - 1];
+        const float width = selectCdf[i] - low;
+        u = width > 0.0f ? std::min(std::max((u - low) / width, 0.0f), 0x1.fffffep-1f) : 0.0f;
+        return i;
+    }
 };
 
 LightSet buildLights(const Scene& scene, const EmbreeScene& geometry);

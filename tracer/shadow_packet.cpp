@@ -8,7 +8,8 @@
 namespace aamap {
 
 void ShadowBatch8::prepare(int count, const glm::vec3& p, const glm::vec3& o, const glm::vec3& g,
-                           const glm::vec3& s) {
+                           const glm::vec3& s, float lightVertexScale) {
+    const float vertexFloor = kVertexScaleShare * lightVertexScale;
     alignas(32) float tfar[kWidth];
     alignas(32) float dx[kWidth], dy[kWidth], dz[kWidth];
     alignas(32) int ok[kWidth];
@@ -28,7 +29,8 @@ void ShadowBatch8::prepare(int count, const glm::vec3& p, const glm::vec3& o, co
         dx[i] = qx[i] - o.x;
         dy[i] = qy[i] - o.y;
         dz[i] = qz[i] - o.z;
-        tfar[i] = 1.0f - kRayOffsetRelative * offsetScale(qx[i], qy[i], qz[i]) * inv;  // rayOffset(q) / distance
+        // rayOffset(q, light's vertex scale) / distance
+        tfar[i] = 1.0f - kRayOffsetRelative * std::max(offsetScale(qx[i], qy[i], qz[i]), vertexFloor) * inv;
         ok[i] = (d2 > 0.0f) & (cosGeom > 0.0f) & (cosSurface > 0.0f) & (cosLight > 0.0f) & (tfar[i] > 0.0f);
     }
     for (int i = 0; i < kWidth; ++i) {

@@ -40,12 +40,15 @@ struct ShadowBatch8 {
     // For lanes [0, count): computes the weights and the shadow segments from `origin` (the
     // offset hit point) to each sample, stopping short of the light by the scale-aware offset;
     // `position`, `geometric`, `shading` describe the hit. Lanes that face away are invalid.
+    // `lightVertexScale` is the light's Triangle::vertexScale (ray_offset.h).
     void prepare(int count, const glm::vec3& position, const glm::vec3& origin, const glm::vec3& geometric,
-                 const glm::vec3& shading);
+                 const glm::vec3& shading, float lightVertexScale);
 
     // Traces the valid lanes and returns the sum of the weights of the unoccluded ones, in lane
     // order. Adds the rays traced to rays.shadow.
     float trace(RTCScene scene, int count, RayCounts& rays);
+    // After trace(): lane i was traced and reached the light.
+    bool visible(int i) const { return valid[i] != 0 && packet.tfar[i] >= 0.0f; }
 };
 
 }  // namespace aamap

@@ -1,17 +1,16 @@
 #include "tracer/tracer.h"
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
-#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "scene/camera.h"
@@ -24,8 +23,6 @@
 namespace aamap {
 namespace {
 
-constexpr int kTileSize = 16;
-
 // Counted per thread, summed once at the end: no shared atomics on the ray path.
 struct ThreadCounters {
     RayCounts rays;
@@ -34,47 +31,107 @@ struct ThreadCounters {
 
 bool isFinite(const glm::vec3& c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
 
-struct TileJob {
-    const PinholeCamera& camera;
-    const Integrator& integrator;
-    const SamplingStrategy& strategy;
-    std::uint64_t seed;
-    int width, height;
-    ImageRGB& image;
-    Image<std::uint16_t>& primaryRays;
+// The strategies' view of the scene: one primary sample = one integrator call.
+class EmbreeSource final : public SampleSource {
+public:
+    EmbreeSource(const PinholeCamera& camera, const Integrator& integrator, const EmbreeScene& geometry,
+                 const std::vector<std::uint32_t>& shapes, std::uint64_t seed, int width, int height)
+        : camera_(camera),
+          integrator_(integrator),
+          geometry_(geometry),
+          shapes_(shapes),
+          seed_(seed),
+          width_(width),
+          height_(height),
+          invW_(1.0f / static_cast<float>(width)),
+          invH_(1.0f / static_cast<float>(height)) {}
 
-    void run(int x0, int y0, int x1, int y1, ThreadCounters& counters) const {
-        const float invW = 1.0f / static_cast<float>(width);
-        const float invH = 1.0f / static_cast<float>(height);
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x) {
-                const int k = strategy.stratificationFor(x, y);
-                primaryRays.at(x, y) = static_cast<std::uint16_t>(k * k);
-                if (k <= 0) continue;  // the strategy fills this pixel later
-                const std::uint64_t pixelIndex = static_cast<std::uint64_t>(y) * width + x;
-                glm::dvec3 sum(0.0);
-                int kept = 0;
-                for (int sy = 0; sy < k; ++sy) {
-                    for (int sx = 0; sx < k; ++sx) {
-                        const Sampler sampler(pixelIndex, static_cast<std::uint32_t>(sy * k + sx), seed);
-                        const glm::vec2 j = sampler.stratified2D(dims::kFilm, sx, sy, k);
-                        // Film point exactly as the rasteriser defines pixel (x, y).
-                        const float u = (static_cast<float>(x) + j.x) * invW;
-                        const float v = (static_cast<float>(y) + j.y) * invH;
-                        const glm::vec3 dir = glm::normalize(camera.direction(u, v));
-                        const glm::vec3 L = integrator.primary(camera.origin, dir, sampler, counters.rays);
-                        if (!isFinite(L)) {
-                            ++counters.nonFinite;
-                            continue;
-                        }
-                        sum += glm::dvec3(L);
-                        ++kept;
-                    }
+    int width() const override { return width_; }
+    int height() const override { return height_; }
+
+    PrimarySample sample(int x, int y, int sx, int sy, int k, bool withHit) const override {
+        ThreadCounters& counters = counters_.local();
+        PrimarySample s;
+        const glm::vec3 L = radiance(x, y, sx, sy, k, counters, withHit ? &s : nullptr);
+        s.finite = isFinite(L);
+        if (s.finite) s.radiance = L;
+        else ++counters.nonFinite;
+        return s;
+    }
+
+    // The hot path of uniform/aamap sampling: one thread-local lookup per pixel.
+    glm::vec3 pixel(int x, int y, int k) const override {
+        ThreadCounters& counters = counters_.local();
+        glm::dvec3 sum(0.0);
+        int kept = 0;
+        for (int sy = 0; sy < k; ++sy) {
+            for (int sx = 0; sx < k; ++sx) {
+                const glm::vec3 L = radiance(x, y, sx, sy, k, counters, nullptr);
+                if (!isFinite(L)) {
+                    ++counters.nonFinite;
+                    continue;
                 }
-                image.at(x, y) = kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
+                sum += glm::dvec3(L);
+                ++kept;
             }
         }
+        return kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
     }
+
+    void addCounts(TraceResult& result) const {
+        for (const ThreadCounters& c : counters_) {
+            result.rays.primary += c.rays.primary;
+            result.rays.shadow += c.rays.shadow;
+            result.rays.other += c.rays.other;
+            result.nonFiniteSamples += c.nonFinite;
+        }
+    }
+
+private:
+    glm::vec3 radiance(int x, int y, int sx, int sy, int k, ThreadCounters& counters, PrimarySample* hit) const {
+        const std::uint64_t pixelIndex = static_cast<std::uint64_t>(y) * width_ + x;
+        const Sampler sampler(pixelIndex, static_cast<std::uint32_t>(sy * k + sx), seed_);
+        const glm::vec2 j = sampler.stratified2D(dims::kFilm, sx, sy, k);
+        // Film point exactly as the rasteriser defines pixel (x, y).
+        const float u = (static_cast<float>(x) + j.x) * invW_;
+        const float v = (static_cast<float>(y) + j.y) * invH_;
+        const glm::vec3 dir = glm::normalize(camera_.direction(u, v));
+        if (hit != nullptr) probe(dir, *hit, counters.rays);
+        return integrator_.primary(camera_.origin, dir, sampler, counters.rays);
+    }
+
+    // Depth and shape of the primary hit for the rpict and shape-id criteria. The integrator does
+    // not report its primary hit, so this traces the same ray once more (counted in rays.other).
+    void probe(const glm::vec3& dir, PrimarySample& s, RayCounts& rays) const {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit rh{};
+        rh.ray.org_x = camera_.origin.x;
+        rh.ray.org_y = camera_.origin.y;
+        rh.ray.org_z = camera_.origin.z;
+        rh.ray.dir_x = dir.x;
+        rh.ray.dir_y = dir.y;
+        rh.ray.dir_z = dir.z;
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = std::numeric_limits<float>::infinity();
+        rh.ray.mask = ~0u;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(geometry_.handle(), &context, &rh);
+        ++rays.other;
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;  // a miss: depth +inf, kNoShape
+        s.depth = rh.ray.tfar;
+        s.shape = rh.hit.primID < shapes_.size() ? shapes_[rh.hit.primID] : geometry_.triangle(rh.hit.primID).material;
+    }
+
+    const PinholeCamera& camera_;
+    const Integrator& integrator_;
+    const EmbreeScene& geometry_;
+    const std::vector<std::uint32_t>& shapes_;
+    std::uint64_t seed_;
+    int width_, height_;
+    float invW_, invH_;
+    mutable tbb::enumerable_thread_specific<ThreadCounters> counters_;
 };
 
 }  // namespace
@@ -82,7 +139,9 @@ struct TileJob {
 struct Tracer::Impl {
     EmbreeScene geometry;
     LightSet lights;
-    explicit Impl(const Scene& scene) : geometry(scene), lights(buildLights(scene, geometry)) {}
+    std::vector<std::uint32_t> shapes;  // per triangle: the object it came from (shape-id sampling)
+    explicit Impl(const Scene& scene)
+        : geometry(scene), lights(buildLights(scene, geometry)), shapes(scene.mesh.objectIds) {}
 };
 
 Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
@@ -98,40 +157,21 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     const auto strategy = makeStrategy(strategySettings, W, H);
     const Integrator integrator(impl_->geometry, impl_->lights, settings.shading);
     const PinholeCamera camera = PinholeCamera::fromView(view);
+    const EmbreeSource source(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H);
 
-    TraceResult result;
-    result.image = ImageRGB(W, H, glm::vec3(0.0f));
-    result.primaryRays = Image<std::uint16_t>(W, H, 0);
-    const TileJob job{camera, integrator, *strategy, settings.seed, W, H, result.image, result.primaryRays};
-
-    const int tilesX = (W + kTileSize - 1) / kTileSize;
-    const int tilesY = (H + kTileSize - 1) / kTileSize;
-    const int tileCount = tilesX * tilesY;
-    std::atomic<int> tilesDone{0};
-    tbb::enumerable_thread_specific<ThreadCounters> counters;
-
+    StrategyImages images(W, H);
+    Scheduler scheduler(W, H, settings.onTileDone);
+    scheduler.expectTilePhases(strategy->tilePhases());
     const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
     tbb::task_arena arena(threads);
-    arena.execute([&] {
-        // Grain 1: tiles are already coarse, and cost varies a lot between them.
-        tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& r) {
-            ThreadCounters& local = counters.local();
-            for (int t = r.begin(); t != r.end(); ++t) {
-                const int x0 = (t % tilesX) * kTileSize, y0 = (t / tilesX) * kTileSize;
-                job.run(x0, y0, std::min(x0 + kTileSize, W), std::min(y0 + kTileSize, H), local);
-                const int done = tilesDone.fetch_add(1, std::memory_order_relaxed) + 1;
-                if (settings.onTileDone) settings.onTileDone(done, tileCount);
-            }
-        });
-    });
-    strategy->fill(result.image, result.primaryRays);
+    arena.execute([&] { strategy->render(source, scheduler, images); });
 
-    for (const ThreadCounters& c : counters) {
-        result.rays.primary += c.rays.primary;
-        result.rays.shadow += c.rays.shadow;
-        result.rays.other += c.rays.other;
-        result.nonFiniteSamples += c.nonFinite;
-    }
+    TraceResult result;
+    result.image = std::move(images.image);
+    result.primaryRays = std::move(images.primaryRays);
+    result.traced = std::move(images.traced);
+    result.strategy = strategy->describe();
+    source.addCounts(result);
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }

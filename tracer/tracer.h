@@ -11,8 +11,21 @@
 
 namespace aamap {
 
+// How a hit is shaded (docs/tracer.md). Direct: emission + direct light + mirror/glass recursion,
+// no indirect diffuse. Path: unbiased path tracing (NEE + MIS + Russian roulette), the ground
+// truth. Cache: Direct plus indirect diffuse from the irradiance cache.
+enum class ShadingMode { Direct, Path, Cache };
+const char* toString(ShadingMode mode);
+
 struct ShadingSettings {
     int areaLightSamples = 16;  // stratified shadow-ray samples per area light per hit (rounded to a square)
+    ShadingMode mode = ShadingMode::Direct;
+    // Path: longest path in segments, as Mitsuba's max_depth (1: emitters only, 2: direct light).
+    int maxDepth = 5;
+    bool russianRoulette = true;  // Path: from segment `rouletteDepth` on, paths die by throughput
+    int rouletteDepth = 5;        // Mitsuba's rr_depth default
+    // Direct/Cache: mirror and glass bounces followed per primary ray (glass splits into both).
+    int maxSpecularDepth = 8;
 };
 
 struct RayCounts {
@@ -22,15 +35,57 @@ struct RayCounts {
     std::uint64_t total() const { return primary + shadow + other; }
 };
 
-enum class StrategyKind { Uniform, Aamap };
+// tracer/strategy.h describes each strategy. Names (toString/parse): "uniform", "aamap",
+// "aamap-subsample", "rpict", "supersample", "variance", "shape-id".
+enum class StrategyKind {
+    Uniform,
+    Aamap,
+    AamapSubsample,
+    RpictAdaptive,
+    SupersampleFilter,
+    VarianceAdaptive,
+    ShapeIdAdaptive,
+};
 const char* toString(StrategyKind kind);
+bool parse(const std::string& name, StrategyKind& kind);  // false for an unknown name
+
+// Map value a in [0,1] -> strata per axis k in [1, n]. Paper: k = 1 + round(a (n - 1)) (paper section 4).
+// LinearRays: k = round(sqrt(1 + a (n^2 - 1))), rays per pixel linear in a. Names "paper", "linear-rays".
+enum class StrataMapping { Paper, LinearRays };
+const char* toString(StrataMapping mapping);
+bool parse(const std::string& name, StrataMapping& mapping);
+
+// Filters for SupersampleFilter, as pfilt: box (mean of the f x f sub-pixels) or Gaussian.
+enum class DownFilter { Box, Gaussian };
+const char* toString(DownFilter filter);
+bool parse(const std::string& name, DownFilter& filter);
 
 struct StrategySettings {
     StrategyKind kind = StrategyKind::Uniform;
     int strata = 1;  // n: at most n x n rays per pixel
-    // Aamap only: pixel p gets k x k rays, k = 1 + round(aamap(p) * (n - 1)). Must match the
-    // render resolution. Not owned.
+    // Aamap, AamapSubsample (and optional elsewhere): pixel p gets k x k rays, k from `mapping`.
+    // Must match the render resolution. Not owned.
     const ImageGrey* aamap = nullptr;
+
+    // Aamap, AamapSubsample: how the map value sets k.
+    StrataMapping mapping = StrataMapping::Paper;
+    // AamapSubsample: grid spacing s (paper "Space 8/16"), in [1, 64]; blocks whose aamap sum
+    // (corners included) exceeds `threshold` (>= 0) are split, the rest interpolated.
+    // RpictAdaptive: -ps spacing and -pt relative colour/depth threshold (rpict defaults 4, 0.05).
+    int spacing = 8;
+    double threshold = 0.0;
+    // SupersampleFilter: render at factor x the resolution (2 or 3), n x n strata per sub-pixel,
+    // then filter down. Gaussian: weight exp(-(d/r)^2), d in output pixels, r = filterRadius.
+    int supersample = 2;
+    DownFilter filter = DownFilter::Box;
+    double filterRadius = 0.6;
+    // VarianceAdaptive (Cycles): at most n^2 samples; at least minSamples (>= 2), then
+    // `sampleStep` more per round to every pixel whose error >= noiseThreshold (dilated by one).
+    // ShapeIdAdaptive (pbrt-v2): minSamples first (rounded down to a square), n^2 more where they
+    // hit different shapes.
+    double noiseThreshold = 0.01;
+    int minSamples = 4;
+    int sampleStep = 4;
 };
 
 struct TraceSettings {
@@ -45,6 +100,8 @@ struct TraceSettings {
 struct TraceResult {
     ImageRGB image;                    // linear radiance, finite everywhere
     Image<std::uint16_t> primaryRays;  // primary rays traced per pixel
+    Image<std::uint8_t> traced;        // 1: estimated from rays at this pixel, 0: interpolated
+    std::string strategy;              // the strategy with its resolved parameters, one line
     RayCounts rays;
     std::uint64_t nonFiniteSamples = 0;  // NaN/Inf samples dropped (counted, never written)
     double seconds = 0.0;

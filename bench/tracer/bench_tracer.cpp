@@ -1,6 +1,6 @@
 // Tracer throughput: time, rays/s and primary samples/s for uniform n x n sampling.
 //   bench_tracer [--scene builtin:cornell] [--size 512] [--strata 6] [--threads 0]
-//                [--light-samples 16] [--repeat 3]
+//                [--light-samples 16] [--repeat 3] [--mode direct|path] [--max-depth 5]
 // Reports the best of --repeat runs: the machine is shared and noisy, the minimum is the
 // least disturbed figure.
 #include <algorithm>
@@ -17,7 +17,8 @@
 int main(int argc, char** argv) {
     CLI::App app{"Tracer throughput benchmark (uniform n x n sampling)"};
     std::string sceneSpec = "builtin:cornell";
-    int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3;
+    int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3, maxDepth = 5;
+    std::string mode = "direct";
     app.add_option("--scene", sceneSpec, "builtin:<name> or an .obj/.gltf/.glb file")->capture_default_str();
     app.add_option("--size", size, "render resolution (square)")->capture_default_str()->check(CLI::Range(1, 16384));
     app.add_option("--strata", strata, "n: n x n rays per pixel")->capture_default_str()->check(CLI::Range(1, 32));
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(1, 4096));
     app.add_option("--repeat", repeat, "timed runs; the best is reported")->capture_default_str()->check(CLI::Range(1, 100));
+    app.add_option("--mode", mode, "shading: direct or path")->capture_default_str()->check(CLI::IsMember({"direct", "path"}));
+    app.add_option("--max-depth", maxDepth, "path mode: longest path in segments")->capture_default_str()->check(CLI::Range(1, 1000));
     CLI11_PARSE(app, argc, argv);
 
     aamap::Scene scene;
@@ -52,6 +55,8 @@ int main(int argc, char** argv) {
     settings.width = settings.height = size;
     settings.threads = threads;
     settings.shading.areaLightSamples = lightSamples;
+    settings.shading.mode = mode == "path" ? aamap::ShadingMode::Path : aamap::ShadingMode::Direct;
+    settings.shading.maxDepth = maxDepth;
     aamap::StrategySettings strategy;
     strategy.strata = strata;
 
@@ -63,8 +68,8 @@ int main(int argc, char** argv) {
         best = std::min(best, result.seconds);
     }
     const auto& rays = result.rays;
-    fmt::print("{}x{} uniform n={} ({} spp), {} light samples/hit\n", size, size, strata, strata * strata,
-               lightSamples);
+    fmt::print("{}x{} uniform n={} ({} spp), mode {}, {}\n", size, size, strata, strata * strata, mode,
+               mode == "path" ? fmt::format("max depth {}", maxDepth) : fmt::format("{} light samples/hit", lightSamples));
     fmt::print("rays: {} primary, {} shadow, {} other, {} total; {} non-finite samples\n", rays.primary,
                rays.shadow, rays.other, rays.total(), result.nonFiniteSamples);
     fmt::print("best time {:.3f} s | {:.2f} M rays/s | {:.2f} M samples/s (primary)\n", best,

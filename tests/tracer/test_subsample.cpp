@@ -1,0 +1,207 @@
+// Block sums, the strata mappings and the paper's adaptive subsampling, on synthetic images.
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "tests/tracer/synthetic_source.h"
+#include "tracer/block_sums.h"
+#include "tracer/strategies/subsample.h"
+
+namespace aamap {
+namespace {
+
+using testing::runStrategy;
+using testing::strategy;
+using testing::SyntheticSource;
+
+TEST(BlockSums, MatchBruteForceWithClampingAndNaN) {
+    const int w = 13, h = 9;
+    ImageGrey map(w, h);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-0.5f, 1.5f);
+    for (float& v : map.pixels()) v = u(rng);
+    map.at(4, 4) = std::numeric_limits<float>::quiet_NaN();
+    const BlockSums sums(map);
+    auto value = [&](int x, int y) {
+        const float a = map.at(x, y);
+        return std::isnan(a) ? 1.0 : std::clamp(static_cast<double>(a), 0.0, 1.0);
+    };
+    for (int y0 = 0; y0 < h; y0 += 2)
+        for (int x0 = 0; x0 < w; x0 += 3)
+            for (int y1 = y0; y1 < h; y1 += 3)
+                for (int x1 = x0; x1 < w; x1 += 2) {
+                    double expected = 0.0;
+                    for (int y = y0; y <= y1; ++y)
+                        for (int x = x0; x <= x1; ++x) expected += value(x, y);
+                    EXPECT_NEAR(sums.sum(x0, y0, x1, y1), expected, 1e-9);
+                }
+    EXPECT_EQ(sums.sum(5, 5, 4, 5), 0.0);                         // empty
+    EXPECT_NEAR(sums.sum(-3, -3, 100, 100), sums.sum(0, 0, w - 1, h - 1), 1e-12);  // clipped
+}
+
+TEST(BlockSums, ZeroBlocksSumToExactlyZero) {
+    // Large and tiny values around a zero block: the double table alone could leave a residue.
+    ImageGrey map(64, 64, 0.0f);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            if (x < 20 || y < 20) map.at(x, y) = (x * 7 + y * 13) % 5 == 0 ? 0.9999f : 1e-7f * static_cast<float>(x + 1);
+    const BlockSums sums(map);
+    for (int y0 = 20; y0 < 64; y0 += 5)
+        for (int x0 = 20; x0 < 64; x0 += 7) EXPECT_EQ(sums.sum(x0, y0, 63, 63), 0.0);
+    EXPECT_GT(sums.sum(19, 20, 19, 20), 0.0);
+    EXPECT_THROW(BlockSums::fromTables(2, 2, {}, {}), std::invalid_argument);
+}
+
+TEST(StrataMapping, PaperAndLinearInRays) {
+    EXPECT_EQ(stratification(0.5f, 6, StrataMapping::Paper), 4);
+    EXPECT_EQ(stratification(0.0f, 6, StrataMapping::LinearRays), 1);
+    EXPECT_EQ(stratification(1.0f, 6, StrataMapping::LinearRays), 6);
+    EXPECT_EQ(stratification(0.5f, 6, StrataMapping::LinearRays), 4);   // sqrt(18.5) = 4.3
+    EXPECT_EQ(stratification(0.25f, 6, StrataMapping::LinearRays), 3);  // sqrt(9.75) = 3.1
+    EXPECT_EQ(stratification(0.1f, 32, StrataMapping::LinearRays), 10);  // sqrt(103.3)
+    EXPECT_EQ(stratification(std::numeric_limits<float>::quiet_NaN(), 5, StrataMapping::LinearRays), 5);
+    for (int n : {1, 2, 7, 32, kMaxStrata})
+        for (float a = 0.0f; a <= 1.0f; a += 0.05f) {
+            const int k = stratification(a, n, StrataMapping::LinearRays);
+            EXPECT_GE(k, 1);
+            EXPECT_LE(k, n);
+        }
+    StrataMapping m{};
+    EXPECT_TRUE(parse("linear-rays", m));
+    EXPECT_EQ(m, StrataMapping::LinearRays);
+    EXPECT_FALSE(parse("linear", m));
+}
+
+TEST(Subsample, GridLinesCoverAnySize) {
+    EXPECT_EQ(gridLines(10, 4), (std::vector<int>{0, 4, 8, 9}));
+    EXPECT_EQ(gridLines(9, 4), (std::vector<int>{0, 4, 8}));
+    EXPECT_EQ(gridLines(5, 100), (std::vector<int>{0, 4}));
+    EXPECT_EQ(gridLines(1, 8), (std::vector<int>{0}));
+}
+
+TEST(Subsample, InterpolateBlockIsBilinear) {
+    ImageRGB img(5, 4, glm::vec3(-1.0f));
+    img.at(0, 0) = glm::vec3(0.0f);
+    img.at(4, 0) = glm::vec3(4.0f);
+    img.at(0, 3) = glm::vec3(6.0f);
+    img.at(4, 3) = glm::vec3(10.0f);  // f = x + 2y
+    interpolateBlock(img, {0, 0, 4, 3});
+    for (int y = 1; y < 3; ++y)
+        for (int x = 1; x < 4; ++x) EXPECT_NEAR(img.at(x, y).x, static_cast<float>(x + 2 * y), 1e-5f);
+    EXPECT_EQ(img.at(2, 0), glm::vec3(-1.0f));  // borders are left to the line interpolation
+}
+
+glm::vec3 ramp(float fx, float fy) { return {0.25f + 0.5f * fx, 3.0f - 0.125f * fy, fx + fy}; }
+glm::vec3 rampAtCentre(int x, int y) { return ramp(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f); }
+
+TEST(Subsample, HugeThresholdTracesOnlyTheGridAndIsExactOnARamp) {
+    const int w = 37, h = 21;  // not divisible by s
+    const ImageGrey map(w, h, 1.0f);
+    for (int s : {1, 4, 8, 16, 64}) {
+        const SyntheticSource src(w, h, ramp, true);
+        StrategySettings st = strategy(StrategyKind::AamapSubsample, 1, &map);
+        st.spacing = s;
+        st.threshold = std::numeric_limits<double>::infinity();
+        const StrategyImages out = runStrategy(st, src);
+        const std::vector<int> xs = gridLines(w, s), ys = gridLines(h, s);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const bool grid = std::count(xs.begin(), xs.end(), x) && std::count(ys.begin(), ys.end(), y);
+                EXPECT_EQ(out.traced.at(x, y), grid ? 1 : 0) << x << "," << y << " s=" << s;
+                EXPECT_EQ(src.calls(x, y), grid ? 1u : 0u);
+                EXPECT_EQ(out.primaryRays.at(x, y), grid ? 1 : 0);
+                const glm::vec3 d = out.image.at(x, y) - rampAtCentre(x, y);
+                EXPECT_LT(std::abs(d.x) + std::abs(d.y) + std::abs(d.z), 1e-4f) << x << "," << y << " s=" << s;
+            }
+    }
+}
+
+TEST(Subsample, RefinesOnlyWhereTheMapIsNonZeroWithoutCracks) {
+    const int w = 40, h = 33;
+    ImageGrey map(w, h, 0.0f);
+    map.at(13, 21) = 0.3f;
+    const SyntheticSource src(w, h, ramp, true);
+    StrategySettings st = strategy(StrategyKind::AamapSubsample, 3, &map);
+    st.spacing = 8;
+    const StrategyImages out = runStrategy(st, src);
+    EXPECT_EQ(out.traced.at(13, 21), 1);
+    EXPECT_EQ(out.primaryRays.at(13, 21), 4);  // k = 1 + round(0.3 * 2) = 2
+    std::uint64_t traced = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            traced += out.traced.at(x, y);
+            // Only the blocks around (13, 21) are refined.
+            if (x > 24 || y < 8) {
+                EXPECT_EQ(out.traced.at(x, y), (x % 8 == 0 || x == w - 1) && (y % 8 == 0 || y == h - 1));
+            }
+            // Linear everywhere: T-junctions between refined and coarse blocks leave no cracks.
+            const glm::vec3 d = out.image.at(x, y) - rampAtCentre(x, y);
+            EXPECT_LT(std::abs(d.x) + std::abs(d.y) + std::abs(d.z), 1e-4f) << x << "," << y;
+        }
+    EXPECT_LT(traced, static_cast<std::uint64_t>(w * h) / 4);
+    EXPECT_EQ(src.totalCalls(), testing::sumOf(out.primaryRays));
+}
+
+TEST(Subsample, AllOnesIsUniformBitForBit) {
+    const int w = 19, h = 11, n = 3;
+    const ImageGrey ones(w, h, 1.0f);
+    const SyntheticSource a(w, h, ramp), b(w, h, ramp);
+    StrategySettings st = strategy(StrategyKind::AamapSubsample, n, &ones);
+    st.spacing = 5;
+    const StrategyImages sub = runStrategy(st, a, 3);
+    const StrategyImages uni = runStrategy(strategy(StrategyKind::Uniform, n), b, 1);
+    EXPECT_TRUE(sub.image == uni.image);
+    EXPECT_TRUE(sub.primaryRays == uni.primaryRays);
+    EXPECT_TRUE(sub.traced == uni.traced);
+}
+
+TEST(Subsample, ExtremesGiveFiniteImagesAndHonestCounts) {
+    struct Case {
+        int w, h, n, s;
+        double t;
+        float mapValue;
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    const Case cases[] = {{1, 1, 2, 8, 0, 1.0f},  {3, 7, 2, 8, 0, 0.5f},  {3, 7, 2, 2, inf, 1.0f},
+                          {10, 6, 1, 64, 0, 1.0f}, {17, 9, 32, 4, 0, 0.0f}, {17, 9, 32, 64, 0.5, 1.0f},
+                          {9, 9, 4, 1, 0, 1.0f},  {8, 8, 3, 8, 1e30, 0.7f}};
+    for (const Case& c : cases) {
+        ImageGrey map(c.w, c.h, c.mapValue);
+        if (c.mapValue > 0.0f) map.at(0, 0) = 0.0f;  // exact zeros next to non-zero values
+        const SyntheticSource src(c.w, c.h, ramp);
+        StrategySettings st = strategy(StrategyKind::AamapSubsample, c.n, &map);
+        st.spacing = c.s;
+        st.threshold = c.t;
+        st.mapping = c.n == 32 ? StrataMapping::LinearRays : StrataMapping::Paper;
+        const StrategyImages out = runStrategy(st, src);
+        for (const glm::vec3& v : out.image.pixels()) EXPECT_TRUE(std::isfinite(v.x + v.y + v.z));
+        EXPECT_EQ(src.totalCalls(), testing::sumOf(out.primaryRays)) << c.w << "x" << c.h;
+        for (int y = 0; y < c.h; ++y)
+            for (int x = 0; x < c.w; ++x) {
+                EXPECT_EQ(out.traced.at(x, y) != 0, out.primaryRays.at(x, y) > 0);
+                EXPECT_EQ(src.calls(x, y), out.primaryRays.at(x, y));
+            }
+        EXPECT_EQ(out.traced.at(0, 0), 1);
+        EXPECT_EQ(out.traced.at(c.w - 1, c.h - 1), 1);
+    }
+}
+
+TEST(Subsample, RejectsBadSettings) {
+    const ImageGrey map(8, 8, 0.0f);
+    StrategySettings st = strategy(StrategyKind::AamapSubsample, 2, &map);
+    st.spacing = 0;
+    EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
+    st.spacing = 65;
+    EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
+    st.spacing = 8;
+    st.threshold = -1.0;
+    EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
+    st.threshold = 0.0;
+    st.aamap = nullptr;
+    EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aamap
