@@ -1,7 +1,7 @@
 #pragma once
 // Shared fixture of the GPU tests: one Vulkan context per test suite with the validation layer
 // on, and any validation warning or error -- during a test or while tearing the context down --
-// fails the test. AAMAP_VK_DEVICE picks the device (default: the ContextOptions rule).
+// fails the test. AAMAP_DEVICE picks the device (default: the ContextOptions rule).
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
@@ -17,7 +17,7 @@ public:
     static void SetUpTestSuite() {
         ContextOptions options;
         options.validation = true;
-        if (const char* device = std::getenv("AAMAP_VK_DEVICE")) options.device = device;
+        if (const char* device = std::getenv("AAMAP_DEVICE")) options.device = device;
         context_ = std::make_unique<VulkanContext>(options);
         if (!context_->validationEnabled()) ADD_FAILURE() << "the GPU tests must run with validation";
     }
