@@ -2,11 +2,14 @@
 // "aamap: error: ..." line. Exit codes: 0 ok, 1 environment, 2 bad input, 3 validation messages.
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "aamap/git_revision.h"
@@ -15,6 +18,8 @@
 #include "engine/vk/context.h"
 #include "eval/config.h"
 #include "eval/experiment.h"
+#include "eval/report.h"
+#include "eval/strategies.h"
 
 namespace {
 
@@ -29,16 +34,41 @@ docs/config.md). Paths in it are relative to the config file. Keys:
   lights: [{type: point, name, position: [x,y,z], intensity: [r,g,b] W/sr, normal: [x,y,z]}]
   image: {width: 512, height: 512, exposure: 1.0}   (the view's aspect ratio fits inside)
   snapshot: {scale: 1.5, area_light_samples: 5, blur_radius: 1, noise_floor: 0.02, gain: 1.0}
-  shading: {area_light_samples: 16}
-  renders: [{name: NAME, strategy: uniform|aamap, rpp: n*n (1, 4, 9, ..., 1024)}]
---set overrides one value, e.g. --set image.width=256 --set renders.1.rpp=16 (the value is YAML).
+  shading: {area_light_samples: 16, mode: direct|path|cache, max_depth: 5, russian_roulette: true,
+            roulette_depth: 5, max_specular_depth: 8}
+  renders: [{name: NAME, series: LABEL, strategy: S, rpp: n*n or a list (a sweep),
+             <strategy parameter>: value or list}]     lists sweep: the cartesian product
+@STRATEGIES@
+  reference: {type: uniform|file|none, rpp: max of renders, mode: shading mode, path: EXR}
+  metrics: {flip: true, flip_hdr: false, flip_threshold: 0.1, mse_threshold: 6.15e-5, ppd: 67.02,
+            map_quality: true}          report: {plots: true}
+--set overrides one value, e.g. --set image.width=256 --set renders.1.rpp=[1,4,16] (the value is YAML).
 
-Writes into OUTDIR: snapshot.png, laplacian.png, aamap.exr, aamap.png, and per render NAME.exr
-(linear), NAME.png (sRGB), NAME.rpp.png (rays per pixel in false colour), plus results.json.
+Writes into OUTDIR: report.html, report.md, results.csv, results.json; snapshot.png, laplacian.png,
+aamap.exr, aamap.png; per render NAME.exr (linear), NAME.png (sRGB), NAME.rpp.png (rays per pixel),
+NAME.flip.png and NAME.overlay.png (FLIP error); reference.*, one_ray.*, aliasing.png; plots/.
+Finished renders are kept in OUTDIR/cache and reused: rerunning a killed run only traces the rest.
 
 Environment: AAMAP_VALIDATION=1 turns on --validation; AAMAP_DEVICE sets the default --device.
 Exit codes: 0 success, 1 environment error (no GPU, disk), 2 bad input (config, scene, options),
 3 Vulkan validation messages.)";
+
+// The strategy lines come from the table, so new strategies show up here by themselves.
+std::string runFooter() {
+    std::string lines;
+    for (const aamap::StrategyInfo& s : aamap::strategyTable()) {
+        std::vector<std::string> params;
+        for (const aamap::StrategyParam& p : s.params)
+            params.push_back(p.choices.empty() ? fmt::format("{} ({})", p.name, aamap::formatParam(p.defaultValue))
+                                               : fmt::format("{} ({})", p.name, fmt::join(p.choices, "|")));
+        lines += fmt::format("    {:<16}{}{}\n", s.name, s.usesAamap ? "[aamap] " : "",
+                             params.empty() ? "no parameters" : fmt::format("{}", fmt::join(params, ", ")));
+    }
+    std::string footer = kRunFooter;
+    const std::string token = "@STRATEGIES@\n";
+    footer.replace(footer.find(token), token.size(), lines);
+    return footer;
+}
 
 bool envFlag(const char* name) {
     const char* v = std::getenv(name);
@@ -73,10 +103,13 @@ int main(int argc, char** argv) {
     app.add_flag("-v,--verbose", verbose, "Debug logging");
     app.add_flag("-q,--quiet", quiet, "Warnings and errors only");
 
-    CLI::App* run = app.add_subcommand("run", "Run an experiment: snapshot, aamap, renders, results.json");
+    CLI::App* run = app.add_subcommand("run", "Run an experiment: snapshot, aamap, renders, metrics, report");
+    CLI::App* report = app.add_subcommand("report", "Rebuild report.html, report.md, results.csv and the plots from OUTDIR/results.json");
+    std::string reportDir;
+    report->add_option("OUTDIR", reportDir, "An experiment's output folder")->required();
     std::string configPath, outDir, device = envString("AAMAP_DEVICE");
     std::vector<std::string> overrides;
-    bool validation = envFlag("AAMAP_VALIDATION"), listDevices = false;
+    bool validation = envFlag("AAMAP_VALIDATION"), listDevices = false, noPlots = false;
     int threads = -1;
     run->add_option("CONFIG", configPath, "Experiment YAML file");
     run->add_option("-o,--out", outDir, "Output folder (default: out/<config stem>)")->type_name("OUTDIR");
@@ -90,7 +123,8 @@ int main(int argc, char** argv) {
     run->add_flag("--validation", validation, "Enable the Vulkan validation layer; any message fails the run (exit 3)");
     run->add_option("--threads", threads, "Tracer threads (overrides the config; 0 = all)")->check(CLI::NonNegativeNumber);
     run->add_flag("--list-devices", listDevices, "Print the Vulkan devices and exit");
-    run->footer(kRunFooter);
+    run->add_flag("--no-plots", noPlots, "Skip tools/report_plots.py (the report notes it)");
+    run->footer(runFooter());
 
     try {
         app.parse(argc, argv);
@@ -101,6 +135,19 @@ int main(int argc, char** argv) {
     aamap::initLogging(verbose ? spdlog::level::debug : quiet ? spdlog::level::warn : spdlog::level::info);
 
     try {
+        if (report->parsed()) {
+            const std::filesystem::path json = std::filesystem::path(reportDir) / "results.json";
+            std::ifstream in(json);
+            if (!in) return fail(kExitInput, fmt::format("{}: cannot read (run the experiment first)", json.string()));
+            nlohmann::ordered_json results;
+            try {
+                results = nlohmann::ordered_json::parse(in);
+            } catch (const nlohmann::json::exception& e) {
+                return fail(kExitInput, fmt::format("{}: {}", json.string(), e.what()));
+            }
+            aamap::writeReport(reportDir, results, true);
+            return 0;
+        }
         if (listDevices) {
             const std::vector<std::string> devices = aamap::VulkanContext::listDevices();
             for (std::size_t i = 0; i < devices.size(); ++i) fmt::print("{}: {}\n", i, devices[i]);
@@ -116,6 +163,7 @@ int main(int argc, char** argv) {
         options.device = device;
         options.threads = threads;
         options.gitRevision = AAMAP_GIT_REVISION;
+        options.plots = !noPlots;
         spdlog::info("config {} (hash {}), output {}", configPath, config.hash(), out.string());
         aamap::runExperiment(config, out, options);
         return 0;

@@ -7,11 +7,14 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "eval/config_sections.h"
+#include "eval/strategies.h"
 #include "eval/yaml_reader.h"
 
 namespace aamap {
@@ -19,19 +22,23 @@ namespace {
 
 using yaml::MapReader;
 
-// Every value --set can reach; '#' is a list index. Keep in step with the readers below.
-const std::vector<std::string> kLeaves = {
-    "scene", "view", "view_index", "seed", "threads",
-    "image.width", "image.height", "image.exposure",
-    "snapshot.scale", "snapshot.area_light_samples", "snapshot.blur_radius", "snapshot.noise_floor",
-    "snapshot.gain", "shading.area_light_samples",
-    "lights.#.type", "lights.#.name", "lights.#.position", "lights.#.intensity", "lights.#.normal",
-    "renders.#.name", "renders.#.strategy", "renders.#.rpp",
-};
-const std::vector<std::string> kStrategies = {"uniform", "aamap"};
-// Render names become file stems beside these outputs; a render may not shadow them.
-const std::vector<std::string> kReservedNames = {"snapshot", "laplacian", "aamap", "results"};
-constexpr int kMaxRpp = 1024;   // 32 x 32; the rays-per-pixel image is 16-bit
+// Every value --set can reach; '#' is a list index. Keep in step with the readers.
+std::vector<std::string> leaves() {
+    std::vector<std::string> l = {
+        "scene", "view", "view_index", "seed", "threads",
+        "image.width", "image.height", "image.exposure",
+        "snapshot.scale", "snapshot.area_light_samples", "snapshot.blur_radius", "snapshot.noise_floor",
+        "snapshot.gain", "shading.area_light_samples", "shading.mode", "shading.max_depth",
+        "shading.russian_roulette", "shading.roulette_depth", "shading.max_specular_depth",
+        "lights.#.type", "lights.#.name", "lights.#.position", "lights.#.intensity", "lights.#.normal",
+        "renders.#.name", "renders.#.series", "renders.#.strategy", "renders.#.rpp",
+        "reference.type", "reference.rpp", "reference.mode", "reference.path",
+        "metrics.flip", "metrics.flip_hdr", "metrics.flip_threshold", "metrics.mse_threshold", "metrics.ppd",
+        "metrics.map_quality", "report.plots",
+    };
+    for (const std::string& p : allStrategyParamNames()) l.push_back("renders.#." + p);
+    return l;
+}
 constexpr int kMaxSide = 16384;
 
 SourceLocation locationOf(const yaml::Context& ctx, MapReader& map, const std::string& key) {
@@ -58,52 +65,12 @@ LightConfig readLight(const yaml::Context& ctx, const YAML::Node& node, const st
     return light;
 }
 
-bool isFileNameSafe(const std::string& s) {
-    return !s.empty() && s.size() <= 64 &&
-           std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; });
-}
-
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return s;
-}
-
-RenderConfig readRender(const yaml::Context& ctx, const YAML::Node& node, const std::string& path) {
-    MapReader m(ctx, node, path, {"name", "strategy", "rpp"});
-    RenderConfig r;
-    m.require("strategy");
-    m.require("rpp");
-    m.getString("strategy", r.strategy);
-    if (std::find(kStrategies.begin(), kStrategies.end(), r.strategy) == kStrategies.end())
-        ctx.fail(m.node("strategy"), m.childPath("strategy"),
-                 fmt::format("{}: unknown strategy '{}' (supported: {})", m.childPath("strategy"), r.strategy,
-                             fmt::join(kStrategies, ", ")));
-    m.getInt("rpp", r.rpp, 1, kMaxRpp);
-    const int n = static_cast<int>(std::lround(std::sqrt(r.rpp)));
-    if (n * n != r.rpp)
-        ctx.fail(m.node("rpp"), m.childPath("rpp"),
-                 fmt::format("{}: {} is not a perfect square; rays per pixel are n x n strata (1, 4, 9, 16, 25, "
-                             "36, ...)", m.childPath("rpp"), r.rpp));
-    r.name = fmt::format("{}{}", r.strategy, r.rpp);
-    m.getString("name", r.name);
-    if (!isFileNameSafe(r.name))
-        ctx.fail(m.node("name"), m.childPath("name"),
-                 fmt::format("{}: '{}' is not a safe file name (use 1-64 letters, digits, '_' or '-')",
-                             m.childPath("name"), r.name));
-    if (std::find(kReservedNames.begin(), kReservedNames.end(), lower(r.name)) != kReservedNames.end())
-        ctx.fail(m.node("name"), m.childPath("name"),
-                 fmt::format("{}: '{}' is reserved for another output file ({})", m.childPath("name"), r.name,
-                             fmt::join(kReservedNames, ", ")));
-    m.finish();
-    return r;
-}
-
 ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     if (root.IsNull() || !root.IsDefined())
         throw InputError(ctx.file(), 1, 1, "the config is empty; it needs at least 'scene' and 'renders'");
     MapReader top(ctx, root, "",
                   {"scene", "view", "view_index", "lights", "image", "seed", "threads", "snapshot", "shading",
-                   "renders"});
+                   "renders", "reference", "metrics", "report"});
     ExperimentConfig c;
     c.file = ctx.file();
     top.require("scene");
@@ -142,21 +109,22 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     snap.getDouble("gain", c.snapshot.gain, 0.0, 1e6, true);
     snap.finish();
 
-    MapReader shading(ctx, top.node("shading"), "shading", {"area_light_samples"});
+    MapReader shading(ctx, top.node("shading"), "shading",
+                      {"area_light_samples", "mode", "max_depth", "russian_roulette", "roulette_depth",
+                       "max_specular_depth"});
     shading.getInt("area_light_samples", c.shading.areaLightSamples, 1, 4096);
+    shading.getString("mode", c.shading.mode);
+    detail::checkShadingMode(ctx, shading.node("mode"), "shading.mode", c.shading.mode);
+    shading.getInt("max_depth", c.shading.maxDepth, 1, 1024);
+    c.shading.russianRoulette = detail::readBool(ctx, shading, "russian_roulette", c.shading.russianRoulette);
+    shading.getInt("roulette_depth", c.shading.rouletteDepth, 1, 1024);
+    shading.getInt("max_specular_depth", c.shading.maxSpecularDepth, 0, 1024);
     shading.finish();
 
-    const YAML::Node renders = top.node("renders");
-    if (!renders.IsSequence() || renders.size() == 0)
-        ctx.fail(renders, "renders", fmt::format("renders: expected a non-empty list, found {}", yaml::describe(renders)));
-    std::set<std::string> names;
-    for (std::size_t i = 0; i < renders.size(); ++i) {
-        const std::string path = fmt::format("renders.{}", i);
-        c.renders.push_back(readRender(ctx, renders[i], path));
-        if (!names.insert(lower(c.renders.back().name)).second)
-            ctx.fail(renders[i], path, fmt::format("{}: render name '{}' is used twice (names are output file names)",
-                                                   path, c.renders.back().name));
-    }
+    c.renders = detail::readRenders(ctx, top.node("renders"));
+    c.reference = detail::readReference(ctx, top.node("reference"), c.renders);
+    c.metrics = detail::readMetrics(ctx, top.node("metrics"));
+    c.report = detail::readReport(ctx, top.node("report"));
     top.finish();
     return c;
 }
@@ -164,6 +132,30 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
 }  // namespace
 
 int RenderConfig::strata() const { return static_cast<int>(std::lround(std::sqrt(rpp))); }
+
+double RenderConfig::param(const std::string& key) const {
+    for (const auto& [k, v] : params)
+        if (k == key) return v;
+    throw std::out_of_range(fmt::format("render '{}' has no parameter '{}'", name, key));
+}
+
+bool ExperimentConfig::usesAamap() const {
+    return std::any_of(renders.begin(), renders.end(), [](const RenderConfig& r) {
+        const StrategyInfo* s = findStrategy(r.strategy);
+        return s != nullptr && s->usesAamap;
+    });
+}
+
+std::optional<std::filesystem::path> ReferenceConfig::resolvedPath(const std::filesystem::path& configFile) const {
+    if (type != "file") return std::nullopt;
+    const std::filesystem::path p(path);
+    return (p.is_absolute() || configFile.empty() ? p : configFile.parent_path() / p).lexically_normal();
+}
+
+std::string formatParam(double value) {
+    if (value == std::floor(value) && std::fabs(value) < 1e15) return fmt::format("{}", static_cast<long long>(value));
+    return fmt::format("{:g}", value);
+}
 
 std::string ExperimentConfig::resolvedScene() const {
     if (scene.starts_with("builtin:")) return scene;
@@ -177,26 +169,104 @@ std::optional<std::filesystem::path> ExperimentConfig::resolvedView() const {
     return (p.is_absolute() || file.empty() ? p : file.parent_path() / p).lexically_normal();
 }
 
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json paramsJson(const RenderConfig& r) {
+    Json p = Json::object();
+    for (const auto& [k, v] : r.params) {
+        const StrategyParam* sp = findParam(r.strategy, k);
+        p[k] = sp != nullptr && !sp->choices.empty() ? Json(paramText(r.strategy, k, v)) : Json(v);
+    }
+    return p;
+}
+
+Json lightsJson(const ExperimentConfig& c) {
+    Json lights = Json::array();
+    for (const LightConfig& l : c.lights)
+        lights.push_back({{"type", l.type}, {"name", l.name}, {"position", l.position},
+                          {"intensity", l.intensity}, {"normal", l.normal}});
+    return lights;
+}
+
+Json snapshotJson(const ExperimentConfig& c) {
+    return {{"scale", c.snapshot.scale}, {"area_light_samples", c.snapshot.areaLightSamples},
+            {"blur_radius", c.snapshot.blurRadius}, {"noise_floor", c.snapshot.noiseFloor},
+            {"gain", c.snapshot.gain}};
+}
+
+// What every image of the experiment depends on, with paths resolved.
+Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = "") {
+    const ShadingConfig& s = c.shading;
+    return {{"area_light_samples", s.areaLightSamples}, {"mode", modeOverride.empty() ? s.mode : modeOverride},
+            {"max_depth", s.maxDepth}, {"russian_roulette", s.russianRoulette}, {"roulette_depth", s.rouletteDepth},
+            {"max_specular_depth", s.maxSpecularDepth}};
+}
+
+Json sceneJson(const ExperimentConfig& c) {
+    const auto view = c.resolvedView();
+    return {{"scene", c.resolvedScene()}, {"view", view ? Json(view->string()) : Json(nullptr)},
+            {"view_index", c.viewIndex}, {"lights", lightsJson(c)},
+            {"image", {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}}}};
+}
+
+}  // namespace
+
+std::string fnv1a64Hex(const std::string& text) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char ch : text) {
+        h ^= ch;
+        h *= 0x100000001b3ull;
+    }
+    return fmt::format("{:016x}", h);
+}
+
+std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) {
+    Json j;
+    j["format"] = "aamap-render-1";  // bump when the tracer's output for the same settings changes
+    j["scene"] = sceneJson(c);
+    j["seed"] = c.seed;
+    j["shading"] = shadingJson(c, r.shadingMode);
+    j["strategy"] = r.strategy;
+    j["rpp"] = r.rpp;
+    j["params"] = paramsJson(r);
+    const StrategyInfo* s = findStrategy(r.strategy);
+    if (s != nullptr && s->usesAamap) j["snapshot"] = snapshotJson(c);
+    return j.dump();
+}
+
+std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return fnv1a64Hex(renderKeyJson(c, r)); }
+
+std::string snapshotKey(const ExperimentConfig& c) {
+    Json j;
+    j["format"] = "aamap-snapshot-1";
+    j["scene"] = sceneJson(c);
+    j["snapshot"] = snapshotJson(c);
+    return fnv1a64Hex(j.dump());
+}
+
 static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
-    using Json = nlohmann::ordered_json;
     Json j;
     j["scene"] = c.scene;
     j["view"] = c.view ? Json(*c.view) : Json(nullptr);
     j["view_index"] = c.viewIndex;
-    j["lights"] = Json::array();
-    for (const LightConfig& l : c.lights)
-        j["lights"].push_back({{"type", l.type}, {"name", l.name}, {"position", l.position},
-                               {"intensity", l.intensity}, {"normal", l.normal}});
+    j["lights"] = lightsJson(c);
     j["image"] = {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}};
     j["seed"] = c.seed;
     j["threads"] = c.threads;
-    j["snapshot"] = {{"scale", c.snapshot.scale}, {"area_light_samples", c.snapshot.areaLightSamples},
-                     {"blur_radius", c.snapshot.blurRadius}, {"noise_floor", c.snapshot.noiseFloor},
-                     {"gain", c.snapshot.gain}};
-    j["shading"] = {{"area_light_samples", c.shading.areaLightSamples}};
+    j["snapshot"] = snapshotJson(c);
+    j["shading"] = shadingJson(c);
     j["renders"] = Json::array();
     for (const RenderConfig& r : c.renders)
-        j["renders"].push_back({{"name", r.name}, {"strategy", r.strategy}, {"rpp", r.rpp}});
+        j["renders"].push_back({{"name", r.name}, {"series", r.series}, {"strategy", r.strategy}, {"rpp", r.rpp},
+                                {"params", paramsJson(r)}});
+    j["reference"] = {{"type", c.reference.type}, {"rpp", c.reference.rpp}, {"mode", c.reference.mode},
+                      {"path", c.reference.path}};
+    const MetricsConfig& m = c.metrics;
+    j["metrics"] = {{"flip", m.flip}, {"flip_hdr", m.flipHdr}, {"flip_threshold", m.flipThreshold},
+                    {"mse_threshold", m.mseThreshold}, {"ppd", m.ppd}, {"map_quality", m.mapQuality}};
+    j["report"] = {{"plots", c.report.plots}};
     return j;
 }
 
@@ -205,12 +275,7 @@ std::string ExperimentConfig::canonicalJson() const { return canonical(*this).du
 std::string ExperimentConfig::hash() const {
     nlohmann::ordered_json j = canonical(*this);
     j.erase("threads");
-    std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a 64
-    for (unsigned char ch : j.dump()) {
-        h ^= ch;
-        h *= 0x100000001b3ull;
-    }
-    return fmt::format("{:016x}", h);
+    return fnv1a64Hex(j.dump());
 }
 
 ExperimentConfig parseConfig(const std::string& text, const std::filesystem::path& file,
@@ -224,7 +289,8 @@ ExperimentConfig parseConfig(const std::string& text, const std::filesystem::pat
     }
     if (!root.IsNull() && !root.IsMap())
         ctx.fail(root, "", fmt::format("expected a mapping of settings, found {}", yaml::describe(root)));
-    for (const std::string& o : overrides) yaml::applyOverride(root, o, kLeaves, ctx);
+    const std::vector<std::string> settable = leaves();
+    for (const std::string& o : overrides) yaml::applyOverride(root, o, settable, ctx);
     return readConfig(ctx, root);
 }
 

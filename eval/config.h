@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aamap {
@@ -40,13 +41,48 @@ struct SnapshotConfig {
 
 struct ShadingConfig {
     int areaLightSamples = 16;
+    std::string mode = "direct";  // direct | path (unbiased, the ground truth) | cache (irradiance cache)
+    int maxDepth = 5;             // path: longest path in segments
+    bool russianRoulette = true;  // path
+    int rouletteDepth = 5;        // path: roulette from this segment on
+    int maxSpecularDepth = 8;     // direct/cache: mirror and glass bounces
 };
 
+// One concrete render, after sweep expansion (a renders[] entry with list values becomes the
+// cartesian product of its lists).
 struct RenderConfig {
     std::string name;      // unique, [A-Za-z0-9_-]+, used as the output file stem
-    std::string strategy;  // "uniform" or "aamap"
+    std::string series;    // table column and plot curve ("Space 8"); renders differing in rpp only share one
+    std::string strategy;  // a strategyTable() name
     int rpp = 1;           // n*n rays per pixel at most
+    // The strategy's parameters in table order, defaults filled in.
+    std::vector<std::pair<std::string, double>> params;
+    std::string shadingMode;  // "" = the experiment's shading.mode (the reference may differ)
     int strata() const;    // n
+    double param(const std::string& key) const;  // throws std::out_of_range if the strategy has none such
+};
+
+// What every render is compared with.
+struct ReferenceConfig {
+    std::string type = "uniform";  // uniform: traced n x n everywhere, same shading; file: an EXR; none
+    int rpp = 0;                   // uniform: 0 = the largest rpp of the renders (resolved by the parser)
+    std::string mode;              // uniform: shading mode of the reference ("" = shading.mode); path = converged
+    std::string path;              // file: linear RGB EXR, relative to the config file
+    SourceLocation pathLocation;
+    std::optional<std::filesystem::path> resolvedPath(const std::filesystem::path& configFile) const;
+};
+
+struct MetricsConfig {
+    bool flip = true;            // LDR-FLIP of the displayed images
+    bool flipHdr = false;        // HDR-FLIP of the linear radiance as well
+    double flipThreshold = 0.1;  // % pixels above it; also the "true aliasing" threshold of map quality
+    double mseThreshold = (2.0 / 255.0) * (2.0 / 255.0);  // per-pixel display-space squared error
+    double ppd = 67.0206;        // FLIP viewing condition (pixels per degree)
+    bool mapQuality = true;      // aamap recall/precision; adds a 1-ray uniform render
+};
+
+struct ReportConfig {
+    bool plots = true;  // run tools/report_plots.py (skipped with a warning if Python is absent)
 };
 
 struct ExperimentConfig {
@@ -61,6 +97,11 @@ struct ExperimentConfig {
     SnapshotConfig snapshot;
     ShadingConfig shading;
     std::vector<RenderConfig> renders;
+    ReferenceConfig reference;
+    MetricsConfig metrics;
+    ReportConfig report;
+
+    bool usesAamap() const;  // some render needs the Snapshot
 
     // For errors found when the scene or view is loaded.
     SourceLocation sceneLocation, viewLocation, viewIndexLocation;
@@ -75,6 +116,18 @@ struct ExperimentConfig {
     // FNV-1a 64 of canonicalJson() without `threads` (which never changes an image), 16 hex digits.
     std::string hash() const;
 };
+
+// The cache key of one render: FNV-1a 64 of the canonical JSON of everything its image depends on
+// (scene, view, lights, image, seed, shading, strategy, rpp, parameters, and the snapshot settings
+// when the strategy uses the aamap) -- not its name, series, threads or the metrics.
+std::string renderKey(const ExperimentConfig& config, const RenderConfig& render);
+std::string renderKeyJson(const ExperimentConfig& config, const RenderConfig& render);
+// The same for the Snapshot and its aamap.
+std::string snapshotKey(const ExperimentConfig& config);
+std::string fnv1a64Hex(const std::string& text);
+
+// Formats a parameter value for names and labels: integers without a decimal point, others %g.
+std::string formatParam(double value);
 
 // overrides: "key.path=value" strings (the --set options); value is parsed as YAML, list items
 // are addressed by index ("renders.1.rpp=16"). Throws InputError.

@@ -5,6 +5,7 @@
 #include <memory>
 #include <numeric>
 #include <optional>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -18,6 +19,8 @@
 #include "scene/camera.h"
 #include "scene/load_scene.h"
 #include "scene/view_file.h"
+#include "eval/runner.h"
+#include "eval/strategy_settings.h"
 #include "tracer/tracer.h"
 
 namespace aamap {
@@ -98,142 +101,91 @@ SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
     return s;
 }
 
-struct SnapshotOutcome {
-    SnapshotResult result;
-    std::string device;
+// The real backend: scene and BVH on first need, Snapshot on the GPU, Embree tracer.
+class TracerBackend : public RenderBackend {
+public:
+    TracerBackend(const ExperimentConfig& config, const RunOptions& options) : config_(config), options_(options) {}
+
+    SceneInfo prepare() override {
+        spdlog::info("loading scene {}", config_.resolvedScene());
+        const auto t0 = Clock::now();
+        scene_ = loadSceneFor(config_);
+        addConfigLights(config_, scene_);
+        SceneInfo info;
+        info.loadSeconds = secondsSince(t0);
+        view_ = pickView(config_, scene_, info.viewLabel);
+        std::tie(info.width, info.height) = fitResolution(view_, config_.image.width, config_.image.height);
+        info.scene = config_.resolvedScene();
+        spdlog::info("scene '{}': {} triangles, {} area + {} point lights; view {} at {}x{} ({:.2f} s)", scene_.name,
+                     scene_.mesh.triangles.size(), scene_.areaLights.size(), scene_.pointLights.size(),
+                     info.viewLabel, info.width, info.height, info.loadSeconds);
+        spdlog::info("building BVH");
+        tracer_ = std::make_unique<Tracer>(scene_);
+        info.bvhSeconds = tracer_->bvhBuildSeconds();
+        info_ = info;
+        return info;
+    }
+
+    SnapshotOutput snapshot() override {
+        auto context = std::make_unique<VulkanContext>(ContextOptions{options_.validation, options_.device});
+        if (options_.validation && !context->validationEnabled())
+            throw EnvironmentError("validation was requested but VK_LAYER_KHRONOS_validation is not available");
+        SnapshotOutput out;
+        out.device = context->deviceName();
+        spdlog::info("snapshot on '{}' at {}x{} (scale {})", out.device, info_.width, info_.height, config_.snapshot.scale);
+        {
+            SnapshotRenderer renderer(*context, scene_);
+            SnapshotResult r = renderer.render(view_, info_.width, info_.height, snapshotSettings(config_));
+            out.aamap = std::move(r.aamap);
+            out.snapshot = std::move(r.snapshot);
+            out.laplacian = std::move(r.laplacian);
+            out.totalSeconds = r.totalSeconds;
+            out.readbackSeconds = r.readbackSeconds;
+            for (const PassTiming& p : r.passTimes) out.passesGpuMs.emplace_back(p.pass, p.gpuMilliseconds);
+        }  // GPU objects freed here, so their destruction is validated too
+        if (context->validationEnabled() && context->validationMessageCount() > 0)
+            throw ValidationFailure(fmt::format("{} Vulkan validation message(s), logged above",
+                                                context->validationMessageCount()));
+        spdlog::info("snapshot: {:.1f} ms", out.totalSeconds * 1e3);
+        return out;
+    }
+
+    TraceOutput trace(const RenderConfig& render, const ImageGrey* aamap,
+                      const std::function<void(int, int)>& progress) override {
+        TraceSettings ts;
+        ts.width = info_.width;
+        ts.height = info_.height;
+        ts.seed = config_.seed;
+        ts.threads = options_.threads >= 0 ? options_.threads : config_.threads;
+        ts.shading = toShadingSettings(config_, render);
+        ts.onTileDone = progress;
+        const TraceResult tr = tracer_->render(view_, ts, toStrategySettings(render, aamap));
+        TraceOutput out;
+        out.image = tr.image;
+        out.primaryRays = tr.primaryRays;
+        out.rays = {tr.rays.primary, tr.rays.shadow, tr.rays.other};
+        out.nonFiniteSamples = tr.nonFiniteSamples;
+        out.seconds = tr.seconds;
+        return out;
+    }
+
+private:
+    const ExperimentConfig& config_;
+    RunOptions options_;
+    Scene scene_;
+    View view_;
+    SceneInfo info_;
+    std::unique_ptr<Tracer> tracer_;
 };
-
-SnapshotOutcome renderSnapshot(const ExperimentConfig& config, const Scene& scene, const View& view, int width,
-                               int height, const RunOptions& options, const std::filesystem::path& outDir) {
-    SnapshotOutcome out;
-    auto context = std::make_unique<VulkanContext>(ContextOptions{options.validation, options.device});
-    if (options.validation && !context->validationEnabled())
-        throw EnvironmentError("validation was requested but VK_LAYER_KHRONOS_validation is not available");
-    out.device = context->deviceName();
-    spdlog::info("snapshot on '{}' at {}x{} (scale {})", out.device, width, height, config.snapshot.scale);
-    {
-        SnapshotRenderer renderer(*context, scene);
-        out.result = renderer.render(view, width, height, snapshotSettings(config));
-    }  // GPU objects freed here, so their destruction is validated too
-    const float exposure = static_cast<float>(config.image.exposure);
-    if (!out.result.snapshot.empty()) writePng(outDir / "snapshot.png", toneMap(out.result.snapshot, exposure));
-    if (!out.result.laplacian.empty()) writePng(outDir / "laplacian.png", quantise(out.result.laplacian));
-    writeExr(outDir / "aamap.exr", out.result.aamap);
-    writePng(outDir / "aamap.png", quantise(out.result.aamap));
-    if (context->validationEnabled() && context->validationMessageCount() > 0)
-        throw ValidationFailure(fmt::format("{} Vulkan validation message(s), logged above",
-                                            context->validationMessageCount()));
-    const std::size_t flagged = static_cast<std::size_t>(
-        std::count_if(out.result.aamap.pixels().begin(), out.result.aamap.pixels().end(), [](float v) { return v > 0; }));
-    spdlog::info("snapshot: {:.1f} ms, aamap flags {:.1f}% of pixels", out.result.totalSeconds * 1e3,
-                 100.0 * static_cast<double>(flagged) / static_cast<double>(std::max<std::size_t>(1, out.result.aamap.size())));
-    return out;
-}
-
-StrategyKind strategyKind(const std::string& name) {
-    if (name == "uniform") return StrategyKind::Uniform;
-    if (name == "aamap") return StrategyKind::Aamap;
-    throw InputError("config", fmt::format("unknown strategy '{}'", name));  // parseConfig rejects these first
-}
 
 }  // namespace
 
 Results runExperiment(const ExperimentConfig& config, const std::filesystem::path& outDir, const RunOptions& options) {
-    const auto runStart = Clock::now();
-    Results results;
-    results.gitRevision = options.gitRevision;
-    results.configHash = config.hash();
-    results.configJson = config.canonicalJson();
-
-    std::error_code ec;
-    std::filesystem::create_directories(outDir, ec);
-    if (ec) throw EnvironmentError(fmt::format("{}: cannot create output folder: {}", outDir.string(), ec.message()));
-
-    spdlog::info("loading scene {}", config.resolvedScene());
-    auto t0 = Clock::now();
-    Scene scene = loadSceneFor(config);
-    addConfigLights(config, scene);
-    const double loadSeconds = secondsSince(t0);
-    std::string viewLabel;
-    const View view = pickView(config, scene, viewLabel);
-    const auto [width, height] = fitResolution(view, config.image.width, config.image.height);
-    spdlog::info("scene '{}': {} triangles, {} area + {} point lights; view {} at {}x{} ({:.2f} s)", scene.name,
-                 scene.mesh.triangles.size(), scene.areaLights.size(), scene.pointLights.size(), viewLabel, width,
-                 height, loadSeconds);
-
-    // The GPU is only needed when some render is driven by the aamap.
-    const bool needSnapshot = std::any_of(config.renders.begin(), config.renders.end(),
-                                          [](const RenderConfig& r) { return r.strategy == "aamap"; });
-    std::optional<SnapshotOutcome> snapshot;
-    if (needSnapshot) snapshot = renderSnapshot(config, scene, view, width, height, options, outDir);
-    else spdlog::info("no render uses the aamap: snapshot skipped");
-
-    spdlog::info("building BVH");
-    const Tracer tracer(scene);
-    const double bvhSeconds = tracer.bvhBuildSeconds();
-    const MachineInfo machine = currentMachine();
-    const float exposure = static_cast<float>(config.image.exposure);
-
-    for (const RenderConfig& r : config.renders) {
-        const StrategyKind kind = strategyKind(r.strategy);
-        TraceSettings ts;
-        ts.width = width;
-        ts.height = height;
-        ts.seed = config.seed;
-        ts.threads = options.threads >= 0 ? options.threads : config.threads;
-        ts.shading.areaLightSamples = config.shading.areaLightSamples;
-        Progress progress(fmt::format("trace {}", r.name));
-        ts.onTileDone = [&progress](int done, int total) { progress.update(done, total); };
-        StrategySettings ss;
-        ss.kind = kind;
-        ss.strata = r.strata();
-        ss.aamap = kind == StrategyKind::Aamap ? &snapshot->result.aamap : nullptr;
-
-        const TraceResult tr = tracer.render(view, ts, ss);
-        progress.finish();
-        writeExr(outDir / (r.name + ".exr"), tr.image);
-        writePng(outDir / (r.name + ".png"), toneMap(tr.image, exposure));
-        writePng(outDir / (r.name + ".rpp.png"), falseColour(tr.primaryRays, r.rpp));
-
-        RenderRecord rec;
-        rec.name = r.name;
-        rec.scene = config.resolvedScene();
-        rec.view = viewLabel;
-        rec.width = width;
-        rec.height = height;
-        rec.strategy = r.strategy;
-        rec.parameters = {{"rpp", r.rpp}, {"strata", r.strata()}, {"seed", config.seed},
-                          {"shading_area_light_samples", config.shading.areaLightSamples}};
-        rec.maxRaysPerPixel = r.rpp;
-        rec.times.load = loadSeconds;
-        rec.times.bvhBuild = bvhSeconds;
-        rec.times.trace = tr.seconds;
-        if (kind == StrategyKind::Aamap) {
-            const SnapshotResult& s = snapshot->result;
-            rec.parameters["snapshot"] = nlohmann::ordered_json::parse(config.canonicalJson())["snapshot"];
-            rec.times.snapshotTotal = s.totalSeconds;
-            rec.times.readback = s.readbackSeconds;
-            for (const PassTiming& p : s.passTimes) rec.times.snapshotPassesGpuMs.emplace_back(p.pass, p.gpuMilliseconds);
-            rec.vulkanDevice = snapshot->device;
-        }
-        // readback is part of snapshot_total, so it is not added again
-        rec.times.total = rec.times.load + rec.times.bvhBuild + rec.times.snapshotTotal + rec.times.trace;
-        rec.rays = {tr.rays.primary, tr.rays.shadow, tr.rays.other};
-        const double sum = std::accumulate(tr.primaryRays.pixels().begin(), tr.primaryRays.pixels().end(), 0.0);
-        rec.meanPrimaryRpp = sum / static_cast<double>(std::max<std::size_t>(1, tr.primaryRays.size()));
-        rec.nonFiniteSamples = tr.nonFiniteSamples;
-        rec.gitRevision = options.gitRevision;
-        rec.configHash = results.configHash;
-        rec.machine = machine;
-        rec.outputs = {r.name + ".exr", r.name + ".png", r.name + ".rpp.png"};
-        if (tr.nonFiniteSamples > 0) spdlog::warn("{}: {} non-finite samples dropped", r.name, tr.nonFiniteSamples);
-        spdlog::info("{}: {:.2f} s, {:.2f} primary rays/pixel, {} rays in all", r.name, tr.seconds, rec.meanPrimaryRpp,
-                     rec.rays.total());
-        results.renders.push_back(std::move(rec));
-        writeResults(outDir / "results.json", results);
-    }
-    spdlog::info("wrote {} in {:.2f} s", (outDir / "results.json").string(), secondsSince(runStart));
-    return results;
+    TracerBackend backend(config, options);
+    RunnerOptions ro;
+    ro.gitRevision = options.gitRevision;
+    ro.plots = options.plots;
+    return runExperimentWith(config, outDir, backend, ro);
 }
 
 }  // namespace aamap

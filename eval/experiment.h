@@ -15,6 +15,7 @@ struct RunOptions {
     std::string device;       // ContextOptions::device ("" picks the best GPU)
     int threads = -1;         // >= 0 overrides the config's `threads`
     std::string gitRevision = "unknown";
+    bool plots = true;  // false: --no-plots
 };
 
 // The run worked, but the Vulkan validation layer reported problems (the messages were already
@@ -24,9 +25,10 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// Runs eval/runner.h with the real backend (scene, Vulkan Snapshot, Embree tracer).
 // Throws InputError (bad scene, view, ...), EnvironmentError (no device, cannot write) or
-// ValidationFailure. Output files are written atomically; results.json is rewritten after each
-// render, so an interrupted run still leaves a consistent record of what finished.
+// ValidationFailure. Every render is committed to OUTDIR/cache as it finishes, so a killed run
+// resumes where it stopped.
 Results runExperiment(const ExperimentConfig& config, const std::filesystem::path& outDir, const RunOptions& options);
 
 }  // namespace aamap

@@ -31,6 +31,9 @@ nlohmann::ordered_json toJson(const RenderRecord& r) {
     for (const auto& [pass, ms] : r.times.snapshotPassesGpuMs) passes[pass] = ms;
     Json j;
     j["name"] = r.name;
+    j["series"] = r.series;
+    j["key"] = r.key;
+    j["cached"] = r.cached;
     j["scene"] = r.scene;
     j["view"] = r.view;
     j["width"] = r.width;
@@ -54,6 +57,7 @@ nlohmann::ordered_json toJson(const RenderRecord& r) {
     j["vulkan_device"] = r.vulkanDevice;
     j["machine"] = {{"hostname", r.machine.hostname}, {"cpu_model", r.machine.cpuModel}, {"threads", r.machine.threads}};
     j["outputs"] = r.outputs;
+    if (!r.metrics.is_null()) j["metrics"] = r.metrics;
     return j;
 }
 
@@ -66,7 +70,47 @@ nlohmann::ordered_json toJson(const Results& results) {
     j["config"] = results.configJson.empty() ? Json::object() : Json::parse(results.configJson);
     j["renders"] = Json::array();
     for (const RenderRecord& r : results.renders) j["renders"].push_back(toJson(r));
+    j["reference"] = results.referenceInfo.is_null() ? Json::object() : results.referenceInfo;
+    if (results.reference) j["reference"]["render"] = toJson(*results.reference);
+    if (results.oneRay) j["one_ray"] = toJson(*results.oneRay);
+    if (!results.mapQuality.is_null()) j["map_quality"] = results.mapQuality;
+    if (!results.snapshot.is_null()) j["snapshot"] = results.snapshot;
+    j["warnings"] = results.warnings;
     return j;
+}
+
+RenderRecord recordFromJson(const nlohmann::ordered_json& j) {
+    RenderRecord r;
+    r.name = j.at("name").get<std::string>();
+    r.series = j.value("series", std::string());
+    r.key = j.value("key", std::string());
+    r.scene = j.at("scene").get<std::string>();
+    r.view = j.at("view").get<std::string>();
+    r.width = j.at("width").get<int>();
+    r.height = j.at("height").get<int>();
+    r.strategy = j.at("strategy").get<std::string>();
+    r.parameters = j.at("parameters");
+    r.maxRaysPerPixel = j.at("max_rays_per_pixel").get<int>();
+    const auto& t = j.at("times_s");
+    r.times.load = t.at("load").get<double>();
+    r.times.bvhBuild = t.at("bvh_build").get<double>();
+    r.times.snapshotTotal = t.at("snapshot_total").get<double>();
+    for (const auto& [pass, ms] : t.at("snapshot_passes_gpu_ms").items()) r.times.snapshotPassesGpuMs.emplace_back(pass, ms.get<double>());
+    r.times.readback = t.at("readback").get<double>();
+    r.times.trace = t.at("trace").get<double>();
+    r.times.total = t.at("total").get<double>();
+    const auto& rays = j.at("rays");
+    r.rays = {rays.at("primary").get<std::uint64_t>(), rays.at("shadow").get<std::uint64_t>(),
+              rays.at("other").get<std::uint64_t>()};
+    r.meanPrimaryRpp = j.at("mean_primary_rpp").get<double>();
+    r.nonFiniteSamples = j.at("non_finite_samples").get<std::uint64_t>();
+    r.gitRevision = j.at("git_revision").get<std::string>();
+    r.configHash = j.at("config_hash").get<std::string>();
+    r.vulkanDevice = j.at("vulkan_device").get<std::string>();
+    const auto& m = j.at("machine");
+    r.machine = {m.at("hostname").get<std::string>(), m.at("cpu_model").get<std::string>(), m.at("threads").get<int>()};
+    r.outputs = j.at("outputs").get<std::vector<std::string>>();
+    return r;
 }
 
 void writeResults(const std::filesystem::path& path, const Results& results) {

@@ -3,6 +3,7 @@
 // (config hash, git revision, machine, device, stage times, ray counts).
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,9 @@ struct RayTotals {
 
 struct RenderRecord {
     std::string name;
+    std::string series;  // table column / plot curve
+    std::string key;     // render cache key (eval/config.h renderKey)
+    bool cached = false; // reused from an earlier run of this OUTDIR (results.json only)
     std::string scene;  // the spec loaded ("builtin:cornell" or a resolved path)
     std::string view;   // view name, or "<file>#<index>"
     int width = 0, height = 0;
@@ -52,6 +56,7 @@ struct RenderRecord {
     std::string vulkanDevice;  // "" when the strategy did not use the GPU
     MachineInfo machine;
     std::vector<std::string> outputs;  // file names written for this render, relative to OUTDIR
+    nlohmann::ordered_json metrics;    // against the reference (eval/evaluate.h); null when there is none
 };
 
 struct Results {
@@ -59,10 +64,18 @@ struct Results {
     std::string configHash;
     std::string configJson;  // ExperimentConfig::canonicalJson()
     std::vector<RenderRecord> renders;
+    std::optional<RenderRecord> reference;  // the traced reference, when there is one
+    std::optional<RenderRecord> oneRay;     // the 1-ray uniform render behind map quality
+    nlohmann::ordered_json referenceInfo;   // {type, rpp | path}
+    nlohmann::ordered_json mapQuality;      // null unless requested and possible
+    nlohmann::ordered_json snapshot;        // {key, cached, times, device}; null without the aamap
+    std::vector<std::string> warnings;      // shown at the top of the report
 };
 
 nlohmann::ordered_json toJson(const RenderRecord& record);
 nlohmann::ordered_json toJson(const Results& results);
+// Inverse of toJson(RenderRecord) (for cached records). Throws nlohmann::json::exception.
+RenderRecord recordFromJson(const nlohmann::ordered_json& j);
 // Pretty-printed, written atomically.
 void writeResults(const std::filesystem::path& path, const Results& results);
 

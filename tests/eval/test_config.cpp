@@ -204,7 +204,12 @@ TEST(ConfigHash, StableUnderFormattingAndDefaults) {
               R"({"scene":"builtin:cornell","view":null,"view_index":0,"lights":[],)"
               R"("image":{"width":512,"height":512,"exposure":1.0},"seed":1,"threads":0,)"
               R"("snapshot":{"scale":1.5,"area_light_samples":5,"blur_radius":1,"noise_floor":0.02,"gain":1.0},)"
-              R"("shading":{"area_light_samples":16},"renders":[{"name":"u","strategy":"uniform","rpp":4}]})");
+              R"("shading":{"area_light_samples":16,"mode":"direct","max_depth":5,"russian_roulette":true,)"
+              R"("roulette_depth":5,"max_specular_depth":8},)"
+              R"("renders":[{"name":"u","series":"uniform","strategy":"uniform","rpp":4,"params":{}}],)"
+              R"("reference":{"type":"uniform","rpp":4,"mode":"","path":""},)"
+              R"("metrics":{"flip":true,"flip_hdr":false,"flip_threshold":0.1,"mse_threshold":6.151480199923106e-05,)"
+              R"("ppd":67.0206,"map_quality":true},"report":{"plots":true}})");
 }
 
 TEST(ConfigFile, TheShippedDefaultParses) {
@@ -212,9 +217,27 @@ TEST(ConfigFile, TheShippedDefaultParses) {
     const ExperimentConfig c = loadConfig(file, {"image.width=64", "image.height=64"});
     EXPECT_EQ(c.scene, "builtin:cornell");
     EXPECT_EQ(c.image.width, 64);
-    ASSERT_EQ(c.renders.size(), 2u);
-    EXPECT_EQ(c.renders[0].rpp, 36);
-    EXPECT_EQ(c.renders[1].strategy, "aamap");
+    // standard, non-adaptive, Space 8, Space 16 and rpict, each at 1, 4, 16, 36 rays per pixel
+    ASSERT_EQ(c.renders.size(), 20u);
+    EXPECT_EQ(c.renders[3].rpp, 36);
+    EXPECT_EQ(c.renders[4].strategy, "aamap");
+    EXPECT_EQ(c.renders[9].series, "Space 16");
+    EXPECT_EQ(c.reference.rpp, 36);
+}
+
+TEST(ConfigFile, EveryShippedConfigParses) {
+    int count = 0;
+    for (const auto& e : std::filesystem::directory_iterator(std::filesystem::path(AAMAP_SOURCE_DIR) / "configs")) {
+        if (e.path().extension() != ".yaml") continue;
+        SCOPED_TRACE(e.path().string());
+        const ExperimentConfig c = loadConfig(e.path());
+        EXPECT_FALSE(c.renders.empty());
+        if (!c.scene.starts_with("builtin:")) {  // paths relative to the config file
+            EXPECT_TRUE(c.resolvedScene().find("shared/scenes") != std::string::npos) << c.resolvedScene();
+        }
+        ++count;
+    }
+    EXPECT_GE(count, 4);
 }
 
 }  // namespace

@@ -1,0 +1,278 @@
+#include "eval/config_sections.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "eval/strategies.h"
+
+namespace aamap::detail {
+namespace {
+
+using yaml::MapReader;
+
+constexpr int kMaxRpp = 1024;      // 32 x 32; the rays-per-pixel image is 16-bit
+constexpr std::size_t kMaxSweep = 4096;  // renders one entry may expand to
+
+bool isFileNameSafe(const std::string& s) {
+    return !s.empty() && s.size() <= 64 &&
+           std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-'; });
+}
+
+// One swept (or fixed) key of a renders[] entry.
+struct Axis {
+    std::string key;
+    std::vector<double> values;
+    bool listed = false;    // written as a list
+    bool explicit_ = false; // written at all
+};
+
+double readNumber(const yaml::Context& ctx, const YAML::Node& n, const std::string& path, bool integer, double lo,
+                  double hi) {
+    double v = 0;
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v) || !std::isfinite(v))
+        ctx.fail(n, path, fmt::format("{}: expected {}, found {}", path, integer ? "an integer" : "a finite number",
+                                      yaml::describe(n)));
+    if (integer && v != std::floor(v))
+        ctx.fail(n, path, fmt::format("{}: expected an integer, found {}", path, yaml::describe(n)));
+    if (v < lo || v > hi) ctx.fail(n, path, fmt::format("{}: {} is out of range [{}, {}]", path, v, lo, hi));
+    return v;
+}
+
+// A choice's name as its index.
+double readChoice(const yaml::Context& ctx, const YAML::Node& n, const std::string& path,
+                  const std::vector<std::string>& choices) {
+    const std::string v = n.IsScalar() ? n.Scalar() : "";
+    const auto it = std::find(choices.begin(), choices.end(), v);
+    if (it == choices.end())
+        ctx.fail(n, path, fmt::format("{}: expected one of {}, found {}", path, fmt::join(choices, ", "), yaml::describe(n)));
+    return static_cast<double>(it - choices.begin());
+}
+
+// A scalar or a non-empty list of scalars, each checked.
+Axis readAxis(const yaml::Context& ctx, MapReader& m, const std::string& key, bool integer, double lo, double hi,
+              double fallback, const std::vector<std::string>& choices = {}) {
+    Axis a{key, {fallback}, false, false};
+    const YAML::Node n = m.node(key);
+    if (!n.IsDefined()) return a;
+    a.explicit_ = true;
+    const std::string path = m.childPath(key);
+    if (n.IsSequence()) {
+        if (n.size() == 0) ctx.fail(n, path, fmt::format("{}: an empty list sweeps nothing", path));
+        a.listed = true;
+        a.values.clear();
+        for (std::size_t i = 0; i < n.size(); ++i) {
+            const std::string at = fmt::format("{}[{}]", path, i);
+            const double v = choices.empty() ? readNumber(ctx, n[i], at, integer, lo, hi) : readChoice(ctx, n[i], at, choices);
+            if (std::find(a.values.begin(), a.values.end(), v) != a.values.end())
+                ctx.fail(n[i], path, fmt::format("{}: {} is listed twice", path, n[i].Scalar()));
+            a.values.push_back(v);
+        }
+    } else {
+        a.values = {choices.empty() ? readNumber(ctx, n, path, integer, lo, hi) : readChoice(ctx, n, path, choices)};
+    }
+    return a;
+}
+
+// "{rpp}", "{n}" and "{<param>}" in a name or series template.
+std::string substitute(std::string text, const std::string& strategy,
+                       const std::vector<std::pair<std::string, double>>& values) {
+    for (const auto& [key, v] : values) {
+        const std::string token = "{" + key + "}";
+        const std::string value = paramText(strategy, key, v);
+        for (std::size_t at; (at = text.find(token)) != std::string::npos;) text.replace(at, token.size(), value);
+    }
+    return text;
+}
+
+std::vector<RenderConfig> expandEntry(const yaml::Context& ctx, const YAML::Node& node, const std::string& path) {
+    // The allowed keys depend on the strategy, so read it first.
+    std::vector<std::string> keys = {"name", "series", "strategy", "rpp"};
+    for (const std::string& p : allStrategyParamNames()) keys.push_back(p);
+    MapReader m(ctx, node, path, keys);
+    m.require("strategy");
+    m.require("rpp");
+    std::string strategy;
+    m.getString("strategy", strategy);
+    const StrategyInfo* info = findStrategy(strategy);
+    if (info == nullptr)
+        ctx.fail(m.node("strategy"), m.childPath("strategy"),
+                 fmt::format("{}: unknown strategy '{}' (supported: {})", m.childPath("strategy"), strategy,
+                             fmt::join(strategyNames(), ", ")));
+    for (const std::string& p : allStrategyParamNames()) {
+        const bool own = std::any_of(info->params.begin(), info->params.end(),
+                                     [&](const StrategyParam& sp) { return sp.name == p; });
+        if (!own && m.has(p))
+            ctx.fail(m.node(p), m.childPath(p),
+                     fmt::format("{}: strategy '{}' has no parameter '{}'", m.childPath(p), strategy, p));
+    }
+
+    std::vector<Axis> axes;
+    axes.push_back(readAxis(ctx, m, "rpp", true, 1, kMaxRpp, 1));
+    for (std::size_t i = 0; i < axes[0].values.size(); ++i) {
+        const int rpp = static_cast<int>(axes[0].values[i]);
+        const int n = static_cast<int>(std::lround(std::sqrt(rpp)));
+        if (n * n != rpp)
+            ctx.fail(m.node("rpp"), m.childPath("rpp"),
+                     fmt::format("{}: {} is not a perfect square; rays per pixel are n x n strata (1, 4, 9, 16, "
+                                 "25, 36, ...)", m.childPath("rpp"), rpp));
+    }
+    for (const StrategyParam& p : info->params)
+        axes.push_back(readAxis(ctx, m, p.name, p.integer, p.lo, p.hi, p.defaultValue, p.choices));
+
+    std::string nameTemplate, seriesTemplate;
+    const bool named = m.has("name");
+    m.getString("name", nameTemplate);
+    m.getString("series", seriesTemplate);
+    if (!named) {  // strategy + rpp, then every parameter the entry wrote
+        nameTemplate = strategy + "{rpp}";
+        for (std::size_t a = 1; a < axes.size(); ++a)
+            if (axes[a].explicit_) nameTemplate += "_" + axes[a].key + "{" + axes[a].key + "}";
+    } else {  // a swept key the template does not mention is appended, so names stay unique
+        for (const Axis& a : axes)
+            if (a.listed && nameTemplate.find("{" + a.key + "}") == std::string::npos &&
+                !(a.key == "rpp" && nameTemplate.find("{n}") != std::string::npos))
+                nameTemplate += "_" + a.key + "{" + a.key + "}";
+    }
+    if (seriesTemplate.empty()) {  // the strategy and the parameters written, never rpp: rpp is the row
+        seriesTemplate = strategy;
+        for (std::size_t a = 1; a < axes.size(); ++a)
+            if (axes[a].explicit_) seriesTemplate += " " + axes[a].key + "={" + axes[a].key + "}";
+    }
+
+    std::size_t count = 1;
+    for (const Axis& a : axes) count *= a.values.size();
+    if (count > kMaxSweep)
+        ctx.fail(node, path, fmt::format("{}: the sweep expands to {} renders (at most {})", path, count, kMaxSweep));
+    std::vector<RenderConfig> out;
+    for (std::size_t index = 0; index < count; ++index) {
+        // Row-major: the first key (rpp) varies slowest.
+        std::vector<std::pair<std::string, double>> values;
+        std::size_t rest = index, stride = count;
+        for (const Axis& a : axes) {
+            stride /= a.values.size();
+            values.emplace_back(a.key, a.values[rest / stride]);
+            rest %= stride;
+        }
+        RenderConfig r;
+        r.strategy = strategy;
+        r.rpp = static_cast<int>(values[0].second);
+        r.params.assign(values.begin() + 1, values.end());
+        values.emplace_back("n", r.strata());
+        r.name = substitute(nameTemplate, strategy, values);
+        r.series = substitute(seriesTemplate, strategy, values);
+        const YAML::Node at = named ? m.node("name") : node;
+        if (!isFileNameSafe(r.name))
+            ctx.fail(at, m.childPath("name"),
+                     fmt::format("{}: '{}' is not a safe file name (use 1-64 letters, digits, '_' or '-')",
+                                 m.childPath("name"), r.name));
+        const auto& reserved = reservedNames();
+        if (std::find(reserved.begin(), reserved.end(), lower(r.name)) != reserved.end())
+            ctx.fail(at, m.childPath("name"),
+                     fmt::format("{}: '{}' is reserved for another output file ({})", m.childPath("name"), r.name,
+                                 fmt::join(reserved, ", ")));
+        out.push_back(std::move(r));
+    }
+    m.finish();
+    return out;
+}
+
+}  // namespace
+
+const std::vector<std::string>& reservedNames() {
+    static const std::vector<std::string> names = {"snapshot", "laplacian", "aamap",  "results", "reference",
+                                                   "one_ray",  "report",    "cache",  "plots"};
+    return names;
+}
+
+bool readBool(const yaml::Context& ctx, MapReader& m, const std::string& key, bool fallback) {
+    const YAML::Node n = m.node(key);
+    if (!n.IsDefined()) return fallback;
+    bool v = false;
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v))
+        ctx.fail(n, m.childPath(key), fmt::format("{}: expected true or false, found {}", m.childPath(key), yaml::describe(n)));
+    return v;
+}
+
+void checkShadingMode(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& mode) {
+    if (mode != "direct" && mode != "path" && mode != "cache")
+        ctx.fail(node, path, fmt::format("{}: unknown shading mode '{}' (supported: direct, path, cache)", path, mode));
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+std::vector<RenderConfig> readRenders(const yaml::Context& ctx, const YAML::Node& renders) {
+    if (!renders.IsSequence() || renders.size() == 0)
+        ctx.fail(renders, "renders", fmt::format("renders: expected a non-empty list, found {}", yaml::describe(renders)));
+    std::vector<RenderConfig> all;
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < renders.size(); ++i) {
+        const std::string path = fmt::format("renders.{}", i);
+        for (RenderConfig& r : expandEntry(ctx, renders[i], path)) {
+            if (!names.insert(lower(r.name)).second)
+                ctx.fail(renders[i], path,
+                         fmt::format("{}: render name '{}' is used twice (names are output file names)", path, r.name));
+            all.push_back(std::move(r));
+        }
+    }
+    return all;
+}
+
+ReferenceConfig readReference(const yaml::Context& ctx, const YAML::Node& node, const std::vector<RenderConfig>& renders) {
+    MapReader m(ctx, node, "reference", {"type", "rpp", "mode", "path"});
+    ReferenceConfig ref;
+    m.getString("type", ref.type);
+    if (ref.type != "uniform" && ref.type != "file" && ref.type != "none")
+        ctx.fail(m.node("type"), m.childPath("type"),
+                 fmt::format("reference.type: unknown type '{}' (supported: uniform, file, none)", ref.type));
+    // rpp and mode only apply to a traced reference, path only to a file; the others are checked
+    // but ignored, so that --set reference.type=... works on any config.
+    m.getInt("rpp", ref.rpp, 1, kMaxRpp);
+    const int n = static_cast<int>(std::lround(std::sqrt(ref.rpp)));
+    if (ref.rpp > 0 && n * n != ref.rpp)
+        ctx.fail(m.node("rpp"), "reference.rpp", fmt::format("reference.rpp: {} is not a perfect square", ref.rpp));
+    m.getString("mode", ref.mode);
+    if (!ref.mode.empty()) checkShadingMode(ctx, m.node("mode"), "reference.mode", ref.mode);
+    if (ref.type == "uniform" && ref.rpp == 0)
+        for (const RenderConfig& r : renders) ref.rpp = std::max(ref.rpp, r.rpp);
+    if (ref.type == "file") m.require("path");
+    m.getString("path", ref.path);
+    ref.pathLocation = ctx.locate(m.node("path"), "reference.path");
+    if (ref.type != "uniform") {
+        ref.rpp = 0;
+        ref.mode.clear();
+    }
+    if (ref.type != "file") ref.path.clear();
+    m.finish();
+    return ref;
+}
+
+MetricsConfig readMetrics(const yaml::Context& ctx, const YAML::Node& node) {
+    MapReader m(ctx, node, "metrics", {"flip", "flip_hdr", "flip_threshold", "mse_threshold", "ppd", "map_quality"});
+    MetricsConfig c;
+    c.flip = readBool(ctx, m, "flip", c.flip);
+    c.flipHdr = readBool(ctx, m, "flip_hdr", c.flipHdr);
+    m.getDouble("flip_threshold", c.flipThreshold, 0.0, 1.0, true);
+    m.getDouble("mse_threshold", c.mseThreshold, 0.0, 1.0, true);
+    m.getDouble("ppd", c.ppd, 0.0, 1000.0, true);
+    c.mapQuality = readBool(ctx, m, "map_quality", c.mapQuality);
+    m.finish();
+    return c;
+}
+
+ReportConfig readReport(const yaml::Context& ctx, const YAML::Node& node) {
+    MapReader m(ctx, node, "report", {"plots"});
+    ReportConfig c;
+    c.plots = readBool(ctx, m, "plots", c.plots);
+    m.finish();
+    return c;
+}
+
+}  // namespace aamap::detail

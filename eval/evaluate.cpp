@@ -1,0 +1,102 @@
+#include "eval/evaluate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "eval/metrics/flip.h"
+#include "eval/metrics/magma.h"
+#include "eval/metrics/map_quality.h"
+#include "eval/metrics/pixel_error.h"
+
+namespace aamap {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+metrics::FlipOptions flipOptions(const MetricsConfig& m) {
+    metrics::FlipOptions o;
+    o.ppd = static_cast<float>(m.ppd);
+    o.threshold = static_cast<float>(m.flipThreshold);
+    return o;
+}
+
+Json finiteOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
+
+}  // namespace
+
+ImageRGB8 errorOverlay(const ImageRGB8& base, const ImageGrey& error, float threshold) {
+    ImageRGB8 out(base.width(), base.height());
+    for (int y = 0; y < base.height(); ++y)
+        for (int x = 0; x < base.width(); ++x) {
+            const glm::u8vec3 c = base.at(x, y);
+            // Grey base so the red reads on any colour; 0.7 keeps the image recognisable.
+            const float grey = 0.7f * (0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b);
+            const float a = std::clamp(error.at(x, y) / (2.0f * threshold), 0.0f, 1.0f);
+            const auto mix = [&](float target) { return static_cast<std::uint8_t>(std::lround(grey + a * (target - grey))); };
+            out.at(x, y) = {mix(255.0f), mix(0.0f), mix(0.0f)};
+        }
+    return out;
+}
+
+Json evaluateRender(const ImageRGB& reference, const ImageRGB& test, const MetricsConfig& m, float exposure,
+                    const fs::path& outDir, const std::string& name, std::vector<std::string>& outputs) {
+    metrics::PixelErrorOptions po;
+    po.exposure = exposure;
+    po.errorThreshold = m.mseThreshold;
+    const metrics::PixelError pe = metrics::pixelError(reference, test, po);
+    Json j;
+    j["mse"] = pe.mse;
+    j["rmse"] = pe.rmse;
+    j["psnr"] = finiteOrNull(pe.psnr);
+    j["pct_error_mse"] = 100.0 * pe.fractionInError;
+    if (m.flip) {
+        const metrics::FlipResult f = metrics::flipDisplay(reference, test, exposure, flipOptions(m));
+        j["flip_mean"] = f.mean;
+        j["pct_error_flip"] = 100.0 * f.fractionAbove;
+        writePng(outDir / (name + ".flip.png"), toneMap(metrics::flipMagma(f), 1.0f));
+        writePng(outDir / (name + ".overlay.png"),
+                 errorOverlay(toneMap(test, exposure), f.errorMap, static_cast<float>(m.flipThreshold)));
+        outputs.push_back(name + ".flip.png");
+        outputs.push_back(name + ".overlay.png");
+    }
+    if (m.flipHdr) {
+        const metrics::FlipResult f = metrics::flipHdr(reference, test, flipOptions(m));
+        j["flip_hdr_mean"] = f.mean;
+        j["pct_error_flip_hdr"] = 100.0 * f.fractionAbove;
+        writePng(outDir / (name + ".flip_hdr.png"), toneMap(metrics::flipMagma(f), 1.0f));
+        outputs.push_back(name + ".flip_hdr.png");
+    }
+    return j;
+}
+
+Json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageGrey& aamap, const MetricsConfig& m,
+                 float exposure, const fs::path& outDir) {
+    const float t = static_cast<float>(m.flipThreshold);
+    const metrics::FlipResult f = metrics::flipDisplay(reference, oneRay, exposure, flipOptions(m));
+    const metrics::MapQuality q = metrics::mapQuality(f.errorMap, aamap, t);
+    const ImageRGB8 base = toneMap(oneRay, exposure);
+    ImageRGB8 img(base.width(), base.height());
+    for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width(); ++x) {
+            const bool truth = f.errorMap.at(x, y) > t, flagged = aamap.at(x, y) > 0.0f;
+            const glm::u8vec3 c = base.at(x, y);
+            img.at(x, y) = truth && flagged ? glm::u8vec3(255, 255, 255)
+                           : truth          ? glm::u8vec3(255, 0, 0)
+                           : flagged        ? glm::u8vec3(40, 90, 255)
+                                            : glm::u8vec3(c.r / 3, c.g / 3, c.b / 3);
+        }
+    writePng(outDir / "aliasing.png", img);
+    return {{"threshold", t},
+            {"pixels", q.pixels},
+            {"true_pixels", q.truePixels},
+            {"flagged_pixels", q.flaggedPixels},
+            {"true_positives", q.truePositives},
+            {"recall", q.recall},
+            {"precision", q.precision},
+            {"flagged_fraction", q.flaggedFraction},
+            {"true_fraction", q.trueFraction},
+            {"image", "aliasing.png"}};
+}
+
+}  // namespace aamap

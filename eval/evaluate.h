@@ -1,0 +1,35 @@
+#pragma once
+// Metrics of one render against the reference, and of the aamap against true aliasing, with their
+// images (FLIP error maps, the paper's Figure 8 red overlay, the aliasing classification).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/image.h"
+#include "core/image_io.h"
+#include "eval/config.h"
+
+namespace aamap {
+
+// {mse, rmse, psnr, pct_error_mse, flip_mean, pct_error_flip[, flip_hdr_mean, pct_error_flip_hdr]}.
+// MSE-family values are in display space (what the PNGs show, eval/metrics/pixel_error.h); psnr
+// is null for identical images. Writes NAME.flip.png (magma) and NAME.overlay.png (FLIP error in
+// red over the render, Figure 8) into outDir when FLIP is on, and appends their names to outputs.
+nlohmann::ordered_json evaluateRender(const ImageRGB& reference, const ImageRGB& test, const MetricsConfig& metrics,
+                                      float exposure, const std::filesystem::path& outDir, const std::string& name,
+                                      std::vector<std::string>& outputs);
+
+// Map quality: true aliasing T = FLIP(oneRay vs reference) > flip_threshold, flagged F = aamap > 0.
+// {threshold, pixels, true_pixels, flagged_pixels, true_positives, recall, precision,
+// flagged_fraction, true_fraction}. Writes aliasing.png: true positives white, misses red, false
+// alarms blue, the rest the dimmed 1-ray image.
+nlohmann::ordered_json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageGrey& aamap,
+                                   const MetricsConfig& metrics, float exposure, const std::filesystem::path& outDir);
+
+// The red overlay: the display image greyed, with red mixed in by alpha = min(1, error / (2 t)),
+// so an error at the threshold t is a half-strength red.
+ImageRGB8 errorOverlay(const ImageRGB8& base, const ImageGrey& error, float threshold);
+
+}  // namespace aamap

@@ -1,0 +1,256 @@
+#include "eval/report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.h"
+
+namespace aamap {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+double num(const Json& j, const char* key, double fallback = NAN) {
+    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
+}
+
+// Cost of a render's image: the trace plus, for aamap-driven strategies, the Snapshot.
+double renderSeconds(const Json& r) { return num(r["times_s"], "trace", 0) + num(r["times_s"], "snapshot_total", 0); }
+
+std::string cell(double v, const char* format = "{:.2f}") { return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "—"; }
+
+std::vector<int> rppRows(const Json& renders) {
+    std::vector<int> rpp;
+    for (const Json& r : renders) rpp.push_back(r["max_rays_per_pixel"].get<int>());
+    std::sort(rpp.begin(), rpp.end());
+    rpp.erase(std::unique(rpp.begin(), rpp.end()), rpp.end());
+    return rpp;
+}
+
+std::vector<std::string> seriesColumns(const Json& renders) {
+    std::vector<std::string> series;
+    for (const Json& r : renders) {
+        const std::string s = r.value("series", r["strategy"].get<std::string>());
+        if (std::find(series.begin(), series.end(), s) == series.end()) series.push_back(s);
+    }
+    return series;
+}
+
+const Json* find(const Json& renders, int rpp, const std::string& series) {
+    for (const Json& r : renders)
+        if (r["max_rays_per_pixel"].get<int>() == rpp && r.value("series", std::string()) == series) return &r;
+    return nullptr;
+}
+
+// The baseline of speedups: the first uniform series (the paper's "standard" render).
+std::string baselineSeries(const Json& renders) {
+    for (const Json& r : renders)
+        if (r["strategy"] == "uniform") return r.value("series", std::string("uniform"));
+    return "";
+}
+
+std::string csvField(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+std::string paramsText(const Json& r) {
+    std::vector<std::string> parts;
+    for (const auto& [k, v] : r["parameters"].items())
+        if ((v.is_number() || v.is_string()) && k != "strata" && k != "seed" && k != "shading_area_light_samples" && k != "rpp" &&
+            k != "snapshot_key")
+            parts.push_back(fmt::format("{}={}", k, v.is_string() ? v.get<std::string>() : v.dump()));
+    return fmt::format("{}", fmt::join(parts, ";"));
+}
+
+}  // namespace
+
+std::vector<Table> reportTables(const Json& results) {
+    const Json& renders = results["renders"];
+    const std::vector<int> rpps = rppRows(renders);
+    const std::vector<std::string> series = seriesColumns(renders);
+    const std::string base = baselineSeries(renders);
+    std::vector<Table> tables;
+
+    Table time{"time", "Table 1/2: render time (s) per rays per pixel",
+               "time = trace + Snapshot (for aamap-driven series); scene load and BVH build, shared by all, are left out",
+               {"rpp"}, {}};
+    for (const std::string& s : series) time.header.push_back(s);
+    for (int rpp : rpps) {
+        std::vector<std::string> row{std::to_string(rpp)};
+        for (const std::string& s : series) {
+            const Json* r = find(renders, rpp, s);
+            row.push_back(r ? cell(renderSeconds(*r), "{:.3f}") : "");
+        }
+        time.rows.push_back(row);
+    }
+    tables.push_back(time);
+
+    Table speed{"speedup", "Table 1/2: speedup over " + (base.empty() ? std::string("uniform") : base),
+                base.empty() ? "no uniform render in the experiment: no baseline" : "baseline time / series time at the same rpp",
+                {"rpp"}, {}};
+    for (const std::string& s : series)
+        if (s != base) speed.header.push_back(s);
+    for (int rpp : rpps) {
+        std::vector<std::string> row{std::to_string(rpp)};
+        const Json* b = base.empty() ? nullptr : find(renders, rpp, base);
+        for (const std::string& s : series) {
+            if (s == base) continue;
+            const Json* r = find(renders, rpp, s);
+            row.push_back(r && b && renderSeconds(*r) > 0 ? cell(renderSeconds(*b) / renderSeconds(*r), "{:.1f}") : "");
+        }
+        speed.rows.push_back(row);
+    }
+    tables.push_back(speed);
+
+    const double flipT = num(results["config"]["metrics"], "flip_threshold", 0.1);
+    Table error{"error", "Table 3: % error pixels against the reference",
+                fmt::format("FLIP: pixels with LDR-FLIP > {}; MSE: pixels whose display-space squared error >= {:.3g}",
+                            flipT, num(results["config"]["metrics"], "mse_threshold", 0)),
+                {"rpp"}, {}};
+    for (const std::string& s : series) {
+        error.header.push_back(s + " FLIP");
+        error.header.push_back(s + " MSE");
+    }
+    for (int rpp : rpps) {
+        std::vector<std::string> row{std::to_string(rpp)};
+        for (const std::string& s : series) {
+            const Json* r = find(renders, rpp, s);
+            const Json m = r && r->contains("metrics") ? (*r)["metrics"] : Json::object();
+            row.push_back(r ? cell(num(m, "pct_error_flip")) : "");
+            row.push_back(r ? cell(num(m, "pct_error_mse")) : "");
+        }
+        error.rows.push_back(row);
+    }
+    tables.push_back(error);
+
+    Table all{"renders", "All renders", "cached: reused from an earlier run of this folder",
+              {"name", "series", "rpp", "time (s)", "mean rpp", "rays", "PSNR (dB)", "FLIP mean", "% FLIP", "% MSE", "cached"},
+              {}};
+    for (const Json& r : renders) {
+        const Json m = r.contains("metrics") ? r["metrics"] : Json::object();
+        all.rows.push_back({r["name"].get<std::string>(), r.value("series", std::string()),
+                            std::to_string(r["max_rays_per_pixel"].get<int>()), cell(renderSeconds(r), "{:.3f}"),
+                            cell(num(r, "mean_primary_rpp")), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
+                            m.contains("psnr") && m["psnr"].is_null() ? "inf" : cell(num(m, "psnr")),
+                            cell(num(m, "flip_mean"), "{:.4f}"), cell(num(m, "pct_error_flip")),
+                            cell(num(m, "pct_error_mse")), r.value("cached", false) ? "yes" : "no"});
+    }
+    tables.push_back(all);
+
+    if (results.contains("map_quality")) {
+        const Json& q = results["map_quality"];
+        tables.push_back({"map_quality", "Map quality: the aamap against true aliasing",
+                          fmt::format("true aliasing: pixels where FLIP(1-ray, reference) > {}; flagged: aamap > 0",
+                                      num(q, "threshold")),
+                          {"recall", "precision", "flagged %", "true aliasing %", "true pixels", "flagged pixels"},
+                          {{cell(num(q, "recall"), "{:.3f}"), cell(num(q, "precision"), "{:.3f}"),
+                            cell(100 * num(q, "flagged_fraction")), cell(100 * num(q, "true_fraction")),
+                            std::to_string(q["true_pixels"].get<std::uint64_t>()),
+                            std::to_string(q["flagged_pixels"].get<std::uint64_t>())}}});
+    }
+    return tables;
+}
+
+const std::vector<std::string>& resultsCsvColumns() {
+    static const std::vector<std::string> columns = {
+        "name", "series", "strategy", "rpp", "params", "width", "height", "time_s", "trace_s", "snapshot_s",
+        "total_s", "speedup", "mean_primary_rpp", "rays_primary", "rays_total", "mse", "rmse", "psnr",
+        "pct_error_mse", "flip_mean", "pct_error_flip", "flip_hdr_mean", "pct_error_flip_hdr", "cached", "key",
+        "git_revision"};
+    return columns;
+}
+
+std::string resultsCsv(const Json& results) {
+    const Json& renders = results["renders"];
+    const std::string base = baselineSeries(renders);
+    std::string out = fmt::format("{}\n", fmt::join(resultsCsvColumns(), ","));
+    const auto value = [](double v) { return std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string(); };
+    for (const Json& r : renders) {
+        const Json m = r.contains("metrics") ? r["metrics"] : Json::object();
+        const int rpp = r["max_rays_per_pixel"].get<int>();
+        const Json* b = base.empty() ? nullptr : find(renders, rpp, base);
+        const double speedup = b && renderSeconds(r) > 0 ? renderSeconds(*b) / renderSeconds(r) : NAN;
+        std::vector<std::string> f = {
+            csvField(r["name"].get<std::string>()), csvField(r.value("series", std::string())),
+            r["strategy"].get<std::string>(), std::to_string(rpp), csvField(paramsText(r)),
+            std::to_string(r["width"].get<int>()), std::to_string(r["height"].get<int>()), value(renderSeconds(r)),
+            value(num(r["times_s"], "trace")), value(num(r["times_s"], "snapshot_total")),
+            value(num(r["times_s"], "total")), value(speedup), value(num(r, "mean_primary_rpp")),
+            std::to_string(r["rays"]["primary"].get<std::uint64_t>()), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
+            value(num(m, "mse")), value(num(m, "rmse")),
+            m.contains("psnr") && m["psnr"].is_null() ? "inf" : value(num(m, "psnr")), value(num(m, "pct_error_mse")),
+            value(num(m, "flip_mean")), value(num(m, "pct_error_flip")), value(num(m, "flip_hdr_mean")),
+            value(num(m, "pct_error_flip_hdr")), r.value("cached", false) ? "1" : "0", r.value("key", std::string()),
+            csvField(r["git_revision"].get<std::string>())};
+        out += fmt::format("{}\n", fmt::join(f, ","));
+    }
+    return out;
+}
+
+std::string markdownReport(const Json& results, const std::vector<Table>& tables) {
+    std::string md = fmt::format("# aamap experiment report\n\nconfig hash `{}`, git revision `{}`\n\n",
+                                 results.value("config_hash", std::string()), results.value("git_revision", std::string()));
+    for (const Json& w : results["warnings"]) md += fmt::format("> **warning:** {}\n\n", w.get<std::string>());
+    for (const Table& t : tables) {
+        std::string rule = "|";
+        for (std::size_t i = 0; i < t.header.size(); ++i) rule += "---|";
+        md += fmt::format("## {}\n\n| {} |\n{}\n", t.title, fmt::join(t.header, " | "), rule);
+        for (const auto& row : t.rows) md += fmt::format("| {} |\n", fmt::join(row, " | "));
+        md += fmt::format("\n{}\n\n", t.note);
+    }
+    return md;
+}
+
+PlotRun runPlots(const fs::path& outDir) {
+    PlotRun run;
+    const char* envPython = std::getenv("AAMAP_PYTHON");
+    const char* envScript = std::getenv("AAMAP_REPORT_PLOTS");
+    const fs::path python = envPython && *envPython ? fs::path(envPython) : fs::path(AAMAP_SOURCE_DIR) / ".venv/bin/python";
+    const fs::path script = envScript && *envScript ? fs::path(envScript) : fs::path(AAMAP_SOURCE_DIR) / "tools/report_plots.py";
+    if (::access(python.c_str(), X_OK) != 0) {
+        run.warning = fmt::format("no plots: Python venv not found at {} (run tools/python-env.sh, then `aamap report "
+                                  "{}`)", python.string(), outDir.string());
+    } else if (!fs::is_regular_file(script)) {
+        run.warning = fmt::format("no plots: {} not found", script.string());
+    } else {
+        const pid_t pid = ::fork();
+        if (pid == 0) {
+            ::dup2(STDERR_FILENO, STDOUT_FILENO);  // results go to files; chatter to stderr
+            ::execl(python.c_str(), python.c_str(), script.c_str(), outDir.c_str(), static_cast<char*>(nullptr));
+            ::_exit(127);
+        }
+        int status = 0;
+        if (pid < 0 || ::waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+            run.warning = fmt::format("no plots: {} {} failed (exit status {}); see the messages above", python.string(),
+                                      script.string(), WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+        else run.ran = true;
+    }
+    if (!run.warning.empty()) spdlog::warn("{}", run.warning);
+    for (const char* f : {"plots/time_vs_rpp.png", "plots/error_vs_time.png", "plots/psnr_vs_time.png"})
+        if (fs::is_regular_file(outDir / f)) run.files.push_back(f);
+    return run;
+}
+
+void writeReport(const fs::path& outDir, const Json& results, bool plots) {
+    const std::vector<Table> tables = reportTables(results);
+    writeTextAtomically(outDir / "results.csv", resultsCsv(results));
+    writeTextAtomically(outDir / "report.md", markdownReport(results, tables));
+    PlotRun plotRun;
+    if (plots) plotRun = runPlots(outDir);
+    else plotRun.warning = "plots turned off (report.plots: false)";
+    writeTextAtomically(outDir / "report.html", htmlReport(results, tables, plotRun, outDir));
+    spdlog::info("report: {}", (outDir / "report.html").string());
+}
+
+}  // namespace aamap

@@ -1,0 +1,48 @@
+#pragma once
+// The report of an experiment, built from its results document (results.json) alone, so that
+// `aamap report OUTDIR` can rebuild it: results.csv, report.md (the paper's tables in Markdown),
+// report.html (tables, plots, image figures; relative links, opens without a server), and the
+// plots of tools/report_plots.py (run from the Python venv; skipped with a warning without one).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace aamap {
+
+struct Table {
+    std::string id;     // html anchor / file-safe
+    std::string title;  // "Table 1: ..."
+    std::string note;   // one line under the table
+    std::vector<std::string> header;
+    std::vector<std::vector<std::string>> rows;
+};
+
+// Tables 1-2 (time, speedup per rpp and series), Table 3 (% error pixels by FLIP and MSE), the
+// per-render summary and map quality. A render's time is trace + snapshot_total: what its image
+// cost, without the scene load and BVH build that every render shares.
+std::vector<Table> reportTables(const nlohmann::ordered_json& results);
+
+// One row per render; the header is resultsCsvColumns().
+std::string resultsCsv(const nlohmann::ordered_json& results);
+const std::vector<std::string>& resultsCsvColumns();
+
+std::string markdownReport(const nlohmann::ordered_json& results, const std::vector<Table>& tables);
+
+struct PlotRun {
+    bool ran = false;
+    std::string warning;             // why there are no plots ("" when they ran)
+    std::vector<std::string> files;  // relative to OUTDIR, the plots that exist
+};
+// Runs tools/report_plots.py OUTDIR with the venv's Python (AAMAP_PYTHON overrides the
+// interpreter, AAMAP_REPORT_PLOTS the script).
+PlotRun runPlots(const std::filesystem::path& outDir);
+
+std::string htmlReport(const nlohmann::ordered_json& results, const std::vector<Table>& tables, const PlotRun& plots,
+                       const std::filesystem::path& outDir);
+
+// Writes results.csv, report.md and report.html (atomically), running the plots first if asked.
+void writeReport(const std::filesystem::path& outDir, const nlohmann::ordered_json& results, bool plots);
+
+}  // namespace aamap

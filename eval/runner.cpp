@@ -1,0 +1,317 @@
+#include "eval/runner.h"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <optional>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/log.h"
+#include "eval/evaluate.h"
+#include "eval/render_cache.h"
+#include "eval/report.h"
+#include "eval/strategies.h"
+
+namespace aamap {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+// A render the experiment needs: a listed one, the reference or the 1-ray probe.
+struct Job {
+    RenderConfig render;
+    std::string key;
+};
+
+struct Traced {
+    RenderRecord record;  // as cached (name of whichever job computed it first)
+    ImageRGB image;
+    Image<std::uint16_t> rays;
+};
+
+ImageGrey raysToGrey(const Image<std::uint16_t>& rays) {
+    ImageGrey g(rays.width(), rays.height());
+    std::transform(rays.pixels().begin(), rays.pixels().end(), g.pixels().begin(),
+                   [](std::uint16_t v) { return static_cast<float>(v); });
+    return g;
+}
+
+Image<std::uint16_t> greyToRays(const ImageGrey& g) {
+    Image<std::uint16_t> rays(g.width(), g.height());
+    std::transform(g.pixels().begin(), g.pixels().end(), rays.pixels().begin(),
+                   [](float v) { return static_cast<std::uint16_t>(std::clamp(v, 0.0f, 65535.0f) + 0.5f); });
+    return rays;
+}
+
+Json readJson(const fs::path& path) {
+    std::ifstream in(path);
+    return Json::parse(in);
+}
+
+class Runner {
+public:
+    Runner(const ExperimentConfig& config, const fs::path& outDir, RenderBackend& backend, const RunnerOptions& options)
+        : c_(config), out_(outDir), backend_(backend), options_(options), cache_(outDir / "cache", outDir),
+          machine_(currentMachine()) {}
+
+    Results run();
+
+private:
+    const SceneInfo& scene() {
+        if (!scene_) scene_ = backend_.prepare();
+        return *scene_;
+    }
+    void loadOrRenderSnapshot();
+    const Traced& loadOrTrace(const Job& job, int index, int count);
+    RenderRecord recordFor(const Job& job, const Traced& t, bool cached) const;
+    void writeNamedOutputs(const std::string& name, const Traced& t, int rpp, std::vector<std::string>& outputs) const;
+
+    const ExperimentConfig& c_;
+    fs::path out_;
+    RenderBackend& backend_;
+    RunnerOptions options_;
+    RenderCache cache_;
+    MachineInfo machine_;
+    std::optional<SceneInfo> scene_;
+    std::optional<ImageGrey> aamap_;
+    Json snapshotRecord_;
+    std::map<std::string, Traced> traced_;  // by key
+    std::map<std::string, bool> reused_;    // by key: came from the cache
+    int tracedNow_ = 0;
+};
+
+void Runner::loadOrRenderSnapshot() {
+    const std::string key = snapshotKey(c_);
+    if (!cache_.has(key)) {
+        const SceneInfo& s = scene();
+        spdlog::info("snapshot: rendering (cache key {})", key);
+        SnapshotOutput snap = backend_.snapshot();
+        Json passes = Json::object();
+        for (const auto& [pass, ms] : snap.passesGpuMs) passes[pass] = ms;
+        const Json record = {{"key", key}, {"width", s.width}, {"height", s.height},
+                             {"total_s", snap.totalSeconds}, {"readback_s", snap.readbackSeconds},
+                             {"passes_gpu_ms", passes}, {"vulkan_device", snap.device},
+                             {"git_revision", options_.gitRevision}};
+        const float exposure = static_cast<float>(c_.image.exposure);
+        cache_.commit(key, [&](const fs::path& dir) {
+            writeExr(dir / "aamap.exr", snap.aamap);
+            if (!snap.snapshot.empty()) writePng(dir / "snapshot.png", toneMap(snap.snapshot, exposure));
+            if (!snap.laplacian.empty()) writePng(dir / "laplacian.png", quantise(snap.laplacian));
+            writeTextAtomically(dir / "record.json", record.dump(2) + "\n");
+        });
+        snapshotRecord_ = record;
+        snapshotRecord_["cached"] = false;
+    } else {
+        spdlog::info("snapshot: reused from {}", cache_.entry(key).string());
+        snapshotRecord_ = readJson(cache_.record(key));
+        snapshotRecord_["cached"] = true;
+    }
+    aamap_ = readExrGrey(cache_.entry(key) / "aamap.exr");
+    for (const char* f : {"snapshot.png", "laplacian.png", "aamap.exr"})
+        if (fs::exists(cache_.entry(key) / f)) copyFileAtomically(cache_.entry(key) / f, out_ / f);
+    writePng(out_ / "aamap.png", quantise(*aamap_));
+    const auto flagged = std::count_if(aamap_->pixels().begin(), aamap_->pixels().end(), [](float v) { return v > 0; });
+    spdlog::info("aamap flags {:.1f}% of pixels", 100.0 * static_cast<double>(flagged) /
+                                                     static_cast<double>(std::max<std::size_t>(1, aamap_->size())));
+}
+
+const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
+    if (auto it = traced_.find(job.key); it != traced_.end()) return it->second;
+    Traced t;
+    const fs::path entry = cache_.entry(job.key);
+    if (cache_.has(job.key)) {
+        try {
+            t.record = recordFromJson(readJson(cache_.record(job.key)));
+            t.image = readExr(entry / "image.exr");
+            t.rays = greyToRays(readExrGrey(entry / "rpp.exr"));
+            spdlog::info("[{}/{}] {}: reused (cache {})", index, count, job.render.name, job.key);
+            reused_[job.key] = true;
+            return traced_.emplace(job.key, std::move(t)).first->second;
+        } catch (const std::exception& e) {  // damaged by hand or by a full disk: trace it again
+            spdlog::warn("{}: cache entry {} is unreadable ({}); tracing it again", job.render.name, entry.string(),
+                         e.what());
+            t = Traced{};
+        }
+    }
+    const SceneInfo& s = scene();
+    const StrategyInfo* info = findStrategy(job.render.strategy);
+    const bool usesMap = info != nullptr && info->usesAamap;
+    Progress progress(fmt::format("[{}/{}] trace {}", index, count, job.render.name));
+    TraceOutput out = backend_.trace(job.render, usesMap ? &*aamap_ : nullptr,
+                                     [&progress](int done, int total) { progress.update(done, total); });
+    progress.finish();
+
+    RenderRecord& r = t.record;
+    r.name = job.render.name;
+    r.series = job.render.series;
+    r.key = job.key;
+    r.scene = s.scene;
+    r.view = s.viewLabel;
+    r.width = out.image.width();
+    r.height = out.image.height();
+    r.strategy = job.render.strategy;
+    r.parameters = {{"rpp", job.render.rpp}, {"strata", job.render.strata()}, {"seed", c_.seed},
+                    {"shading_area_light_samples", c_.shading.areaLightSamples},
+                    {"shading", Json::parse(renderKeyJson(c_, job.render))["shading"]}};
+    const Json params = Json::parse(renderKeyJson(c_, job.render))["params"];
+    for (const auto& [k, v] : params.items()) r.parameters[k] = v;
+    r.maxRaysPerPixel = job.render.rpp;
+    r.times.load = s.loadSeconds;
+    r.times.bvhBuild = s.bvhSeconds;
+    r.times.trace = out.seconds;
+    if (usesMap) {
+        r.parameters["snapshot"] = Json::parse(c_.canonicalJson())["snapshot"];
+        r.parameters["snapshot_key"] = snapshotRecord_["key"];
+        r.times.snapshotTotal = snapshotRecord_["total_s"].get<double>();
+        r.times.readback = snapshotRecord_["readback_s"].get<double>();
+        for (const auto& [pass, ms] : snapshotRecord_["passes_gpu_ms"].items())
+            r.times.snapshotPassesGpuMs.emplace_back(pass, ms.get<double>());
+        r.vulkanDevice = snapshotRecord_["vulkan_device"].get<std::string>();
+    }
+    // readback is part of snapshot_total, so it is not added again
+    r.times.total = r.times.load + r.times.bvhBuild + r.times.snapshotTotal + r.times.trace;
+    r.rays = out.rays;
+    const double sum = std::accumulate(out.primaryRays.pixels().begin(), out.primaryRays.pixels().end(), 0.0);
+    r.meanPrimaryRpp = sum / static_cast<double>(std::max<std::size_t>(1, out.primaryRays.size()));
+    r.nonFiniteSamples = out.nonFiniteSamples;
+    r.gitRevision = options_.gitRevision;
+    r.configHash = c_.hash();
+    r.machine = machine_;
+    if (out.nonFiniteSamples > 0) spdlog::warn("{}: {} non-finite samples dropped", r.name, out.nonFiniteSamples);
+    spdlog::info("{}: {:.2f} s, {:.2f} primary rays/pixel, {} rays in all", r.name, out.seconds, r.meanPrimaryRpp,
+                 r.rays.total());
+
+    Json record = toJson(r);
+    record["render_config"] = Json::parse(renderKeyJson(c_, job.render));  // what the key hashes
+    cache_.commit(job.key, [&](const fs::path& dir) {
+        writeExr(dir / "image.exr", out.image);
+        writeExr(dir / "rpp.exr", raysToGrey(out.primaryRays));
+        writeTextAtomically(dir / "record.json", record.dump(2) + "\n");  // last: marks the entry complete
+    });
+    t.image = std::move(out.image);
+    t.rays = std::move(out.primaryRays);
+    reused_[job.key] = false;
+    ++tracedNow_;
+    return traced_.emplace(job.key, std::move(t)).first->second;
+}
+
+RenderRecord Runner::recordFor(const Job& job, const Traced& t, bool cached) const {
+    RenderRecord r = t.record;
+    r.name = job.render.name;  // a cached entry may have been made under another name
+    r.series = job.render.series;
+    r.cached = cached;
+    r.configHash = c_.hash();
+    return r;
+}
+
+void Runner::writeNamedOutputs(const std::string& name, const Traced& t, int rpp, std::vector<std::string>& outputs) const {
+    copyFileAtomically(cache_.entry(t.record.key) / "image.exr", out_ / (name + ".exr"));
+    writePng(out_ / (name + ".png"), toneMap(t.image, static_cast<float>(c_.image.exposure)));
+    writePng(out_ / (name + ".rpp.png"), falseColour(t.rays, rpp));
+    outputs = {name + ".exr", name + ".png", name + ".rpp.png"};
+}
+
+Results Runner::run() {
+    Results results;
+    results.gitRevision = options_.gitRevision;
+    results.configHash = c_.hash();
+    results.configJson = c_.canonicalJson();
+
+    std::vector<Job> jobs;
+    for (const RenderConfig& r : c_.renders) jobs.push_back({r, renderKey(c_, r)});
+    const std::size_t listed = jobs.size();
+    std::optional<Job> refJob, oneRayJob;
+    if (c_.reference.type == "uniform") {
+        RenderConfig r{"reference", "reference", "uniform", c_.reference.rpp, {}, c_.reference.mode};
+        refJob = Job{r, renderKey(c_, r)};
+        jobs.push_back(*refJob);
+    }
+    const bool mapQuality = c_.metrics.mapQuality && c_.usesAamap() && c_.reference.type != "none";
+    if (mapQuality) {  // true aliasing is what a 1-ray image gets wrong
+        RenderConfig r{"one_ray", "one_ray", "uniform", 1, {}, ""};
+        oneRayJob = Job{r, renderKey(c_, r)};
+        jobs.push_back(*oneRayJob);
+    }
+
+    if (c_.usesAamap()) loadOrRenderSnapshot();
+    else spdlog::info("no render uses the aamap: snapshot skipped");
+    if (!snapshotRecord_.is_null()) results.snapshot = snapshotRecord_;
+
+    const int count = static_cast<int>(jobs.size());
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        const Job& job = jobs[i];
+        const Traced& t = loadOrTrace(job, static_cast<int>(i) + 1, count);
+        const bool cached = reused_[job.key];
+        RenderRecord rec = recordFor(job, t, cached);
+        writeNamedOutputs(job.render.name, t, job.render.rpp, rec.outputs);
+        if (i < listed) results.renders.push_back(std::move(rec));
+        else if (refJob && job.key == refJob->key && job.render.name == "reference") results.reference = std::move(rec);
+        else results.oneRay = std::move(rec);
+        writeResults(out_ / "results.json", results);
+    }
+    spdlog::info("{} render(s) traced, {} reused from {}", tracedNow_, traced_.size() - static_cast<std::size_t>(tracedNow_),
+                 cache_.dir().string());
+
+    // The reference every render is measured against.
+    std::optional<ImageRGB> reference;
+    results.referenceInfo = {{"type", c_.reference.type}};
+    if (refJob) {
+        reference = traced_.at(refJob->key).image;
+        results.referenceInfo["rpp"] = c_.reference.rpp;
+        results.referenceInfo["mode"] = c_.reference.mode.empty() ? c_.shading.mode : c_.reference.mode;
+    } else if (c_.reference.type == "file") {
+        const fs::path path = *c_.reference.resolvedPath(c_.file);
+        const SourceLocation& at = c_.reference.pathLocation;
+        try {
+            reference = readExr(path);
+        } catch (const InputError& e) {
+            throw InputError(at.file, at.line, at.column, fmt::format("reference '{}': {}", c_.reference.path, e.what()));
+        }
+        const ImageRGB& first = traced_.at(jobs[0].key).image;
+        if (reference->width() != first.width() || reference->height() != first.height())
+            throw InputError(at.file, at.line, at.column,
+                             fmt::format("reference '{}' is {}x{}, the renders are {}x{}", c_.reference.path,
+                                         reference->width(), reference->height(), first.width(), first.height()));
+        results.referenceInfo["path"] = path.string();
+    }
+    if (reference) {
+        const float exposure = static_cast<float>(c_.image.exposure);
+        for (std::size_t i = 0; i < listed; ++i) {
+            RenderRecord& rec = results.renders[i];
+            rec.metrics = evaluateRender(*reference, traced_.at(jobs[i].key).image, c_.metrics, exposure, out_,
+                                         rec.name, rec.outputs);
+        }
+        if (mapQuality) {
+            results.mapQuality = evaluateMap(traced_.at(oneRayJob->key).image, *reference, *aamap_, c_.metrics,
+                                             exposure, out_);
+            spdlog::info("map quality: recall {:.3f}, precision {:.3f}, flagged {:.1f}%",
+                         results.mapQuality["recall"].get<double>(), results.mapQuality["precision"].get<double>(),
+                         100.0 * results.mapQuality["flagged_fraction"].get<double>());
+        }
+    } else {
+        results.warnings.push_back("reference.type is 'none': no error metrics, Table 3 is empty");
+    }
+    writeResults(out_ / "results.json", results);
+    writeReport(out_, toJson(results), options_.plots && c_.report.plots);
+    return results;
+}
+
+}  // namespace
+
+Results runExperimentWith(const ExperimentConfig& config, const fs::path& outDir, RenderBackend& backend,
+                          const RunnerOptions& options) {
+    std::error_code ec;
+    fs::create_directories(outDir, ec);
+    if (ec) throw EnvironmentError(fmt::format("{}: cannot create output folder: {}", outDir.string(), ec.message()));
+    Runner runner(config, outDir, backend, options);
+    return runner.run();
+}
+
+}  // namespace aamap

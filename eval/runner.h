@@ -1,0 +1,65 @@
+#pragma once
+// The experiment runner: expands nothing itself (the config already holds the concrete renders),
+// adds the reference and 1-ray renders it needs, reuses every render already in OUTDIR/cache,
+// traces the rest through a RenderBackend, then computes metrics and writes the report.
+// The backend is an interface so that the runner (and its resumability) is tested without a GPU.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/image.h"
+#include "eval/config.h"
+#include "eval/results.h"
+
+namespace aamap {
+
+struct SceneInfo {
+    int width = 0, height = 0;  // render resolution (the view's aspect ratio inside image.*)
+    std::string scene;          // the spec loaded
+    std::string viewLabel;
+    double loadSeconds = 0, bvhSeconds = 0;
+};
+
+struct SnapshotOutput {
+    ImageGrey aamap;      // render resolution
+    ImageRGB snapshot;    // snapshot resolution; may be empty
+    ImageGrey laplacian;  // may be empty
+    double totalSeconds = 0, readbackSeconds = 0;
+    std::vector<std::pair<std::string, double>> passesGpuMs;
+    std::string device;
+};
+
+struct TraceOutput {
+    ImageRGB image;
+    Image<std::uint16_t> primaryRays;
+    RayTotals rays;
+    std::uint64_t nonFiniteSamples = 0;
+    double seconds = 0;
+};
+
+class RenderBackend {
+public:
+    virtual ~RenderBackend() = default;
+    // Loads the scene and view and builds the BVH. Called at most once, and only when something
+    // must be computed: a fully cached run needs neither the scene nor the GPU.
+    virtual SceneInfo prepare() = 0;
+    virtual SnapshotOutput snapshot() = 0;  // after prepare()
+    // aamap: the Snapshot's map for strategies that use it, else null. progress(done, total).
+    virtual TraceOutput trace(const RenderConfig& render, const ImageGrey* aamap,
+                              const std::function<void(int, int)>& progress) = 0;
+};
+
+struct RunnerOptions {
+    std::string gitRevision = "unknown";
+    bool plots = true;  // ANDed with config.report.plots
+};
+
+// Throws InputError, EnvironmentError, or whatever the backend throws. results.json is rewritten
+// after every render; report.html, report.md and results.csv at the end.
+Results runExperimentWith(const ExperimentConfig& config, const std::filesystem::path& outDir, RenderBackend& backend,
+                          const RunnerOptions& options);
+
+}  // namespace aamap

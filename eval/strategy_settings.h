@@ -1,0 +1,14 @@
+#pragma once
+// The runner side of the strategy table (eval/strategies.h): a render's config as the tracer's
+// StrategySettings and ShadingSettings.
+#include "core/image.h"
+#include "eval/config.h"
+#include "tracer/tracer.h"
+
+namespace aamap {
+
+// aamap: the Snapshot's map, required by strategies that use it (not owned).
+StrategySettings toStrategySettings(const RenderConfig& render, const ImageGrey* aamap);
+ShadingSettings toShadingSettings(const ExperimentConfig& config, const RenderConfig& render);
+
+}  // namespace aamap

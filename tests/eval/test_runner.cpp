@@ -1,0 +1,236 @@
+// The runner with a fake backend: resumability (a deleted record is the only render redone;
+// temporaries of a killed run are removed), metrics wiring, automatic reference and 1-ray renders,
+// and the report files.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "eval/config.h"
+#include "eval/report.h"
+#include "eval/runner.h"
+
+namespace aamap {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Images with a hard vertical edge whose pixels get closer to the truth with more rays; the
+// aamap flags the edge column.
+class FakeBackend : public RenderBackend {
+public:
+    static constexpr int kW = 48, kH = 32, kBand = 4;
+    SceneInfo prepare() override {
+        ++prepares;
+        return {kW, kH, "fake:scene", "fake view", 0.01, 0.02};
+    }
+    SnapshotOutput snapshot() override {
+        ++snapshots;
+        SnapshotOutput s;
+        s.aamap = ImageGrey(kW, kH, 0.0f);
+        for (int y = 0; y < kH; ++y)  // FLIP spreads an edge error over a few pixels
+            for (int x = kW / 2 - kBand; x <= kW / 2 + kBand; ++x) s.aamap.at(x, y) = 1.0f;
+        s.snapshot = ImageRGB(kW * 3 / 2, kH * 3 / 2, glm::vec3(0.5f));
+        s.totalSeconds = 0.005;
+        s.passesGpuMs = {{"gbuffer", 0.1}};
+        s.device = "fake GPU";
+        return s;
+    }
+    TraceOutput trace(const RenderConfig& r, const ImageGrey* aamap, const std::function<void(int, int)>& progress) override {
+        ++traces[r.strategy + std::to_string(r.rpp)];
+        TraceOutput t;
+        t.image = ImageRGB(kW, kH);
+        t.primaryRays = Image<std::uint16_t>(kW, kH, 1);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const int rays = aamap && aamap->at(x, y) == 0.0f ? 1 : r.rpp;
+                const float v = x < kW / 2 ? 0.05f : x > kW / 2 ? 0.8f : 0.8f * (1.0f - 1.0f / (1.0f + rays));
+                t.image.at(x, y) = glm::vec3(v);
+                t.primaryRays.at(x, y) = static_cast<std::uint16_t>(rays);
+            }
+        t.rays = {static_cast<std::uint64_t>(kW * kH * r.rpp), 0, 0};
+        t.seconds = 0.001 * r.rpp;
+        progress(1, 1);
+        return t;
+    }
+    int prepares = 0, snapshots = 0;
+    std::map<std::string, int> traces;
+    int totalTraces() const {
+        int n = 0;
+        for (const auto& [k, v] : traces) n += v;
+        return n;
+    }
+};
+
+const char* const kConfig = R"(scene: builtin:cornell
+image: {width: 48, height: 32}
+renders:
+  - {strategy: uniform, rpp: [1, 4, 16], series: Standard}
+  - {strategy: aamap, rpp: [1, 4, 16], series: Selective}
+report: {plots: false}
+)";
+
+class Runner : public ::testing::Test {
+protected:
+    void SetUp() override {
+        out_ = fs::path(::testing::TempDir()) / ("runner_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(out_);
+    }
+    Results run(FakeBackend& backend, const std::vector<std::string>& overrides = {}) {
+        const ExperimentConfig c = parseConfig(kConfig, "exp.yaml", overrides);
+        return runExperimentWith(c, out_, backend, RunnerOptions{"test-rev", false});
+    }
+    static std::string slurp(const fs::path& p) {
+        std::ifstream in(p);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    fs::path out_;
+};
+
+TEST_F(Runner, SecondRunReusesEverythingAndDeletedRecordIsTheOnlyRedo) {
+    FakeBackend first;
+    const Results r1 = run(first);
+    // 6 listed renders; the reference (uniform 16) and the 1-ray probe (uniform 1) are listed too,
+    // so nothing is traced twice.
+    EXPECT_EQ(first.totalTraces(), 6);
+    EXPECT_EQ(first.snapshots, 1);
+    ASSERT_EQ(r1.renders.size(), 6u);
+    for (const RenderRecord& r : r1.renders) EXPECT_FALSE(r.cached);
+
+    FakeBackend second;
+    const Results r2 = run(second);
+    EXPECT_EQ(second.totalTraces(), 0);
+    EXPECT_EQ(second.prepares, 0);  // no scene, no GPU
+    EXPECT_EQ(second.snapshots, 0);
+    for (const RenderRecord& r : r2.renders) EXPECT_TRUE(r.cached);
+    EXPECT_DOUBLE_EQ(r2.renders[4].times.trace, r1.renders[4].times.trace);  // timings survive
+
+    // A run killed while committing aamap4: its record never landed, and temporaries remain.
+    const std::string key = r1.renders[4].key;
+    fs::remove(out_ / "cache" / key / "record.json");
+    fs::create_directories(out_ / "cache" / (key + ".tmp-99999-0"));
+    std::ofstream(out_ / "cache" / (key + ".tmp-99999-0") / "image.exr") << "half";
+    std::ofstream(out_ / "aamap4.png.tmp-99999") << "half";
+    FakeBackend third;
+    const Results r3 = run(third);
+    EXPECT_EQ(third.totalTraces(), 1);
+    EXPECT_EQ(third.traces["aamap4"], 1);
+    EXPECT_FALSE(r3.renders[4].cached);
+    EXPECT_TRUE(r3.renders[3].cached);
+    EXPECT_FALSE(fs::exists(out_ / "cache" / (key + ".tmp-99999-0")));
+    EXPECT_FALSE(fs::exists(out_ / "aamap4.png.tmp-99999"));
+    for (const auto& e : fs::recursive_directory_iterator(out_))
+        EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST_F(Runner, DamagedEntryIsTracedAgain) {
+    FakeBackend first;
+    const Results r1 = run(first);
+    std::ofstream(out_ / "cache" / r1.renders[1].key / "image.exr", std::ios::trunc) << "not an exr";
+    FakeBackend second;
+    const Results r2 = run(second);
+    EXPECT_EQ(second.totalTraces(), 1);
+    EXPECT_EQ(second.traces["uniform4"], 1);
+    EXPECT_FALSE(r2.renders[1].cached);
+}
+
+TEST_F(Runner, ChangedSettingsOnlyRedoWhatTheyTouch) {
+    FakeBackend first;
+    run(first);
+    FakeBackend second;  // the snapshot gain changes the aamap renders, not the uniform ones
+    run(second, {"snapshot.gain=2"});
+    EXPECT_EQ(second.snapshots, 1);
+    EXPECT_EQ(second.totalTraces(), 3);
+    EXPECT_EQ(second.traces["aamap16"], 1);
+}
+
+TEST_F(Runner, MetricsAgainstTheReference) {
+    FakeBackend backend;
+    const Results r = run(backend);
+    const RenderRecord& same = r.renders[2];  // uniform16 is the reference itself
+    ASSERT_EQ(same.name, "uniform16");
+    EXPECT_EQ(same.metrics["mse"].get<double>(), 0.0);
+    EXPECT_EQ(same.metrics["pct_error_mse"].get<double>(), 0.0);
+    EXPECT_EQ(same.metrics["flip_mean"].get<double>(), 0.0);
+    EXPECT_EQ(same.metrics["pct_error_flip"].get<double>(), 0.0);
+    EXPECT_TRUE(same.metrics["psnr"].is_null());  // infinite
+    const RenderRecord& coarse = r.renders[0];  // uniform1 differs along the edge column
+    EXPECT_GT(coarse.metrics["mse"].get<double>(), 0.0);
+    EXPECT_NEAR(coarse.metrics["pct_error_mse"].get<double>(), 100.0 / FakeBackend::kW, 1e-9);
+    for (const char* f : {"uniform1.flip.png", "uniform1.overlay.png", "reference.png", "one_ray.png",
+                          "aliasing.png", "aamap.png", "aamap.exr", "snapshot.png"})
+        EXPECT_TRUE(fs::is_regular_file(out_ / f)) << f;
+    ASSERT_FALSE(r.mapQuality.is_null());
+    EXPECT_EQ(r.mapQuality["recall"].get<double>(), 1.0);  // the edge band is flagged
+    EXPECT_EQ(r.mapQuality["flagged_pixels"].get<int>(), FakeBackend::kH * (2 * FakeBackend::kBand + 1));
+    EXPECT_GT(r.mapQuality["true_pixels"].get<int>(), 0);
+    EXPECT_GT(r.mapQuality["precision"].get<double>(), 0.0);  // FLIP spreads less wide than the band
+    EXPECT_TRUE(r.reference.has_value());
+    EXPECT_TRUE(r.oneRay.has_value());
+}
+
+TEST_F(Runner, ReferenceAndOneRayRendersAreAddedWhenMissing) {
+    FakeBackend backend;
+    run(backend, {"renders.0.rpp=4", "renders.1.rpp=4", "reference.rpp=64"});
+    EXPECT_EQ(backend.traces["uniform64"], 1);  // the reference
+    EXPECT_EQ(backend.traces["uniform1"], 1);   // the 1-ray probe of map quality
+    FakeBackend noProbe;
+    run(noProbe, {"renders.0.rpp=4", "renders.1.rpp=4", "metrics.map_quality=false", "reference.rpp=4"});
+    EXPECT_EQ(noProbe.totalTraces(), 0);  // all cached from the run above
+}
+
+TEST_F(Runner, ReportFilesAndTables) {
+    FakeBackend backend;
+    run(backend);
+    for (const char* f : {"report.html", "report.md", "results.csv", "results.json"})
+        EXPECT_TRUE(fs::is_regular_file(out_ / f)) << f;
+    const std::string csv = slurp(out_ / "results.csv");
+    std::istringstream lines(csv);
+    std::string header;
+    std::getline(lines, header);
+    std::string expected;
+    for (const std::string& c : resultsCsvColumns()) expected += (expected.empty() ? "" : ",") + c;
+    EXPECT_EQ(header, expected);
+    int rows = 0;
+    for (std::string line; std::getline(lines, line);) rows += !line.empty();
+    EXPECT_EQ(rows, 6);
+    EXPECT_NE(csv.find("\naamap16,Selective,aamap,16,"), std::string::npos) << csv;
+
+    const std::string md = slurp(out_ / "report.md");
+    for (const char* s : {"Table 1/2: render time", "Table 1/2: speedup over Standard", "Table 3: % error pixels",
+                          "| rpp | Standard | Selective |", "| rpp | Selective |",
+                          "| rpp | Standard FLIP | Standard MSE | Selective FLIP | Selective MSE |", "Map quality"})
+        EXPECT_NE(md.find(s), std::string::npos) << s << "\n" << md;
+    for (const char* row : {"\n| 1 |", "\n| 4 |", "\n| 16 |"}) EXPECT_NE(md.find(row), std::string::npos) << row;
+
+    const std::string html = slurp(out_ / "report.html");
+    for (const char* s : {"<h2 id=\"time\">", "<h2 id=\"speedup\">", "<h2 id=\"error\">", "<h2 id=\"map_quality\">",
+                          "src=\"aamap16.overlay.png\"", "src=\"aamap.png\"", "href=\"results.csv\"",
+                          "plots turned off"})
+        EXPECT_NE(html.find(s), std::string::npos) << s;
+    EXPECT_EQ(html.find("file://"), std::string::npos);  // relative links only
+}
+
+TEST_F(Runner, MissingPythonDegradesWithAWarning) {
+    FakeBackend backend;
+    run(backend);
+    ::setenv("AAMAP_PYTHON", "/nonexistent/python", 1);
+    std::ifstream in(out_ / "results.json");
+    const nlohmann::ordered_json results = nlohmann::ordered_json::parse(in);
+    writeReport(out_, results, true);
+    ::unsetenv("AAMAP_PYTHON");
+    const std::string html = slurp(out_ / "report.html");
+    EXPECT_NE(html.find("Python venv not found"), std::string::npos);
+    EXPECT_NE(html.find("Table 3"), std::string::npos);  // the tables are there regardless
+}
+
+}  // namespace
+}  // namespace aamap

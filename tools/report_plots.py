@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""Plots for an aamap experiment report, from OUTDIR/results.json (written by `aamap run`).
+
+    .venv/bin/python tools/report_plots.py OUTDIR
+
+Writes OUTDIR/plots/time_vs_rpp.png (the paper's Figures 6-7: render time against rays per pixel,
+one line per series with its least-squares fit and R^2) and OUTDIR/plots/error_vs_time.png (the
+speed-accuracy trade: % FLIP error pixels against time, one curve per series, the Pareto front
+marked). `aamap run` calls this itself; `aamap report OUTDIR` reruns it. Files are written under
+a temporary name and renamed, like every aamap output.
+"""
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def render_seconds(r):
+    t = r["times_s"]
+    return t.get("trace", 0.0) + t.get("snapshot_total", 0.0)
+
+
+def by_series(renders):
+    series = {}
+    for r in renders:
+        series.setdefault(r.get("series") or r["strategy"], []).append(r)
+    for rs in series.values():
+        rs.sort(key=lambda r: r["max_rays_per_pixel"])
+    return series
+
+
+def save(fig, path):
+    tmp = f"{path}.tmp-{os.getpid()}.png"
+    fig.savefig(tmp, dpi=110, bbox_inches="tight")
+    plt.close(fig)
+    os.replace(tmp, path)
+
+
+def linear_fit(x, y):
+    """Least-squares y = a x + b and its R^2 (None with fewer than 2 distinct x)."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    if len(set(x)) < 2:
+        return None
+    a, b = np.polyfit(x, y, 1)
+    ss_res = float(np.sum((y - (a * x + b)) ** 2))
+    ss_tot = float(np.sum((y - y.mean()) ** 2))
+    return a, b, (1.0 - ss_res / ss_tot) if ss_tot > 0 else 1.0
+
+
+def time_vs_rpp(series, path, title):
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for i, (name, rs) in enumerate(series.items()):
+        x = [r["max_rays_per_pixel"] for r in rs]
+        y = [render_seconds(r) for r in rs]
+        colour = f"C{i % 10}"
+        fit = linear_fit(x, y)
+        label = name if fit is None else f"{name}: {fit[0]:.3g} s/rpp, R²={fit[2]:.3f}"
+        ax.plot(x, y, "o", color=colour, label=label)
+        if fit is not None:
+            xs = np.linspace(min(x), max(x), 50)
+            ax.plot(xs, fit[0] * xs + fit[1], "-", color=colour, alpha=0.6)
+    ax.set_xlabel("rays per pixel (maximum, n x n)")
+    ax.set_ylabel("render time (s): trace + snapshot")
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, path)
+
+
+def pareto(points):
+    """Points (time, error) not dominated by a faster-and-no-worse one, sorted by time."""
+    front, best = [], float("inf")
+    for t, e in sorted(points):
+        if e < best:
+            front.append((t, e))
+            best = e
+    return front
+
+
+def error_vs_time(series, path, key, ylabel, title):
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    points = []
+    for i, (name, rs) in enumerate(series.items()):
+        pts = [(render_seconds(r), r["metrics"][key], r["max_rays_per_pixel"]) for r in rs
+               if isinstance(r.get("metrics", {}).get(key), (int, float))]
+        if not pts:
+            continue
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=f"C{i % 10}", label=name)
+        for t, e, rpp in pts:
+            ax.annotate(str(rpp), (t, e), fontsize=7, xytext=(3, 3), textcoords="offset points")
+        points += [(t, e) for t, e, _ in pts]
+    if points:
+        front = pareto(points)
+        ax.plot([p[0] for p in front], [p[1] for p in front], "k--", lw=1, label="Pareto front")
+        ax.scatter([p[0] for p in front], [p[1] for p in front], s=90, facecolors="none", edgecolors="k")
+    ax.set_xlabel("render time (s): trace + snapshot")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, path)
+
+
+def main(argv):
+    if len(argv) != 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    out = argv[1]
+    with open(os.path.join(out, "results.json")) as f:
+        results = json.load(f)
+    renders = results.get("renders", [])
+    if not renders:
+        print("report_plots: no renders in results.json", file=sys.stderr)
+        return 1
+    os.makedirs(os.path.join(out, "plots"), exist_ok=True)
+    series = by_series(renders)
+    scene = os.path.basename(renders[0].get("scene", ""))
+    time_vs_rpp(series, os.path.join(out, "plots", "time_vs_rpp.png"), f"Time against rays per pixel ({scene})")
+    metrics = [r.get("metrics", {}) for r in renders]
+    if any("pct_error_flip" in m for m in metrics):
+        error_vs_time(series, os.path.join(out, "plots", "error_vs_time.png"), "pct_error_flip",
+                      "% pixels in error (FLIP)", "Speed against accuracy (points: rpp)")
+    elif any("pct_error_mse" in m for m in metrics):
+        error_vs_time(series, os.path.join(out, "plots", "error_vs_time.png"), "pct_error_mse",
+                      "% pixels in error (MSE)", "Speed against accuracy (points: rpp)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
