@@ -16,6 +16,7 @@
 #include "scene/camera.h"
 #include "tracer/embree_scene.h"
 #include "tracer/integrator.h"
+#include "tracer/irradiance_source.h"
 #include "tracer/lights.h"
 #include "tracer/sampler.h"
 #include "tracer/strategy.h"
@@ -155,8 +156,11 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     if (W <= 0 || H <= 0) throw std::invalid_argument(fmt::format("render size {}x{} is empty", W, H));
     if (settings.threads < 0) throw std::invalid_argument(fmt::format("threads must be >= 0, got {}", settings.threads));
     const auto strategy = makeStrategy(strategySettings, W, H);
-    const Integrator integrator(impl_->geometry, impl_->lights, settings.shading);
     const PinholeCamera camera = PinholeCamera::fromView(view);
+    // Cache mode: builds the irradiance cache (its pre-pass) and the Integrator that reads it.
+    const RenderShading shading =
+        makeRenderShading(impl_->geometry, impl_->lights, settings.shading, camera, W, H, settings.threads);
+    const Integrator& integrator = *shading.integrator;
     const EmbreeSource source(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H);
 
     StrategyImages images(W, H);
@@ -172,6 +176,7 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     result.traced = std::move(images.traced);
     result.strategy = strategy->describe();
     source.addCounts(result);
+    result.cache = shading.stats();
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }

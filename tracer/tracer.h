@@ -8,6 +8,7 @@
 
 #include "core/image.h"
 #include "scene/scene.h"
+#include "tracer/irradiance_cache.h"
 
 namespace aamap {
 
@@ -26,6 +27,11 @@ struct ShadingSettings {
     int rouletteDepth = 5;        // Mitsuba's rr_depth default
     // Direct/Cache: mirror and glass bounces followed per primary ray (glass splits into both).
     int maxSpecularDepth = 8;
+    // Cache: the irradiance cache (-ab -ad -as -aa -ar; bounces 0 = no cache, shades as Direct).
+    // Its pre-pass takes the first hits of one camera ray per cacheGridStep x cacheGridStep pixels
+    // (at least a 32 x 32 grid, or the image size if smaller). docs/irradiance-cache.md, "Wiring".
+    IrradianceCacheSettings cache;
+    int cacheGridStep = 4;
 };
 
 struct RayCounts {
@@ -33,6 +39,18 @@ struct RayCounts {
     std::uint64_t shadow = 0;
     std::uint64_t other = 0;
     std::uint64_t total() const { return primary + shadow + other; }
+};
+
+// Cache mode: the irradiance cache built for one render (docs/irradiance-cache.md, "Wiring").
+struct CacheStats {
+    bool built = false;                 // false: no cache (other modes, or bounces 0)
+    int gridWidth = 0, gridHeight = 0;  // the candidate grid of camera rays
+    std::size_t candidates = 0;         // its first hits offered to the pre-pass
+    std::size_t records = 0;            // records after the pre-pass (all levels)
+    double prepassSeconds = 0.0;        // candidates + pre-pass; part of TraceResult::seconds
+    RayCounts prepassRays;              // candidate camera rays (primary) and pre-pass rays; NOT in TraceResult::rays
+    std::uint64_t misses = 0;           // lookups during the render that no record covered
+    std::uint64_t missRays = 0;         // their hemisphere rays (counted in TraceResult::rays.other)
 };
 
 // tracer/strategy.h describes each strategy. Names (toString/parse): "uniform", "aamap",
@@ -105,6 +123,7 @@ struct TraceResult {
     RayCounts rays;
     std::uint64_t nonFiniteSamples = 0;  // NaN/Inf samples dropped (counted, never written)
     double seconds = 0.0;
+    CacheStats cache;
 };
 
 class Tracer {

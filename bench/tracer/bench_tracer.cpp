@@ -1,6 +1,7 @@
 // Tracer throughput: time, rays/s and primary samples/s for uniform n x n sampling.
 //   bench_tracer [--scene builtin:cornell] [--size 512] [--strata 6] [--threads 0]
-//                [--light-samples 16] [--repeat 3] [--mode direct|path] [--max-depth 5]
+//                [--light-samples 16] [--repeat 3] [--mode direct|path|cache] [--max-depth 5]
+//                [--ab 1] [--ad 512] [--as 128] [--aa 0.2] [--ar 64] [--cache-grid-step 4]
 // Reports the best of --repeat runs: the machine is shared and noisy, the minimum is the
 // least disturbed figure.
 #include <algorithm>
@@ -19,6 +20,8 @@ int main(int argc, char** argv) {
     std::string sceneSpec = "builtin:cornell";
     int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3, maxDepth = 5;
     std::string mode = "direct";
+    aamap::IrradianceCacheSettings cache;
+    int gridStep = 4;
     app.add_option("--scene", sceneSpec, "builtin:<name> or an .obj/.gltf/.glb file")->capture_default_str();
     app.add_option("--size", size, "render resolution (square)")->capture_default_str()->check(CLI::Range(1, 16384));
     app.add_option("--strata", strata, "n: n x n rays per pixel")->capture_default_str()->check(CLI::Range(1, 32));
@@ -27,7 +30,17 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::Range(1, 4096));
     app.add_option("--repeat", repeat, "timed runs; the best is reported")->capture_default_str()->check(CLI::Range(1, 100));
-    app.add_option("--mode", mode, "shading: direct or path")->capture_default_str()->check(CLI::IsMember({"direct", "path"}));
+    app.add_option("--mode", mode, "shading: direct, path or cache")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"direct", "path", "cache"}));
+    app.add_option("--ab", cache.bounces, "cache mode: diffuse bounces")->capture_default_str()->check(CLI::Range(0, 8));
+    app.add_option("--ad", cache.divisions, "cache mode: hemisphere divisions")->capture_default_str()->check(CLI::Range(1, 65536));
+    app.add_option("--as", cache.supersamples, "cache mode: supersamples")->capture_default_str()->check(CLI::Range(0, 65536));
+    app.add_option("--aa", cache.accuracy, "cache mode: accuracy")->capture_default_str()->check(CLI::Range(1e-4, 1.0));
+    app.add_option("--cache-grid-step", gridStep, "cache mode: one candidate ray per step x step pixels")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1024));
+    app.add_option("--ar", cache.resolution, "cache mode: resolution")->capture_default_str()->check(CLI::Range(0, 1 << 20));
     app.add_option("--max-depth", maxDepth, "path mode: longest path in segments")->capture_default_str()->check(CLI::Range(1, 1000));
     CLI11_PARSE(app, argc, argv);
 
@@ -55,7 +68,11 @@ int main(int argc, char** argv) {
     settings.width = settings.height = size;
     settings.threads = threads;
     settings.shading.areaLightSamples = lightSamples;
-    settings.shading.mode = mode == "path" ? aamap::ShadingMode::Path : aamap::ShadingMode::Direct;
+    settings.shading.mode = mode == "path"    ? aamap::ShadingMode::Path
+                            : mode == "cache" ? aamap::ShadingMode::Cache
+                                              : aamap::ShadingMode::Direct;
+    settings.shading.cache = cache;
+    settings.shading.cacheGridStep = gridStep;
     settings.shading.maxDepth = maxDepth;
     aamap::StrategySettings strategy;
     strategy.strata = strata;
@@ -65,14 +82,25 @@ int main(int argc, char** argv) {
     for (int r = 0; r < repeat; ++r) {
         result = tracer.render(scene.views.front(), settings, strategy);
         fmt::print("  run {}: {:.3f} s\n", r + 1, result.seconds);
-        best = std::min(best, result.seconds);
+        if (result.cache.built)
+            fmt::print("    cache: {}x{} grid, {} points, {} records, pre-pass {:.3f} s ({} rays), render {:.3f} s, "
+                       "{} misses ({} rays)\n",
+                       result.cache.gridWidth, result.cache.gridHeight, result.cache.candidates, result.cache.records,
+                       result.cache.prepassSeconds, result.cache.prepassRays.total(),
+                       result.seconds - result.cache.prepassSeconds, result.cache.misses, result.cache.missRays);
+        // Cache mode: the pre-pass is timed and counted apart (its rays are not in result.rays).
+        best = std::min(best, result.seconds - result.cache.prepassSeconds);
     }
     const auto& rays = result.rays;
     fmt::print("{}x{} uniform n={} ({} spp), mode {}, {}\n", size, size, strata, strata * strata, mode,
-               mode == "path" ? fmt::format("max depth {}", maxDepth) : fmt::format("{} light samples/hit", lightSamples));
+               mode == "path"    ? fmt::format("max depth {}", maxDepth)
+               : mode == "cache" ? fmt::format("{} light samples/hit, -ab {} -ad {} -as {} -aa {} -ar {}", lightSamples,
+                                               cache.bounces, cache.divisions, cache.supersamples, cache.accuracy,
+                                               cache.resolution)
+                                 : fmt::format("{} light samples/hit", lightSamples));
     fmt::print("rays: {} primary, {} shadow, {} other, {} total; {} non-finite samples\n", rays.primary,
                rays.shadow, rays.other, rays.total(), result.nonFiniteSamples);
-    fmt::print("best time {:.3f} s | {:.2f} M rays/s | {:.2f} M samples/s (primary)\n", best,
+    fmt::print("best {}time {:.3f} s | {:.2f} M rays/s | {:.2f} M samples/s (primary)\n", result.cache.built ? "render " : "", best,
                static_cast<double>(rays.total()) / best * 1e-6, static_cast<double>(rays.primary) / best * 1e-6);
     return 0;
 }

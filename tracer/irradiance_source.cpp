@@ -1,0 +1,174 @@
+#include "tracer/irradiance_source.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <spdlog/spdlog.h>
+
+#include "scene/camera.h"
+#include "tracer/bsdf.h"
+
+namespace aamap {
+namespace {
+
+// Where the current thread's hemisphere rays are charged: the render's per-thread counts while
+// indirectIrradiance() runs on it (a miss computes its record serially on the calling thread),
+// null during build(), whose rays go to the pre-pass counts.
+thread_local RayCounts* tRenderRays = nullptr;
+
+Bounds triangleBounds(const EmbreeScene& geometry) {
+    Bounds b;
+    if (geometry.triangleCount() == 0) return b;
+    b.lo = glm::vec3(std::numeric_limits<float>::infinity());
+    b.hi = -b.lo;
+    for (std::uint32_t i = 0; i < geometry.triangleCount(); ++i) {
+        const Triangle& t = geometry.triangle(i);
+        for (const glm::vec3& v : {t.v0, t.v0 + t.e1, t.v0 + t.e2}) {
+            b.lo = glm::min(b.lo, v);
+            b.hi = glm::max(b.hi, v);
+        }
+    }
+    return b;
+}
+
+}  // namespace
+
+IrradianceSource::IrradianceSource(const IrradianceCacheSettings& settings, const Bounds& sceneBounds)
+    : cache_(settings, sceneBounds, [this](const glm::vec3& o, const glm::vec3& d, int depth, std::uint64_t seed) {
+          return radiance(o, d, depth, seed);
+      }) {}
+
+void IrradianceSource::build(const Integrator& integrator, std::span<const CachePoint> points) {
+    integrator_ = &integrator;
+    RayCounts* const previous = tRenderRays;
+    tRenderRays = nullptr;  // the calling thread takes part in the pre-pass too
+    cache_.build(points);
+    tRenderRays = previous;
+}
+
+glm::vec3 IrradianceSource::indirectIrradiance(const Integrator&, const SurfaceHit& hit, const Sampler&, int,
+                                               RayCounts& rays) const {
+    RayCounts* const previous = tRenderRays;
+    tRenderRays = &rays;
+    const glm::vec3 e = cache_.irradiance(hit.position, hit.shading, 0);
+    tRenderRays = previous;
+    return e;
+}
+
+RayCounts IrradianceSource::prepassRays() const {
+    RayCounts sum;
+    for (const RayCounts& r : prepassRays_) {
+        sum.primary += r.primary;
+        sum.shadow += r.shadow;
+        sum.other += r.other;
+    }
+    return sum;
+}
+
+RadianceSample IrradianceSource::radiance(const glm::vec3& origin, const glm::vec3& dir, int depth,
+                                          std::uint64_t seed) const {
+    RayCounts& rays = tRenderRays != nullptr ? *tRenderRays : prepassRays_.local();
+    RadianceSample s;
+    SurfaceHit hit;
+    if (!integrator_->intersect(origin, dir, hit, rays.other)) return s;
+    s.distance = hit.distance;
+    const ShadingMaterial& m = *hit.material;
+    // Hidden light sources: the front of an emitter is black to hemisphere rays, since every
+    // diffuse hit samples its direct light already (Radiance does the same to ambient rays).
+    if (m.emissive && hit.front) return s;
+    const Sampler sampler(seed, 0, 0);
+    glm::vec3 L(0.0f);
+    if (m.kind != MaterialKind::Diffuse) L += specular(hit, sampler, depth, rays);
+    else if (m.diffuse || m.glossy) L += integrator_->directLight(hit, sampler, depth, rays);
+    if (m.diffuse && depth < cache_.settings().bounces)
+        L += hit.albedo * bsdf::kInvPi * cache_.irradiance(hit.position, hit.shading, depth);
+    s.radiance = L;
+    return s;
+}
+
+// A mirror or glass hit: its Lambert part's direct light, then each specular branch continues with
+// radianceDirect (Direct shading, emission included: light seen in a mirror is not sampled as
+// direct light). The branches mirror Integrator::shadeDirect.
+glm::vec3 IrradianceSource::specular(const SurfaceHit& hit, const Sampler& sampler, int depth,
+                                     RayCounts& rays) const {
+    const ShadingMaterial& m = *hit.material;
+    glm::vec3 L(0.0f);
+    if (m.diffuse) L += integrator_->directLight(hit, sampler, depth, rays);
+    if (integrator_->settings().maxSpecularDepth < 1) return L;
+    const auto follow = [&](const glm::vec3& d, float branch) {
+        if (branch * bsdf::maxComponent(m.ks) < 1e-3f) return glm::vec3(0.0f);  // shadeDirect's cutoff
+        return m.ks * branch * integrator_->radianceDirect(hit.originFor(d), d, sampler, depth + 1, rays);
+    };
+    const glm::vec3 r = bsdf::reflect(hit.wo, hit.shading);
+    if (m.kind == MaterialKind::Mirror) {
+        if (glm::dot(r, hit.geometric) > 0.0f) L += follow(r, 1.0f);
+        return L;
+    }
+    const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
+    if (!(cosI > 0.0f)) return L;
+    const float eta = hit.front ? m.ior : 1.0f / m.ior;
+    float cosT = 0.0f;
+    const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
+    if (glm::dot(r, hit.geometric) > 0.0f) L += follow(r, F);
+    if (F < 1.0f) {
+        const glm::vec3 t = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
+        if (glm::dot(t, hit.geometric) < 0.0f) L += follow(t, 1.0f - F);
+    }
+    return L;
+}
+
+CacheStats RenderShading::stats() const {
+    CacheStats s = prepass;
+    if (!source) return s;
+    const IrradianceCacheStats c = source->cache().stats();
+    s.misses = c.renderMisses;
+    s.missRays = c.renderRays;
+    spdlog::info("irradiance cache: {} records, pre-pass {:.3f} s, {} rays; {} misses in the render ({} hemisphere rays)",
+                 s.records, s.prepassSeconds, s.prepassRays.total(), s.misses, s.missRays);
+    return s;
+}
+
+void cacheGrid(int width, int height, int step, int& gridW, int& gridH) {
+    step = std::max(step, 1);
+    gridW = std::max((width + step - 1) / step, std::min(width, 32));
+    gridH = std::max((height + step - 1) / step, std::min(height, 32));
+}
+
+RenderShading makeRenderShading(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading,
+                                const PinholeCamera& camera, int width, int height, int threads) {
+    RenderShading out;
+    if (shading.mode != ShadingMode::Cache || shading.cache.bounces <= 0) {
+        ShadingSettings plain = shading;
+        if (shading.mode == ShadingMode::Cache) {
+            spdlog::info("no cache: bounces {}", shading.cache.bounces);
+            plain.mode = ShadingMode::Direct;  // identical shading, without the integrator's warning
+        }
+        out.integrator = std::make_unique<Integrator>(geometry, lights, plain);
+        return out;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    IrradianceCacheSettings settings = shading.cache;
+    if (settings.threads == 0) settings.threads = threads;
+    out.source = std::make_unique<IrradianceSource>(settings, triangleBounds(geometry));
+    out.integrator = std::make_unique<Integrator>(geometry, lights, shading, out.source.get());
+    int gridW = 0, gridH = 0;
+    cacheGrid(width, height, shading.cacheGridStep, gridW, gridH);
+    const std::vector<CachePoint> points = cameraCachePoints(geometry, camera, gridW, gridH);
+    out.source->build(*out.integrator, points);
+
+    CacheStats& s = out.prepass;
+    s.built = true;
+    s.gridWidth = gridW;
+    s.gridHeight = gridH;
+    s.candidates = points.size();
+    s.records = out.source->cache().stats().records;
+    s.prepassRays = out.source->prepassRays();
+    s.prepassRays.primary += static_cast<std::uint64_t>(gridW) * static_cast<std::uint64_t>(gridH);  // candidates
+    s.prepassSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace aamap
