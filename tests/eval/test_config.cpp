@@ -217,8 +217,11 @@ TEST(ConfigFile, TheShippedDefaultParses) {
     const ExperimentConfig c = loadConfig(file, {"image.width=64", "image.height=64"});
     EXPECT_EQ(c.scene, "builtin:cornell");
     EXPECT_EQ(c.image.width, 64);
-    // standard, non-adaptive, Space 8, Space 16 and rpict, each at 1, 4, 16, 36 rays per pixel
-    ASSERT_EQ(c.renders.size(), 20u);
+    // standard, non-adaptive, Space 8 and Space 16 at 1, 4, 16, 36 rays per pixel, plus rpict
+    // (at most one ray per pixel by definition, so once)
+    ASSERT_EQ(c.renders.size(), 17u);
+    EXPECT_EQ(c.renders.back().strategy, "rpict");
+    EXPECT_EQ(c.renders.back().rpp, 1);
     EXPECT_EQ(c.renders[3].rpp, 36);
     EXPECT_EQ(c.renders[4].strategy, "aamap");
     EXPECT_EQ(c.renders[9].series, "Space 16");
