@@ -8,4 +8,4 @@ tools/python-env.sh
 cmake --preset release
 cmake --build --preset release
 build/release/aamap run configs/cornell.yaml -o out/cornell "$@"
-echo "setup: done; open out/cornell/ (results.json, *.png, *.exr)"
+echo "setup: done; open out/cornell/report.html (tables, plots, images; results.json, results.csv)"

@@ -4,6 +4,7 @@
 // outliving it). Also decides which shading features the scene needs (textures, glossy, mirror,
 // glass): code paths for the others are never entered.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,24 @@ struct TextureData {
     int width = 0, height = 0;
     std::vector<glm::vec3> rgb;  // linear, row 0 at the top (v = 0)
 };
+
+// A single ray from origin along dir over [0, inf), ready for rtcIntersect1: every field Embree
+// reads is set, so callers never hand-fill RTCRayHit.
+inline RTCRayHit makeRayHit(const glm::vec3& origin, const glm::vec3& dir) {
+    RTCRayHit rh{};
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = dir.x;
+    rh.ray.dir_y = dir.y;
+    rh.ray.dir_z = dir.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
 
 class EmbreeScene {
 public:

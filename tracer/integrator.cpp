@@ -17,24 +17,6 @@ namespace {
 // are dropped, as Radiance's -lw does; it bounds the glass split tree (docs/tracer.md).
 constexpr float kSpecularCutoff = 1e-3f;
 
-RTCRayHit makeRay(const glm::vec3& origin, const glm::vec3& dir) {
-    RTCRayHit rh;
-    rh.ray.org_x = origin.x;
-    rh.ray.org_y = origin.y;
-    rh.ray.org_z = origin.z;
-    rh.ray.dir_x = dir.x;
-    rh.ray.dir_y = dir.y;
-    rh.ray.dir_z = dir.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.time = 0.0f;
-    rh.ray.mask = ~0u;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-}
 
 }  // namespace
 
@@ -88,7 +70,7 @@ bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, Surfac
                            std::uint64_t& counter) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh = makeRay(origin, dir);
+    RTCRayHit rh = makeRayHit(origin, dir);
     rtcIntersect1(scene_, &context, &rh);
     ++counter;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;  // misses are black
@@ -139,23 +121,8 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
                                            weight > 0.0f ? next : 0.0f, rays);
         return tint * branch * Li;
     };
-    if (m.kind == MaterialKind::Mirror) {
-        const glm::vec3 r = bsdf::reflect(hit.wo, hit.shading);
-        if (glm::dot(r, hit.geometric) > 0.0f) L += follow(r, m.ks, 1.0f);
-        return L;
-    }
-    // Glass: both the Fresnel-reflected and the refracted branch, deterministically (no noise).
-    const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
-    if (!(cosI > 0.0f)) return L;
-    const float eta = hit.front ? m.ior : 1.0f / m.ior;
-    float cosT = 0.0f;
-    const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
-    const glm::vec3 r = bsdf::reflect(hit.wo, hit.shading);
-    if (glm::dot(r, hit.geometric) > 0.0f) L += follow(r, m.ks, F);
-    if (F < 1.0f) {
-        const glm::vec3 t = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
-        if (glm::dot(t, hit.geometric) < 0.0f) L += follow(t, m.ks, 1.0f - F);
-    }
+    // Mirror: one branch; glass: the Fresnel-reflected and refracted branches, deterministically.
+    L += sumSpecularBranches(hit, [&](const glm::vec3& dir, float branch) { return follow(dir, m.ks, branch); });
     return L;
 }
 

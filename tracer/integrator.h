@@ -7,11 +7,13 @@
 // - Cache: Direct plus indirect diffuse from an IndirectDiffuseSource (the irradiance cache);
 // - Path: unbiased path tracing with next-event estimation, MIS and Russian roulette
 //   (path_integrator.cpp).
+#include <algorithm>
 #include <cstdint>
 
 #include <embree3/rtcore.h>
 #include <glm/vec3.hpp>
 
+#include "tracer/bsdf.h"
 #include "tracer/embree_scene.h"
 #include "tracer/lights.h"
 #include "tracer/ray_offset.h"
@@ -49,6 +51,33 @@ struct SurfaceHit {
         return position + (s >= 0.0f ? offset : -offset) * geometric;
     }
 };
+
+// The deterministic specular branches of a mirror or glass hit: calls follow(dir, weight) for the
+// mirror direction (weight 1), or for glass's Fresnel-reflected (F) and refracted (1 - F)
+// directions, skipping directions on the wrong side of the surface; returns the sum. Direct
+// shading and the irradiance cache's hemisphere rays both split this way.
+template <class Follow>
+glm::vec3 sumSpecularBranches(const SurfaceHit& hit, Follow&& follow) {
+    const ShadingMaterial& m = *hit.material;
+    glm::vec3 L(0.0f);
+    const glm::vec3 r = bsdf::reflect(hit.wo, hit.shading);
+    const bool reflectionLeaves = glm::dot(r, hit.geometric) > 0.0f;
+    if (m.kind == MaterialKind::Mirror) {
+        if (reflectionLeaves) L += follow(r, 1.0f);
+        return L;
+    }
+    const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
+    if (!(cosI > 0.0f)) return L;
+    const float eta = hit.front ? m.ior : 1.0f / m.ior;
+    float cosT = 0.0f;
+    const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
+    if (reflectionLeaves) L += follow(r, F);
+    if (F < 1.0f) {
+        const glm::vec3 t = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
+        if (glm::dot(t, hit.geometric) < 0.0f) L += follow(t, 1.0f - F);
+    }
+    return L;
+}
 
 class Integrator;
 

@@ -91,7 +91,7 @@ RadianceSample IrradianceSource::radiance(const glm::vec3& origin, const glm::ve
 
 // A mirror or glass hit: its Lambert part's direct light, then each specular branch continues with
 // radianceDirect (Direct shading, emission included: light seen in a mirror is not sampled as
-// direct light). The branches mirror Integrator::shadeDirect.
+// direct light). The branches are those of Integrator::shadeDirect (sumSpecularBranches).
 glm::vec3 IrradianceSource::specular(const SurfaceHit& hit, const Sampler& sampler, int depth,
                                      RayCounts& rays) const {
     const ShadingMaterial& m = *hit.material;
@@ -102,21 +102,7 @@ glm::vec3 IrradianceSource::specular(const SurfaceHit& hit, const Sampler& sampl
         if (branch * bsdf::maxComponent(m.ks) < 1e-3f) return glm::vec3(0.0f);  // shadeDirect's cutoff
         return m.ks * branch * integrator_->radianceDirect(hit.originFor(d), d, sampler, depth + 1, rays);
     };
-    const glm::vec3 r = bsdf::reflect(hit.wo, hit.shading);
-    if (m.kind == MaterialKind::Mirror) {
-        if (glm::dot(r, hit.geometric) > 0.0f) L += follow(r, 1.0f);
-        return L;
-    }
-    const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
-    if (!(cosI > 0.0f)) return L;
-    const float eta = hit.front ? m.ior : 1.0f / m.ior;
-    float cosT = 0.0f;
-    const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
-    if (glm::dot(r, hit.geometric) > 0.0f) L += follow(r, F);
-    if (F < 1.0f) {
-        const glm::vec3 t = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
-        if (glm::dot(t, hit.geometric) < 0.0f) L += follow(t, 1.0f - F);
-    }
+    L += sumSpecularBranches(hit, follow);
     return L;
 }
 

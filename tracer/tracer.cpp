@@ -106,18 +106,7 @@ private:
     void probe(const glm::vec3& dir, PrimarySample& s, RayCounts& rays) const {
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
-        RTCRayHit rh{};
-        rh.ray.org_x = camera_.origin.x;
-        rh.ray.org_y = camera_.origin.y;
-        rh.ray.org_z = camera_.origin.z;
-        rh.ray.dir_x = dir.x;
-        rh.ray.dir_y = dir.y;
-        rh.ray.dir_z = dir.z;
-        rh.ray.tnear = 0.0f;
-        rh.ray.tfar = std::numeric_limits<float>::infinity();
-        rh.ray.mask = ~0u;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        RTCRayHit rh = makeRayHit(camera_.origin, dir);
         rtcIntersect1(geometry_.handle(), &context, &rh);
         ++rays.other;
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;  // a miss: depth +inf, kNoShape
