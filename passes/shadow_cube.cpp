@@ -82,11 +82,7 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
 
         VkCommandBuffer cmd = pc.cmd();
         vkCmdBeginRendering(cmd, &rendering);
-        const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
-                                  0.0f, 1.0f};
-        const VkRect2D scissor{{0, 0}, extent};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
+        vk::setFullViewport(cmd, extent);
         if (geometry.vertexCount() > 0) {
             pipeline_.bind(cmd);
             vk::DescriptorPush()

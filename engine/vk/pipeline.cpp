@@ -209,6 +209,14 @@ void DescriptorPush::push(const VulkanContext& context, VkCommandBuffer cmd, con
                                    static_cast<std::uint32_t>(writes.size()), writes.data());
 }
 
+void setFullViewport(VkCommandBuffer cmd, VkExtent2D extent) {
+    const VkViewport viewport{0.0f, 0.0f, static_cast<float>(extent.width), static_cast<float>(extent.height),
+                              0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, extent};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
 void dispatch2D(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height, std::uint32_t groupX,
                 std::uint32_t groupY) {
     vkCmdDispatch(cmd, (width + groupX - 1) / groupX, (height + groupY - 1) / groupY, 1);

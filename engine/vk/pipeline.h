@@ -92,6 +92,9 @@ private:
 };
 
 // Dispatches enough workgroups of size groupX x groupY to cover width x height.
+// Viewport and scissor covering the whole render area (both are dynamic state in our pipelines).
+void setFullViewport(VkCommandBuffer cmd, VkExtent2D extent);
+
 void dispatch2D(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height, std::uint32_t groupX,
                 std::uint32_t groupY);
 
