@@ -308,10 +308,22 @@ Results Runner::run() {
 Results runExperimentWith(const ExperimentConfig& config, const fs::path& outDir, RenderBackend& backend,
                           const RunnerOptions& options) {
     std::error_code ec;
+    const bool existed = fs::exists(outDir, ec);
     fs::create_directories(outDir, ec);
     if (ec) throw EnvironmentError(fmt::format("{}: cannot create output folder: {}", outDir.string(), ec.message()));
-    Runner runner(config, outDir, backend, options);
-    return runner.run();
+    try {
+        Runner runner(config, outDir, backend, options);
+        return runner.run();
+    } catch (...) {
+        // A run that fails before finishing anything leaves no trace: drop the folders it made
+        // if they are still empty. fs::remove never deletes a non-empty folder, so finished
+        // renders in the cache (and anything the user had there) survive.
+        if (!existed) {
+            fs::remove(outDir / "cache", ec);
+            fs::remove(outDir, ec);
+        }
+        throw;
+    }
 }
 
 }  // namespace aamap

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "eval/config.h"
 #include "eval/report.h"
 #include "eval/runner.h"
@@ -28,6 +29,7 @@ public:
     static constexpr int kW = 48, kH = 32, kBand = 4;
     SceneInfo prepare() override {
         ++prepares;
+        if (failPrepare) throw InputError("fake.obj", 3, 7, "not a number");
         return {kW, kH, "fake:scene", "fake view", 0.01, 0.02};
     }
     SnapshotOutput snapshot() override {
@@ -60,6 +62,7 @@ public:
         return t;
     }
     int prepares = 0, snapshots = 0;
+    bool failPrepare = false;  // like a scene that does not load
     std::map<std::string, int> traces;
     int totalTraces() const {
         int n = 0;
@@ -129,6 +132,26 @@ TEST_F(Runner, SecondRunReusesEverythingAndDeletedRecordIsTheOnlyRedo) {
     EXPECT_FALSE(fs::exists(out_ / "aamap4.png.tmp-99999"));
     for (const auto& e : fs::recursive_directory_iterator(out_))
         EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << e.path();
+}
+
+TEST_F(Runner, AFailedFirstRunLeavesNoFolderAndALaterFailureKeepsFinishedRenders) {
+    FakeBackend broken;
+    broken.failPrepare = true;
+    EXPECT_THROW(run(broken), InputError);
+    EXPECT_FALSE(fs::exists(out_)) << "a run that failed before finishing anything left " << out_;
+
+    FakeBackend backend;
+    run(backend);
+    const auto entries = [&] {
+        std::size_t n = 0;
+        for ([[maybe_unused]] const auto& e : fs::directory_iterator(out_ / "cache")) ++n;
+        return n;
+    };
+    const std::size_t finished = entries();
+    ASSERT_GT(finished, 0u);
+    // A fully cached rerun never loads the scene; ask for one new render so the failure happens.
+    EXPECT_THROW(run(broken, {"renders.0.rpp=[1, 4, 9, 16]"}), InputError);
+    EXPECT_EQ(entries(), finished) << "finished renders must survive a later failed run";
 }
 
 TEST_F(Runner, DamagedEntryIsTracedAgain) {
