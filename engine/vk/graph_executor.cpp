@@ -333,15 +333,8 @@ ExecutionResult GraphExecutor::execute(const graph::CompiledGraph& g) {
                 recordCopyImageToBuffer(s.readback.cmd, r.image, dst);
             }
         }
-        VkMemoryBarrier2 host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        host.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        host.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &host;
-        vkCmdPipelineBarrier2(s.readback.cmd, &dep);
+        recordMemoryBarrier(s.readback.cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         s.readback.submitAndWait(ctx);
         for (const std::string& name : g.outputs) {
             const LiveResource& r = s.live.at(name);

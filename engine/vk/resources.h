@@ -85,6 +85,11 @@ void submitAndWait(VulkanContext& context, const std::function<void(VkCommandBuf
 Buffer uploadBuffer(VulkanContext& context, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
 
 // Image copies for tightly packed texels of layer 0, mip 0 (layout must be TRANSFER_SRC/DST).
+// One global memory dependency (synchronization2): for hazards that are not about one
+// resource, e.g. making copies visible to the host or to every later stage.
+void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                         VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
 void recordCopyBufferToImage(VkCommandBuffer cmd, const Buffer& src, const Image& dst);
 void recordCopyImageToBuffer(VkCommandBuffer cmd, const Image& src, const Buffer& dst);
 

@@ -7,7 +7,10 @@
 
 #include <glm/geometric.hpp>
 
+#include <gtest/gtest.h>
+
 #include "scene/scene.h"
+#include "tracer/tracer.h"
 
 namespace aamap::testing {
 
@@ -108,5 +111,24 @@ inline Scene cornellLikeScene() {
     scene.views.push_back(view);
     return scene;
 }
+
+// One Cornell-like scene and tracer shared by all tests of a suite (the BVH is built once).
+// Derive a suite-named fixture: class MySuite : public testing::CornellTracerTest {};
+class CornellTracerTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        scene_ = new Scene(cornellLikeScene());
+        tracer_ = new Tracer(*scene_);
+    }
+    static void TearDownTestSuite() {
+        delete tracer_;
+        delete scene_;
+        tracer_ = nullptr;
+        scene_ = nullptr;
+    }
+    static const View& view() { return scene_->views.front(); }
+    static inline Scene* scene_ = nullptr;
+    static inline Tracer* tracer_ = nullptr;
+};
 
 }  // namespace aamap::testing

@@ -35,22 +35,7 @@ std::uint64_t sumOf(const Image<std::uint16_t>& img) {
     return sum;
 }
 
-class CornellRender : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        scene_ = new Scene(testing::cornellLikeScene());
-        tracer_ = new Tracer(*scene_);
-    }
-    static void TearDownTestSuite() {
-        delete tracer_;
-        delete scene_;
-    }
-    static const View& view() { return scene_->views.front(); }
-    static Scene* scene_;
-    static Tracer* tracer_;
-};
-Scene* CornellRender::scene_ = nullptr;
-Tracer* CornellRender::tracer_ = nullptr;
+class CornellRender : public testing::CornellTracerTest {};
 
 TEST_F(CornellRender, BitIdenticalForAnyThreadCount) {
     const TraceResult one = tracer_->render(view(), smallSettings(40, 24, 1), uniform(2));

@@ -74,22 +74,7 @@ TEST(StrategyRender, FlatColourGivesUniformsImageForEveryStrategy) {
     }
 }
 
-class StrategyCornell : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() {
-        scene_ = new Scene(testing::cornellLikeScene());
-        tracer_ = new Tracer(*scene_);
-    }
-    static void TearDownTestSuite() {
-        delete tracer_;
-        delete scene_;
-    }
-    static const View& view() { return scene_->views.front(); }
-    static Scene* scene_;
-    static Tracer* tracer_;
-};
-Scene* StrategyCornell::scene_ = nullptr;
-Tracer* StrategyCornell::tracer_ = nullptr;
+class StrategyCornell : public testing::CornellTracerTest {};
 
 TEST_F(StrategyCornell, EveryStrategyIsThreadCountIndependentAndCountsHonestly) {
     const int w = 26, h = 18, n = 3;  // n > 2: shape-id probes its 2 x 2 first samples
