@@ -16,6 +16,9 @@ namespace {
 // Direct/Cache mode: specular branches whose weight (product of reflectances) falls below this
 // are dropped, as Radiance's -lw does; it bounds the glass split tree (docs/tracer.md).
 constexpr float kSpecularCutoff = 1e-3f;
+// Per-hit light selection: the ManyLights sample index of its y shift, beyond any sample index
+// (m <= 1024: at most 2^20 samples).
+constexpr int kShiftSample = (1 << 24) - 1;
 
 
 }  // namespace
@@ -42,10 +45,13 @@ Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, cons
     shading_.maxSpecularDepth = std::max(shading_.maxSpecularDepth, 0);
     if (shading_.mode == ShadingMode::Cache && !indirect_)
         spdlog::warn("shading mode 'cache' without an irradiance cache: indirect diffuse light is left out");
+    const bool perHit = shading_.lightSelection == LightSelection::Contribution && lights_.perHitSelectable();
+    const char* selection = !lights_.many() ? "few: every light per hit"
+                            : perHit        ? "many: per-hit contribution CDF"
+                                            : "many: power-CDF selection";
     spdlog::debug("integrator: mode {}, {} lights ({}), {}x{} area samples, max depth {}, max specular depth {}",
-                  toString(shading_.mode), lights_.count(),
-                  lights_.many() ? "many: power-CDF selection" : "few: every light per hit", lightGrid_, lightGrid_,
-                  shading_.maxDepth, shading_.maxSpecularDepth);
+                  toString(shading_.mode), lights_.count(), selection, lightGrid_, lightGrid_, shading_.maxDepth,
+                  shading_.maxSpecularDepth);
 }
 
 void Integrator::fillHit(const RTCRayHit& rh, const glm::vec3& dir, SurfaceHit& hit) const {
@@ -191,53 +197,107 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
 }
 
 glm::vec3 Integrator::directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
+    if (shading_.lightSelection == LightSelection::Contribution && lights_.perHitSelectable())
+        return directPerHitLights(hit, sampler, depth, rays);
     // N = m x m stratified samples over [0,1)^2; u.x picks a light on the power CDF and, rescaled,
     // also places the point on it, so the pattern stays stratified over lights and their areas.
-    const ShadingMaterial& mat = *hit.material;
     const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
     const int m = lightGrid_;
     const float invM = 1.0f / static_cast<float>(m);
-    const std::size_t nPoints = lights_.points.size();
     glm::vec3 sum(0.0f);
     for (int j = 0; j < m * m; ++j) {
         glm::vec2 u = sampler.jittered2D(dims::path(depth, dims::PathSlot::ManyLights, j), j % m, j / m, invM);
         const std::size_t l = lights_.select(u.x);
-        const float pick = lights_.selectPdf[l];
-        glm::vec3 target, Le;
-        float geometry = 0.0f, tfar = 1.0f;  // cos' / d^2 / pdf_area (point: lobe / d^2)
-        if (l < nPoints) {
-            const PointLightSource& p = lights_.points[l];
-            target = p.position;
-            Le = p.intensity;
-            const glm::vec3 w = target - hit.position;
-            const float d2 = glm::dot(w, w);
-            const float lobe = p.lobe ? glm::dot(p.normal, -glm::normalize(w)) : 1.0f;
-            if (!(d2 > 0.0f) || lobe <= 0.0f) continue;
-            geometry = lobe / d2;
-        } else {
-            const AreaLightSampler& a = lights_.areas[l - nPoints];
-            const LightPoint q = a.sample(u);
-            target = q.position;
-            Le = a.radiance();
-            const glm::vec3 w = target - hit.position;
-            const float d2 = glm::dot(w, w);
-            if (!(d2 > 0.0f)) continue;
-            const float d = std::sqrt(d2);
-            const float cosLight = -glm::dot(q.normal, w) / d;
-            if (cosLight <= 0.0f) continue;
-            geometry = cosLight * a.area() / d2;
-            tfar = 1.0f - rayOffset(target, a.vertexScale()) / d;
-        }
-        const glm::vec3 l3 = glm::normalize(target - hit.position);
-        if (glm::dot(hit.geometric, l3) <= 0.0f) continue;
-        const float cosSurface = glm::dot(hit.shading, l3);
-        if (cosSurface <= 0.0f || !(tfar > 0.0f)) continue;
-        if (!unoccluded(origin, target, tfar, rays)) continue;
-        glm::vec3 f = hit.albedo * bsdf::kInvPi;
-        if (mat.glossy) f += mat.ks * (mat.phongNorm * bsdf::phongLobe(mat, hit.wo, hit.shading, l3));
-        sum += f * Le * (geometry * cosSurface / pick);
+        sum += lightSample(hit, origin, l, u, lights_.selectPdf[l], rays);
     }
     return sum * (invM * invM);
+}
+
+glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth,
+                                         RayCounts& rays) const {
+    // Per-hit CDF over each light's estimated contribution here (LightSet::contribution), in a
+    // stack array: no allocation. Lights that cannot reach the hit get probability 0, and so
+    // would have contributed 0: the estimator stays unbiased.
+    const std::size_t n = lights_.count();
+    float cdf[LightSet::kMaxPerHitLights];
+    float total = 0.0f;
+    std::size_t lastUsed = n;
+    for (std::size_t l = 0; l < n; ++l) {
+        const float w = lights_.contribution(l, hit.position, hit.shading);
+        if (w > 0.0f) lastUsed = l;
+        total += w;
+        cdf[l] = total;
+    }
+    if (lastUsed == n || !(total > 0.0f)) return glm::vec3(0.0f);  // no light reaches this hit
+    const float invTotal = 1.0f / total;
+    // Pin the CDF's end at the last reachable light so rounding cannot select a zero-weight one.
+    for (std::size_t l = 0; l < n; ++l) cdf[l] = l >= lastUsed ? 1.0f : cdf[l] * invTotal;
+
+    // Sample j of N uses selection number (j + r.x) / N: 1D-stratified over the whole CDF, so each
+    // light gets a share of samples close to its probability. The remainder places the point on
+    // the light; y takes stratum (j % m) m + j / m, so runs of consecutive j (one light's
+    // samples) spread over y as well. That fixed permutation alone would only ever visit N of the
+    // N^2 cells (biased); a per-hit random shift of y (Cranley-Patterson) makes each sample's y
+    // uniform and independent of its x again.
+    const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
+    const int m = lightGrid_;
+    const int count = m * m;
+    const float invCount = 1.0f / static_cast<float>(count);
+    const float shiftY = sampler.get1D(dims::path(depth, dims::PathSlot::ManyLights, kShiftSample));
+    glm::vec3 sum(0.0f);
+    for (int j = 0; j < count; ++j) {
+        const glm::vec2 r = sampler.get2D(dims::path(depth, dims::PathSlot::ManyLights, j));
+        float y = (static_cast<float>((j % m) * m + j / m) + r.y) * invCount + shiftY;
+        y -= y >= 1.0f ? 1.0f : 0.0f;
+        glm::vec2 u{std::min((static_cast<float>(j) + r.x) * invCount, Sampler::kOneMinusUlp),
+                    std::min(std::max(y, 0.0f), Sampler::kOneMinusUlp)};
+        const std::size_t l = selectOnCdf(cdf, n, u.x);
+        const float pick = (cdf[l] - (l == 0 ? 0.0f : cdf[l - 1]));
+        if (!(pick > 0.0f)) continue;  // unreachable: zero-width intervals are never selected
+        sum += lightSample(hit, origin, l, u, pick, rays);
+    }
+    return sum * invCount;
+}
+
+glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin, std::size_t l, glm::vec2 u,
+                                  float pick, RayCounts& rays) const {
+    // One shadow sample of light l (u: the point on an area light), divided by its selection
+    // probability `pick`.
+    const ShadingMaterial& mat = *hit.material;
+    const std::size_t nPoints = lights_.points.size();
+    glm::vec3 target, Le;
+    float geometry = 0.0f, tfar = 1.0f;  // cos' / d^2 / pdf_area (point: lobe / d^2)
+    if (l < nPoints) {
+        const PointLightSource& p = lights_.points[l];
+        target = p.position;
+        Le = p.intensity;
+        const glm::vec3 w = target - hit.position;
+        const float d2 = glm::dot(w, w);
+        const float lobe = p.lobe ? glm::dot(p.normal, -glm::normalize(w)) : 1.0f;
+        if (!(d2 > 0.0f) || lobe <= 0.0f) return glm::vec3(0.0f);
+        geometry = lobe / d2;
+    } else {
+        const AreaLightSampler& a = lights_.areas[l - nPoints];
+        const LightPoint q = a.sample(u);
+        target = q.position;
+        Le = a.radiance();
+        const glm::vec3 w = target - hit.position;
+        const float d2 = glm::dot(w, w);
+        if (!(d2 > 0.0f)) return glm::vec3(0.0f);
+        const float d = std::sqrt(d2);
+        const float cosLight = -glm::dot(q.normal, w) / d;
+        if (cosLight <= 0.0f) return glm::vec3(0.0f);
+        geometry = cosLight * a.area() / d2;
+        tfar = 1.0f - rayOffset(target, a.vertexScale()) / d;
+    }
+    const glm::vec3 l3 = glm::normalize(target - hit.position);
+    if (glm::dot(hit.geometric, l3) <= 0.0f) return glm::vec3(0.0f);
+    const float cosSurface = glm::dot(hit.shading, l3);
+    if (cosSurface <= 0.0f || !(tfar > 0.0f)) return glm::vec3(0.0f);
+    if (!unoccluded(origin, target, tfar, rays)) return glm::vec3(0.0f);
+    glm::vec3 f = hit.albedo * bsdf::kInvPi;
+    if (mat.glossy) f += mat.ks * (mat.phongNorm * bsdf::phongLobe(mat, hit.wo, hit.shading, l3));
+    return f * Le * (geometry * cosSurface / pick);
 }
 
 bool Integrator::unoccluded(const glm::vec3& origin, const glm::vec3& target, float tfar, RayCounts& rays) const {

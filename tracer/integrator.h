@@ -2,8 +2,9 @@
 // Radiance along a ray: the shading budget of DESIGN.md section 2, separate from the primary-ray
 // (antialiasing) budget. Three modes (ShadingSettings::mode):
 // - Direct: emission, direct light from every light type (point lights one shadow ray each, area
-//   lights an m x m stratified pattern per hit traced as 8-wide packets, or power-CDF selection
-//   when there are many lights) and mirror/glass recursion;
+//   lights an m x m stratified pattern per hit traced as 8-wide packets; with many lights, m x m
+//   samples spread over a per-hit contribution CDF, or the global power CDF) and mirror/glass
+//   recursion;
 // - Cache: Direct plus indirect diffuse from an IndirectDiffuseSource (the irradiance cache);
 // - Path: unbiased path tracing with next-event estimation, MIS and Russian roulette
 //   (path_integrator.cpp).
@@ -121,6 +122,11 @@ private:
                             int specular, float weight, RayCounts& rays) const;
     glm::vec3 directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
     glm::vec3 directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
+    // Many lights, LightSelection::Contribution: samples distributed over a per-hit CDF.
+    glm::vec3 directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
+    // One shadow sample of light l for the many-light paths, divided by its selection probability.
+    glm::vec3 lightSample(const SurfaceHit& hit, const glm::vec3& origin, std::size_t l, glm::vec2 u, float pick,
+                          RayCounts& rays) const;
     // Path mode (path_integrator.cpp): the whole path from a primary hit.
     glm::vec3 tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const;
     // One next-event sample for path mode, MIS-weighted against BSDF sampling.

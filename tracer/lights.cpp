@@ -40,6 +40,27 @@ AreaLightSampler::AreaLightSampler(const AreaLight& light, const EmbreeScene& ge
         low = high;
     }
     area_ = static_cast<float>(total);
+    // Selection bounds: area-weighted centroid and normal, the farthest vertex, the widest normal.
+    glm::dvec3 c(0.0), axis(0.0);
+    for (std::size_t i = 0; i < tris_.size(); ++i) {
+        const Tri& t = tris_[i];
+        c += areas[i] * (glm::dvec3(t.v0) + (glm::dvec3(t.e1) + glm::dvec3(t.e2)) / 3.0);
+        axis += areas[i] * glm::dvec3(t.normal);
+    }
+    centroid_ = glm::vec3(c / total);
+    double r = 0.0;
+    for (const Tri& t : tris_)
+        for (const glm::vec3& v : {t.v0, t.v0 + t.e1, t.v0 + t.e2})
+            r = std::max(r, glm::length(glm::dvec3(v) - glm::dvec3(centroid_)));
+    boundRadius_ = static_cast<float>(r * 1.001 + 1e-6 * vertexScale_);  // float slack: stay a bound
+    const double axisLength = glm::length(axis);
+    if (axisLength > 1e-6 * total) {
+        normalAxis_ = glm::vec3(axis / axisLength);
+        double cone = 0.0;
+        for (const Tri& t : tris_)
+            cone = std::max(cone, std::acos(std::clamp(glm::dot(glm::dvec3(t.normal), axis / axisLength), -1.0, 1.0)));
+        normalCone_ = static_cast<float>(std::min(cone + 1e-3, 3.14159265358979));
+    }
     if (light.area > 0.0f && std::abs(light.area - area_) > 1e-3f * area_)
         spdlog::warn("area light '{}': declared area {} but its triangles cover {}; using the latter", light.name,
                      light.area, area_);
@@ -67,6 +88,9 @@ LightSet buildLights(const Scene& scene, const EmbreeScene& geometry) {
     const auto lum = [](const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
     std::vector<double> power;
     for (const PointLightSource& p : set.points) power.push_back((p.lobe ? 1.0 : 4.0) * lum(p.intensity));
+    const auto addLuminance = [&](const glm::vec3& c) { set.luminance.push_back(static_cast<float>(std::max(lum(c), 0.0))); };
+    for (const PointLightSource& p : set.points) addLuminance(p.intensity);
+    for (const AreaLightSampler& a : set.areas) addLuminance(a.radiance());
     for (const AreaLightSampler& a : set.areas) power.push_back(static_cast<double>(a.area()) * lum(a.radiance()));
     double total = 0.0;
     for (double& w : power) total += (w = std::max(w * 3.14159265358979, 0.0));
@@ -85,6 +109,49 @@ LightSet buildLights(const Scene& scene, const EmbreeScene& geometry) {
             for (std::uint32_t id : kept[k]->triangles) set.areaOfTriangle[id] = static_cast<std::int32_t>(k);
     }
     return set;
+}
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+// cos(max(0, alpha - slack)) for cos(alpha) = cosAlpha, clamped at 0: the largest cosine any
+// direction within `slack` radians of the given one can reach.
+float cosWithin(float cosAlpha, float slack) {
+    const float alpha = std::acos(std::clamp(cosAlpha, -1.0f, 1.0f));
+    return alpha <= slack ? 1.0f : std::max(0.0f, std::cos(alpha - slack));
+}
+}  // namespace
+
+float LightSet::contribution(std::size_t l, const glm::vec3& x, const glm::vec3& n) const {
+    const float lum = luminance[l];
+    if (!(lum > 0.0f)) return 0.0f;  // black: contributes nothing
+    if (l < points.size()) {
+        // Exact, with the estimator's own tests, so 0 here means 0 there.
+        const PointLightSource& p = points[l];
+        const glm::vec3 w = p.position - x;
+        const float d2 = glm::dot(w, w);
+        if (!(d2 > 0.0f)) return 0.0f;
+        const glm::vec3 dir = w * (1.0f / std::sqrt(d2));
+        const float cosSurface = glm::dot(n, dir);
+        const float lobe = p.lobe ? glm::dot(p.normal, -dir) : 1.0f;
+        if (cosSurface <= 0.0f || lobe <= 0.0f) return 0.0f;
+        const float e = lum * lobe * cosSurface / d2;
+        return std::isfinite(e) ? e : lum;
+    }
+    const AreaLightSampler& a = areas[l - points.size()];
+    const float cap = kPi * lum;  // irradiance from a Lambertian emitter never exceeds pi L
+    const glm::vec3 w = a.centroid() - x;
+    const float d2 = glm::dot(w, w);
+    const float d = std::sqrt(d2);
+    if (!(d > 1e-20f)) return cap;  // at the centroid: no direction to bound with
+    const glm::vec3 dir = w * (1.0f / d);
+    // Directions to the light's points lie within asin(r / d) of the centroid's (all directions
+    // once inside the bounding sphere); its normals lie within the normal cone of the axis.
+    const float spread = a.boundRadius() >= d ? 0.5f * kPi : std::asin(a.boundRadius() / d);
+    const float cosReceiver = cosWithin(glm::dot(n, dir), spread);
+    const float cosLight = cosWithin(-glm::dot(a.normalAxis(), dir), spread + a.normalCone());
+    // Far field: L A cos cos' / d^2 with the bounded cosines; near field: the cap.
+    const float e = std::min(cap, lum * a.area() * cosReceiver * cosLight / d2);
+    return std::isfinite(e) ? e : cap;
 }
 
 }  // namespace aamap

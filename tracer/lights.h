@@ -32,6 +32,12 @@ public:
     // Max |coordinate| of its vertices: float error scale of a sampled point (see ray_offset.h).
     float vertexScale() const { return vertexScale_; }
     bool empty() const { return tris_.empty(); }
+    // Bounds for per-hit light selection: every point of the light lies within boundRadius() of
+    // centroid(), and every triangle normal within normalCone() radians of normalAxis().
+    const glm::vec3& centroid() const { return centroid_; }
+    float boundRadius() const { return boundRadius_; }
+    const glm::vec3& normalAxis() const { return normalAxis_; }
+    float normalCone() const { return normalCone_; }
 
     // A point distributed uniformly by area over the light; u in [0,1)^2. Inline: it runs once
     // per light sample.
@@ -64,6 +70,9 @@ private:
     glm::vec3 radiance_{0.0f};
     float area_ = 0.0f;
     float vertexScale_ = 0.0f;
+    glm::vec3 centroid_{0.0f}, normalAxis_{0.0f, 0.0f, 1.0f};
+    float boundRadius_ = 0.0f;
+    float normalCone_ = 3.14159265f;  // pi: no useful cone
     std::vector<Tri> tris_;
     std::vector<float> cdfs_;  // Tri::cdf of each triangle, for the binary search; the last is exactly 1
 };
@@ -87,6 +96,17 @@ struct LightSet {
     static constexpr std::size_t kFewLights = 8;
     std::size_t count() const { return points.size() + areas.size(); }
     bool many() const { return count() > kFewLights; }
+    // Per-hit (contribution) selection builds its CDF in a stack array of this many entries, so
+    // the hot path never allocates; scenes with more lights fall back to the global power CDF.
+    static constexpr std::size_t kMaxPerHitLights = 64;
+    bool perHitSelectable() const { return count() <= kMaxPerHitLights; }
+
+    // Importance of light l at receiver x with unit shading normal n: its unoccluded irradiance
+    // (luminance), estimated from the light's bounding sphere and normal cone. Conservative where
+    // it matters for bias: 0 only if no point of the light can reach x from above n (then the
+    // estimator's contribution is 0 too); at most pi L, a Lambertian emitter's irradiance cap.
+    float contribution(std::size_t l, const glm::vec3& x, const glm::vec3& n) const;
+    std::vector<float> luminance;  // per light: of the intensity (points) or radiance (areas)
 
     // Power-proportional selection over all lights: cdf.back() == 1, pdf[l] = P(l).
     std::vector<float> selectCdf, selectPdf;
@@ -106,6 +126,16 @@ struct LightSet {
         return i;
     }
 };
+
+// The entry holding u in [0,1) on cdf[0..n) (cdf[n-1] == 1), u rescaled within it as select().
+inline std::size_t selectOnCdf(const float* cdf, std::size_t n, float& u) {
+    std::size_t i = static_cast<std::size_t>(std::upper_bound(cdf, cdf + n, u) - cdf);
+    i = std::min(i, n - 1);
+    const float low = i == 0 ? 0.0f : cdf[i - 1];
+    const float width = cdf[i] - low;
+    u = width > 0.0f ? std::min(std::max((u - low) / width, 0.0f), 0x1.fffffep-1f) : 0.0f;
+    return i;
+}
 
 LightSet buildLights(const Scene& scene, const EmbreeScene& geometry);
 

@@ -18,6 +18,11 @@ namespace aamap {
 enum class ShadingMode { Direct, Path, Cache };
 const char* toString(ShadingMode mode);
 
+// Direct/Cache with more than LightSet::kFewLights lights: how each shadow sample picks its light.
+// Power: the global power CDF (the pre-existing behaviour, kept for comparison). Contribution: a
+// per-hit CDF over each light's estimated unoccluded contribution there (docs/tracer.md).
+enum class LightSelection { Power, Contribution };
+
 struct ShadingSettings {
     int areaLightSamples = 16;  // stratified shadow-ray samples per area light per hit (rounded to a square)
     ShadingMode mode = ShadingMode::Direct;
@@ -32,6 +37,7 @@ struct ShadingSettings {
     // (at least a 32 x 32 grid, or the image size if smaller). docs/irradiance-cache.md, "Wiring".
     IrradianceCacheSettings cache;
     int cacheGridStep = 4;
+    LightSelection lightSelection = LightSelection::Contribution;  // many lights only (see above)
 };
 
 struct RayCounts {
