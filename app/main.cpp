@@ -1,5 +1,6 @@
 // The `aamap` command line. Results go to files; stderr carries logs and, on failure, one
 // "aamap: error: ..." line. Exit codes: 0 ok, 1 environment, 2 bad input, 3 validation messages.
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -8,11 +9,14 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "aamap/git_revision.h"
+#include "app/snapshot_command.h"
+#include "app/view_command.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "engine/vk/context.h"
@@ -31,7 +35,8 @@ const char* const kRunFooter = R"(CONFIG is a YAML experiment (configs/cornell.y
 docs/config.md). Paths in it are relative to the config file. Keys:
   scene: builtin:cornell | path to .obj      view: path to a Radiance .vf, or null (scene's view)
   view_index: 0                              seed: 1          threads: 0 (all cores)
-  lights: [{type: point, name, position: [x,y,z], intensity: [r,g,b] W/sr, normal: [x,y,z]}]
+  light_file: lights.yaml (docs/lights.md)  lights: [{type: point|spot|quad|disk, name, position: [x,y,z],
+            intensity|radiance|power: [r,g,b], normal, direction, inner_angle, outer_angle, size, radius}]
   image: {width: 512, height: 512, exposure: 1.0}   (the view's aspect ratio fits inside)
   snapshot: {scale: 1.5, area_light_samples: 5, blur_radius: 1, noise_floor: 0.02, gain: 1.0}
   shading: {area_light_samples: 16, mode: direct|path|cache, max_depth: 5, russian_roulette: true,
@@ -88,6 +93,24 @@ int fail(int code, const std::string& message) {
     return code;
 }
 
+// SIGINT/SIGTERM during a run: every finished render is already committed atomically to
+// OUTDIR/cache and no output is ever half-written under its final name, so stopping at once is
+// clean. Say so and how to resume (write(2) and _Exit only: async-signal-safe).
+std::string interruptMessage;
+
+void onInterrupt(int) {
+    const ssize_t written = ::write(STDERR_FILENO, interruptMessage.data(), interruptMessage.size());
+    (void)written;
+    std::_Exit(130);
+}
+
+void stopCleanlyOnInterrupt(const std::filesystem::path& out) {
+    interruptMessage = fmt::format("\naamap: interrupted; finished renders are kept in {}; run the same command "
+                                   "again to resume\n", (out / "cache").string());
+    std::signal(SIGINT, onInterrupt);
+    std::signal(SIGTERM, onInterrupt);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -107,6 +130,9 @@ int main(int argc, char** argv) {
     CLI::App* report = app.add_subcommand("report", "Rebuild report.html, report.md, results.csv and the plots from OUTDIR/results.json");
     std::string reportDir;
     report->add_option("OUTDIR", reportDir, "An experiment's output folder")->required();
+    aamap::app::SnapshotOptions snapshotOptions;
+    CLI::App* snapshot = aamap::app::addSnapshotCommand(app, snapshotOptions);
+    const std::unique_ptr<aamap::ViewCommand> view = aamap::addViewCommand(app);
     std::string configPath, outDir, device = envString("AAMAP_DEVICE");
     std::vector<std::string> overrides;
     bool validation = envFlag("AAMAP_VALIDATION"), listDevices = false, noPlots = false;
@@ -148,6 +174,16 @@ int main(int argc, char** argv) {
             aamap::writeReport(reportDir, results, true);
             return 0;
         }
+        if (view->command->parsed()) {
+            aamap::runViewCommand(*view);
+            return 0;
+        }
+        if (snapshot->parsed()) {
+            if (aamap::app::runSnapshotCommand(snapshotOptions, validation || snapshotOptions.validation,
+                                               snapshotOptions.device.empty() ? device : snapshotOptions.device) != 0)
+                return fail(kExitValidation, "Vulkan validation messages (see above)");
+            return 0;
+        }
         if (listDevices) {
             const std::vector<std::string> devices = aamap::VulkanContext::listDevices();
             for (std::size_t i = 0; i < devices.size(); ++i) fmt::print("{}: {}\n", i, devices[i]);
@@ -165,6 +201,7 @@ int main(int argc, char** argv) {
         options.gitRevision = AAMAP_GIT_REVISION;
         options.plots = !noPlots;
         spdlog::info("config {} (hash {}), output {}", configPath, config.hash(), out.string());
+        stopCleanlyOnInterrupt(out);
         aamap::runExperiment(config, out, options);
         return 0;
     } catch (const aamap::InputError& e) {

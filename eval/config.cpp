@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "eval/config_sections.h"
+#include "eval/light_list.h"
 #include "eval/strategies.h"
 #include "eval/yaml_reader.h"
 
@@ -28,15 +29,16 @@ std::vector<std::string> leaves() {
         "scene", "view", "view_index", "seed", "threads",
         "image.width", "image.height", "image.exposure",
         "snapshot.scale", "snapshot.area_light_samples", "snapshot.blur_radius", "snapshot.noise_floor",
-        "snapshot.gain", "shading.area_light_samples", "shading.mode", "shading.max_depth",
-        "shading.russian_roulette", "shading.roulette_depth", "shading.max_specular_depth",
-        "lights.#.type", "lights.#.name", "lights.#.position", "lights.#.intensity", "lights.#.normal",
+        "snapshot.gain", "snapshot.map", "shading.area_light_samples", "shading.mode", "shading.max_depth",
+        "shading.russian_roulette", "shading.roulette_depth", "shading.max_specular_depth", "shading.light_selection",
+        "light_file",
         "renders.#.name", "renders.#.series", "renders.#.strategy", "renders.#.rpp",
         "reference.type", "reference.rpp", "reference.mode", "reference.path",
         "metrics.flip", "metrics.flip_hdr", "metrics.flip_threshold", "metrics.mse_threshold", "metrics.ppd",
         "metrics.map_quality", "report.plots",
     };
     for (const std::string& p : allStrategyParamNames()) l.push_back("renders.#." + p);
+    for (const std::string& k : lightKeys()) l.push_back("lights.#." + k);
     return l;
 }
 constexpr int kMaxSide = 16384;
@@ -46,30 +48,11 @@ SourceLocation locationOf(const yaml::Context& ctx, MapReader& map, const std::s
     return ctx.locate(n.IsDefined() ? n : map.self(), map.childPath(key));
 }
 
-LightConfig readLight(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, std::size_t index) {
-    MapReader m(ctx, node, path, {"type", "name", "position", "intensity", "normal"});
-    LightConfig light;
-    m.getString("type", light.type);
-    if (light.type != "point")
-        ctx.fail(m.node("type"), m.childPath("type"),
-                 fmt::format("{}: unknown light type '{}' (supported: point)", m.childPath("type"), light.type));
-    light.name = fmt::format("light{}", index);
-    m.getString("name", light.name);
-    m.require("position");
-    m.require("intensity");
-    const double big = 1e30;
-    m.getVec3("position", light.position, -big, big);
-    m.getVec3("intensity", light.intensity, 0.0, big);
-    m.getVec3("normal", light.normal, -big, big);
-    m.finish();
-    return light;
-}
-
 ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     if (root.IsNull() || !root.IsDefined())
         throw InputError(ctx.file(), 1, 1, "the config is empty; it needs at least 'scene' and 'renders'");
     MapReader top(ctx, root, "",
-                  {"scene", "view", "view_index", "lights", "image", "seed", "threads", "snapshot", "shading",
+                  {"scene", "view", "view_index", "light_file", "lights", "image", "seed", "threads", "snapshot", "shading",
                    "renders", "reference", "metrics", "report"});
     ExperimentConfig c;
     c.file = ctx.file();
@@ -88,11 +71,20 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     top.getUInt64("seed", c.seed);
     top.getInt("threads", c.threads, 0, 4096);
 
-    if (const YAML::Node lights = top.node("lights"); lights.IsDefined() && !lights.IsNull()) {
-        if (!lights.IsSequence()) ctx.fail(lights, "lights", fmt::format("lights: expected a list, found {}", yaml::describe(lights)));
-        for (std::size_t i = 0; i < lights.size(); ++i)
-            c.lights.push_back(readLight(ctx, lights[i], fmt::format("lights.{}", i), i));
+    // One schema and parser for the light file and the inline list (eval/light_list.h).
+    if (top.has("light_file") && !top.node("light_file").IsNull()) {
+        std::string lightFile;
+        top.getString("light_file", lightFile);
+        c.lightFile = lightFile;
+        try {
+            c.lights = loadLightFile(*c.resolvedLightFile());
+        } catch (const InputError& e) {
+            if (e.line() > 0) throw;  // inside the light file: its own file:line:col
+            const SourceLocation at = locationOf(ctx, top, "light_file");
+            throw InputError(at.file, at.line, at.column, fmt::format("light_file '{}': {}", lightFile, e.what()));
+        }
     }
+    for (LightSpec& l : readLightList(ctx, top.node("lights"), "lights")) c.lights.push_back(std::move(l));
 
     MapReader image(ctx, top.node("image"), "image", {"width", "height", "exposure"});
     image.getInt("width", c.image.width, 1, kMaxSide);
@@ -101,17 +93,19 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     image.finish();
 
     MapReader snap(ctx, top.node("snapshot"), "snapshot",
-                   {"scale", "area_light_samples", "blur_radius", "noise_floor", "gain"});
+                   {"scale", "area_light_samples", "blur_radius", "noise_floor", "gain", "map"});
     snap.getDouble("scale", c.snapshot.scale, 1.0, 4.0);
     snap.getInt("area_light_samples", c.snapshot.areaLightSamples, 1, 64);
     snap.getInt("blur_radius", c.snapshot.blurRadius, 0, 16);
     snap.getDouble("noise_floor", c.snapshot.noiseFloor, 0.0, 1.0);
     snap.getDouble("gain", c.snapshot.gain, 0.0, 1e6, true);
+    snap.getString("map", c.snapshot.map);
+    detail::checkOneOf(ctx, snap.node("map"), "snapshot.map", c.snapshot.map, {"luminance", "geometric", "combined"});
     snap.finish();
 
     MapReader shading(ctx, top.node("shading"), "shading",
                       {"area_light_samples", "mode", "max_depth", "russian_roulette", "roulette_depth",
-                       "max_specular_depth"});
+                       "max_specular_depth", "light_selection"});
     shading.getInt("area_light_samples", c.shading.areaLightSamples, 1, 4096);
     shading.getString("mode", c.shading.mode);
     detail::checkShadingMode(ctx, shading.node("mode"), "shading.mode", c.shading.mode);
@@ -119,6 +113,9 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.shading.russianRoulette = detail::readBool(ctx, shading, "russian_roulette", c.shading.russianRoulette);
     shading.getInt("roulette_depth", c.shading.rouletteDepth, 1, 1024);
     shading.getInt("max_specular_depth", c.shading.maxSpecularDepth, 0, 1024);
+    shading.getString("light_selection", c.shading.lightSelection);
+    detail::checkOneOf(ctx, shading.node("light_selection"), "shading.light_selection", c.shading.lightSelection,
+                       {"contribution", "power"});
     shading.finish();
 
     c.renders = detail::readRenders(ctx, top.node("renders"));
@@ -163,6 +160,12 @@ std::string ExperimentConfig::resolvedScene() const {
     return (p.is_absolute() || file.empty() ? p : file.parent_path() / p).lexically_normal().string();
 }
 
+std::optional<std::filesystem::path> ExperimentConfig::resolvedLightFile() const {
+    if (!lightFile) return std::nullopt;
+    const std::filesystem::path p(*lightFile);
+    return (p.is_absolute() || file.empty() ? p : file.parent_path() / p).lexically_normal();
+}
+
 std::optional<std::filesystem::path> ExperimentConfig::resolvedView() const {
     if (!view) return std::nullopt;
     const std::filesystem::path p(*view);
@@ -184,16 +187,16 @@ Json paramsJson(const RenderConfig& r) {
 
 Json lightsJson(const ExperimentConfig& c) {
     Json lights = Json::array();
-    for (const LightConfig& l : c.lights)
-        lights.push_back({{"type", l.type}, {"name", l.name}, {"position", l.position},
-                          {"intensity", l.intensity}, {"normal", l.normal}});
+    for (const LightConfig& l : c.lights) lights.push_back(lightJson(l));
     return lights;
 }
 
 Json snapshotJson(const ExperimentConfig& c) {
-    return {{"scale", c.snapshot.scale}, {"area_light_samples", c.snapshot.areaLightSamples},
-            {"blur_radius", c.snapshot.blurRadius}, {"noise_floor", c.snapshot.noiseFloor},
-            {"gain", c.snapshot.gain}};
+    Json j = {{"scale", c.snapshot.scale}, {"area_light_samples", c.snapshot.areaLightSamples},
+              {"blur_radius", c.snapshot.blurRadius}, {"noise_floor", c.snapshot.noiseFloor},
+              {"gain", c.snapshot.gain}};
+    if (c.snapshot.map != "luminance") j["map"] = c.snapshot.map;  // keeps the keys of luminance runs
+    return j;
 }
 
 // What every image of the experiment depends on, with paths resolved.
@@ -201,7 +204,7 @@ Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = ""
     const ShadingConfig& s = c.shading;
     return {{"area_light_samples", s.areaLightSamples}, {"mode", modeOverride.empty() ? s.mode : modeOverride},
             {"max_depth", s.maxDepth}, {"russian_roulette", s.russianRoulette}, {"roulette_depth", s.rouletteDepth},
-            {"max_specular_depth", s.maxSpecularDepth}};
+            {"max_specular_depth", s.maxSpecularDepth}, {"light_selection", s.lightSelection}};
 }
 
 Json sceneJson(const ExperimentConfig& c) {
@@ -251,6 +254,7 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     j["scene"] = c.scene;
     j["view"] = c.view ? Json(*c.view) : Json(nullptr);
     j["view_index"] = c.viewIndex;
+    if (c.lightFile) j["light_file"] = *c.lightFile;  // only when set: older configs keep their hash
     j["lights"] = lightsJson(c);
     j["image"] = {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}};
     j["seed"] = c.seed;

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "scene/light_file.h"
+
 namespace aamap {
 
 // Where a value came from, for errors raised after parsing (a view index past the end, say).
@@ -18,13 +20,8 @@ struct SourceLocation {
     int line = 0, column = 0;    // 1-based; 0 when unknown
 };
 
-struct LightConfig {
-    std::string type = "point";
-    std::string name;
-    std::array<double, 3> position{0, 0, 0};
-    std::array<double, 3> intensity{0, 0, 0};  // W/sr per channel
-    std::array<double, 3> normal{0, 0, 0};     // zero: isotropic; else a cosine lobe around it
-};
+// One light of `light_file` or `lights` (schema: scene/light_file.h, docs/lights.md).
+using LightConfig = LightSpec;
 
 struct ImageConfig {
     int width = 512, height = 512;  // the bounding box; the view's aspect ratio decides the fit
@@ -37,6 +34,7 @@ struct SnapshotConfig {
     int blurRadius = 1;
     double noiseFloor = 0.02;
     double gain = 1.0;
+    std::string map = "luminance";  // luminance | geometric | combined (passes/geometric_aamap.h)
 };
 
 struct ShadingConfig {
@@ -46,6 +44,7 @@ struct ShadingConfig {
     bool russianRoulette = true;  // path
     int rouletteDepth = 5;        // path: roulette from this segment on
     int maxSpecularDepth = 8;     // direct/cache: mirror and glass bounces
+    std::string lightSelection = "contribution";  // contribution | power: which light a shadow ray goes to
 };
 
 // One concrete render, after sweep expansion (a renders[] entry with list values becomes the
@@ -90,7 +89,8 @@ struct ExperimentConfig {
     std::string scene;           // as written: "builtin:NAME" or a path relative to the config file
     std::optional<std::string> view;  // as written: a .vf path relative to the config file
     int viewIndex = 0;
-    std::vector<LightConfig> lights;
+    std::optional<std::string> lightFile;  // as written: a light file relative to the config file
+    std::vector<LightConfig> lights;       // the light file's lights, then the inline `lights` list
     ImageConfig image;
     std::uint64_t seed = 1;
     int threads = 0;  // 0: all hardware threads
@@ -110,6 +110,7 @@ struct ExperimentConfig {
     // config file's folder.
     std::string resolvedScene() const;
     std::optional<std::filesystem::path> resolvedView() const;
+    std::optional<std::filesystem::path> resolvedLightFile() const;
 
     // Every field with defaults filled in, keys in schema order, as JSON text (compact).
     std::string canonicalJson() const;

@@ -198,9 +198,17 @@ bool readBool(const yaml::Context& ctx, MapReader& m, const std::string& key, bo
     return v;
 }
 
+void checkOneOf(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& value,
+                std::initializer_list<const char*> allowed) {
+    for (const char* a : allowed)
+        if (value == a) return;
+    std::string list;
+    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    ctx.fail(node, path, fmt::format("{}: unknown value '{}' (supported: {})", path, value, list));
+}
+
 void checkShadingMode(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& mode) {
-    if (mode != "direct" && mode != "path" && mode != "cache")
-        ctx.fail(node, path, fmt::format("{}: unknown shading mode '{}' (supported: direct, path, cache)", path, mode));
+    checkOneOf(ctx, node, path, mode, {"direct", "path", "cache"});
 }
 
 std::string lower(std::string s) {

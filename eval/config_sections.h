@@ -1,4 +1,5 @@
 #pragma once
+#include <initializer_list>
 // Readers for the config sections that grew their own rules: renders (with sweeps), reference,
 // metrics, report. Internal to eval/config.cpp.
 #include <string>
@@ -21,6 +22,9 @@ ReportConfig readReport(const yaml::Context& ctx, const YAML::Node& node);
 std::string lower(std::string s);
 bool readBool(const yaml::Context& ctx, yaml::MapReader& m, const std::string& key, bool fallback);
 // direct | path | cache
+// Fails naming the node's file:line:col unless value is one of `allowed`.
+void checkOneOf(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& value,
+                std::initializer_list<const char*> allowed);
 void checkShadingMode(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& mode);
 
 }  // namespace aamap::detail

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -15,12 +16,15 @@
 #include "core/image_io.h"
 #include "core/log.h"
 #include "engine/vk/context.h"
+#include "passes/cpu_aamap.h"
 #include "passes/snapshot.h"
 #include "scene/camera.h"
+#include "scene/light_file.h"
 #include "scene/load_scene.h"
 #include "scene/view_file.h"
 #include "eval/runner.h"
 #include "eval/strategy_settings.h"
+#include "tracer/block_sums.h"
 #include "tracer/tracer.h"
 
 namespace aamap {
@@ -73,21 +77,8 @@ View pickView(const ExperimentConfig& config, const Scene& scene, std::string& l
     return view;
 }
 
-glm::vec3 toVec3(const std::array<double, 3>& a) {
-    return {static_cast<float>(a[0]), static_cast<float>(a[1]), static_cast<float>(a[2])};
-}
-
-void addConfigLights(const ExperimentConfig& config, Scene& scene) {
-    for (const LightConfig& l : config.lights) {
-        PointLight light;
-        light.name = l.name;
-        light.position = toVec3(l.position);
-        light.intensity = toVec3(l.intensity);
-        const glm::vec3 n = toVec3(l.normal);
-        light.normal = glm::length(n) > 0.0f ? glm::normalize(n) : glm::vec3(0.0f);
-        scene.pointLights.push_back(light);
-    }
-}
+// The light file's and the inline list's lights (quads and disks become emissive geometry).
+void addConfigLights(const ExperimentConfig& config, Scene& scene) { addLights(scene, config.lights); }
 
 SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
     SnapshotSettings s;
@@ -97,7 +88,11 @@ SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
     s.filter.blurRadius = c.snapshot.blurRadius;
     s.filter.noiseFloor = static_cast<float>(c.snapshot.noiseFloor);
     s.filter.gain = static_cast<float>(c.snapshot.gain);
+    passes::parse(c.snapshot.map, s.map);  // validated by the config reader
     s.keepDebugImages = true;
+    // The GPU block-sum pass only when a render subsamples (otherwise the graph culls it).
+    s.blockSums = std::any_of(c.renders.begin(), c.renders.end(),
+                              [](const RenderConfig& r) { return r.strategy == "aamap-subsample"; });
     return s;
 }
 
@@ -108,13 +103,14 @@ public:
 
     SceneInfo prepare() override {
         spdlog::info("loading scene {}", config_.resolvedScene());
-        const auto t0 = Clock::now();
-        scene_ = loadSceneFor(config_);
-        addConfigLights(config_, scene_);
+        PreparedScene prepared = prepareScene(config_);
+        scene_ = std::move(prepared.scene);
+        view_ = prepared.view;
         SceneInfo info;
-        info.loadSeconds = secondsSince(t0);
-        view_ = pickView(config_, scene_, info.viewLabel);
-        std::tie(info.width, info.height) = fitResolution(view_, config_.image.width, config_.image.height);
+        info.loadSeconds = prepared.loadSeconds;
+        info.viewLabel = prepared.viewLabel;
+        info.width = prepared.width;
+        info.height = prepared.height;
         info.scene = config_.resolvedScene();
         spdlog::info("scene '{}': {} triangles, {} area + {} point lights; view {} at {}x{} ({:.2f} s)", scene_.name,
                      scene_.mesh.triangles.size(), scene_.areaLights.size(), scene_.pointLights.size(),
@@ -127,7 +123,13 @@ public:
     }
 
     SnapshotOutput snapshot() override {
-        auto context = std::make_unique<VulkanContext>(ContextOptions{options_.validation, options_.device});
+        std::unique_ptr<VulkanContext> context;
+        try {
+            context = std::make_unique<VulkanContext>(ContextOptions{options_.validation, options_.device});
+        } catch (const EnvironmentError& e) {
+            spdlog::warn("no usable Vulkan device ({}); building the aamap on the CPU instead", e.what());
+            return cpuSnapshot(e.what());
+        }
         if (options_.validation && !context->validationEnabled())
             throw EnvironmentError("validation was requested but VK_LAYER_KHRONOS_validation is not available");
         SnapshotOutput out;
@@ -139,6 +141,9 @@ public:
             out.aamap = std::move(r.aamap);
             out.snapshot = std::move(r.snapshot);
             out.laplacian = std::move(r.laplacian);
+            if (!r.blockSums.empty())
+                gpuBlockSums_ = BlockSums::fromTables(r.blockSums.width, r.blockSums.height,
+                                                      std::move(r.blockSums.sums), std::move(r.blockSums.counts));
             out.totalSeconds = r.totalSeconds;
             out.readbackSeconds = r.readbackSeconds;
             for (const PassTiming& p : r.passTimes) out.passesGpuMs.emplace_back(p.pass, p.gpuMilliseconds);
@@ -150,17 +155,50 @@ public:
         return out;
     }
 
-    TraceOutput trace(const RenderConfig& render, const ImageGrey* aamap,
-                      const std::function<void(int, int)>& progress) override {
+    // No Vulkan device: the tracer renders the snapshot (1 ray per pixel, direct light) and the CPU
+    // filter chain -- the GPU chain's reference -- builds the aamap. results.json records the
+    // path in vulkan_device ("cpu-fallback: <why>"). The luminance chain only, whatever
+    // snapshot.map asks for.
+    SnapshotOutput cpuSnapshot(const std::string& reason) {
+        const auto t0 = Clock::now();
+        const SnapshotSettings settings = snapshotSettings(config_);
         TraceSettings ts;
-        ts.width = info_.width;
-        ts.height = info_.height;
+        ts.width = std::max(1, static_cast<int>(std::lround(info_.width * settings.scale)));
+        ts.height = std::max(1, static_cast<int>(std::lround(info_.height * settings.scale)));
         ts.seed = config_.seed;
         ts.threads = options_.threads >= 0 ? options_.threads : config_.threads;
-        ts.shading = toShadingSettings(config_, render);
+        ts.shading.areaLightSamples = std::max(1, settings.areaLightSamples);
+        StrategySettings uniform;
+        uniform.kind = StrategyKind::Uniform;
+        uniform.strata = 1;
+        SnapshotOutput out;
+        out.snapshot = tracer_->render(view_, ts, uniform).image;
+        cpu::AamapImages maps = cpu::buildAamap(out.snapshot, info_.width, info_.height, settings.filter);
+        out.aamap = std::move(maps.aamap);
+        out.laplacian = std::move(maps.laplacian);
+        out.device = "cpu-fallback: " + reason.substr(0, reason.find('\n'));
+        out.totalSeconds = secondsSince(t0);
+        spdlog::info("snapshot on the CPU: {:.1f} ms", out.totalSeconds * 1e3);
+        return out;
+    }
+
+    TraceOutput trace(const RenderConfig& render, const ImageGrey* aamap,
+                      const std::function<void(int, int)>& progress) override {
+        TraceSettings ts = traceSettingsFor(config_, render, info_.width, info_.height, options_.threads);
         ts.onTileDone = progress;
-        const TraceResult tr = tracer_->render(view_, ts, toStrategySettings(render, aamap));
+        StrategySettings ss = toStrategySettings(render, aamap);
+        std::string blockSums;
+        if (ss.kind == StrategyKind::AamapSubsample) {
+            // The Snapshot's GPU tables when this run rendered it; the CPU fallback when the
+            // snapshot came from the cache (both give the same plan: tests/gpu/test_gpu_block_sums).
+            const bool gpu = gpuBlockSums_ && aamap != nullptr && gpuBlockSums_->width() == aamap->width() &&
+                             gpuBlockSums_->height() == aamap->height();
+            if (gpu) ss.blockSums = &*gpuBlockSums_;
+            blockSums = gpu ? "gpu" : "cpu";
+        }
+        const TraceResult tr = tracer_->render(view_, ts, ss);
         TraceOutput out;
+        out.blockSums = blockSums;
         out.image = tr.image;
         out.primaryRays = tr.primaryRays;
         out.rays = {tr.rays.primary, tr.rays.shadow, tr.rays.other};
@@ -176,9 +214,34 @@ private:
     View view_;
     SceneInfo info_;
     std::unique_ptr<Tracer> tracer_;
+    std::optional<BlockSums> gpuBlockSums_;  // from this run's Snapshot, if it built them
 };
 
 }  // namespace
+
+PreparedScene prepareScene(const ExperimentConfig& config) {
+    const auto t0 = Clock::now();
+    PreparedScene p;
+    p.scene = loadSceneFor(config);
+    addConfigLights(config, p.scene);
+    p.loadSeconds = secondsSince(t0);
+    p.view = pickView(config, p.scene, p.viewLabel);
+    std::tie(p.width, p.height) = fitResolution(p.view, config.image.width, config.image.height);
+    return p;
+}
+
+SnapshotSettings snapshotSettingsFor(const ExperimentConfig& config) { return snapshotSettings(config); }
+
+TraceSettings traceSettingsFor(const ExperimentConfig& config, const RenderConfig& render, int width, int height,
+                               int threads) {
+    TraceSettings ts;
+    ts.width = width;
+    ts.height = height;
+    ts.seed = config.seed;
+    ts.threads = threads >= 0 ? threads : config.threads;
+    ts.shading = toShadingSettings(config, render);
+    return ts;
+}
 
 Results runExperiment(const ExperimentConfig& config, const std::filesystem::path& outDir, const RunOptions& options) {
     TracerBackend backend(config, options);

@@ -7,6 +7,9 @@
 
 #include "eval/config.h"
 #include "eval/results.h"
+#include "passes/snapshot.h"
+#include "scene/scene.h"
+#include "tracer/tracer.h"
 
 namespace aamap {
 
@@ -30,5 +33,21 @@ public:
 // ValidationFailure. Every render is committed to OUTDIR/cache as it finishes, so a killed run
 // resumes where it stopped.
 Results runExperiment(const ExperimentConfig& config, const std::filesystem::path& outDir, const RunOptions& options);
+
+// The setup `aamap run` and `aamap view` share, so both render exactly the same thing: the scene
+// with the config's lights, the chosen view, and the render size that view fits into image.*.
+struct PreparedScene {
+    Scene scene;
+    View view;
+    std::string viewLabel;
+    int width = 0, height = 0;
+    double loadSeconds = 0;
+};
+PreparedScene prepareScene(const ExperimentConfig& config);  // throws InputError naming the config line
+// snapshot.* (and image.exposure for the greyscale) as the Snapshot's settings.
+SnapshotSettings snapshotSettingsFor(const ExperimentConfig& config);
+// One render's tracer settings at width x height; threads >= 0 overrides the config's.
+TraceSettings traceSettingsFor(const ExperimentConfig& config, const RenderConfig& render, int width, int height,
+                               int threads);
 
 }  // namespace aamap

@@ -162,6 +162,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
                     {"shading", Json::parse(renderKeyJson(c_, job.render))["shading"]}};
     const Json params = Json::parse(renderKeyJson(c_, job.render))["params"];
     for (const auto& [k, v] : params.items()) r.parameters[k] = v;
+    if (!out.blockSums.empty()) r.parameters["block_sums"] = out.blockSums;
     r.maxRaysPerPixel = job.render.rpp;
     r.times.load = s.loadSeconds;
     r.times.bvhBuild = s.bvhSeconds;
@@ -216,6 +217,14 @@ void Runner::writeNamedOutputs(const std::string& name, const Traced& t, int rpp
     writePng(out_ / (name + ".png"), toneMap(t.image, static_cast<float>(c_.image.exposure)));
     writePng(out_ / (name + ".rpp.png"), falseColour(t.rays, rpp));
     outputs = {name + ".exr", name + ".png", name + ".rpp.png"};
+    if (t.record.strategy == "aamap-subsample" || t.record.strategy == "rpict") {
+        // The paper's Figure 5: traced pixels white, interpolated ones (no primary ray) black.
+        ImageGrey mask(t.rays.width(), t.rays.height());
+        std::transform(t.rays.pixels().begin(), t.rays.pixels().end(), mask.pixels().begin(),
+                       [](std::uint16_t v) { return v > 0 ? 1.0f : 0.0f; });
+        writePng(out_ / (name + ".traced.png"), quantise(mask));
+        outputs.push_back(name + ".traced.png");
+    }
 }
 
 Results Runner::run() {

@@ -38,6 +38,7 @@ struct TraceOutput {
     RayTotals rays;
     std::uint64_t nonFiniteSamples = 0;
     double seconds = 0;
+    std::string blockSums;  // aamap-subsample: where its block sums came from, "gpu" or "cpu"
 };
 
 class RenderBackend {

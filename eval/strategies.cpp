@@ -38,6 +38,11 @@ std::vector<StrategyInfo>& table() {
         {"shape-id", false,
          {{"min_samples", true, 1, 1024, 4, "first samples per pixel (rounded down to a square)"}},
          "n x n more samples where the first ones hit different shapes (pbrt-v2)"},
+        {"hybrid", true,
+         {kMapping,
+          {"noise_threshold", false, 0, 1e9, 0.01, "flagged pixels stop adding samples once their error is below it"},
+          {"sample_step", true, 1, 1024, 4, "samples added per round to a flagged pixel"}},
+         "the aamap says where to look (1 ray elsewhere), sample contrast where to stop (beyond the paper)"},
     };
     return t;
 }

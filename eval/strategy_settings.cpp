@@ -42,6 +42,11 @@ StrategySettings toStrategySettings(const RenderConfig& r, const ImageGrey* aama
             s.sampleStep = integer("sample_step");
             break;
         case StrategyKind::ShapeIdAdaptive: s.minSamples = integer("min_samples"); break;
+        case StrategyKind::Hybrid:
+            s.aamap = aamap;
+            s.noiseThreshold = r.param("noise_threshold");
+            s.sampleStep = integer("sample_step");
+            break;
     }
     return s;
 }
@@ -55,6 +60,7 @@ ShadingSettings toShadingSettings(const ExperimentConfig& c, const RenderConfig&
     s.russianRoulette = c.shading.russianRoulette;
     s.rouletteDepth = c.shading.rouletteDepth;
     s.maxSpecularDepth = c.shading.maxSpecularDepth;
+    s.lightSelection = c.shading.lightSelection == "power" ? LightSelection::Power : LightSelection::Contribution;
     return s;
 }
 

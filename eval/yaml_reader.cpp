@@ -143,7 +143,7 @@ void MapReader::finish() const {
     if (!node_.IsMap()) return;
     std::set<std::string> seen;
     for (auto it = node_.begin(); it != node_.end(); ++it) {
-        const YAML::Node& k = it->first;
+        const YAML::Node k = it->first;  // a copy: it-> returns a temporary proxy (ASan: stack-use-after-scope)
         const std::string name = k.IsScalar() ? k.Scalar() : std::string();
         const std::string where = path_.empty() ? "the config" : "'" + path_ + "'";
         if (std::find(keys_.begin(), keys_.end(), name) == keys_.end()) {

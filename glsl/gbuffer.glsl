@@ -1,6 +1,8 @@
 // The Snapshot's shading, included by gbuffer.frag (no shadows) and gbuffer.shadowed.frag
-// (GBUFFER_SHADOWS: per-light visibility from the shadow cube maps). Two variants rather than a
-// branch, so that a scene without lights has no shadow binding to fill.
+// (GBUFFER_SHADOWS: per-light visibility from the shadow cube maps), and by their textured
+// variants gbuffer.textured*.frag (GBUFFER_TEXTURED: atlas lookup and alpha test), and the mirror
+// variants gbuffer.mirror*.frag (GBUFFER_MIRROR: the clip plane of a reflected view). Variants rather
+// than branches, so that a scene without lights or textures has no binding to fill for them.
 //
 // Local illumination as the paper's snapshot: Lambert from point lights (cosine lobes for the
 // point samples of area lights) plus the emission of emissive surfaces, in linear radiance.
@@ -12,8 +14,20 @@
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
-layout(location = 2) flat in vec3 kd;
+layout(location = 2) flat in vec3 vertexKd;
 layout(location = 3) flat in vec3 ke;
+#ifdef GBUFFER_TEXTURED
+// kd times the base-colour texture; alpha-tested materials discard where coverage < threshold.
+#include "gbuffer_texture.glsl"
+layout(location = 4) in vec2 uv;
+layout(location = 5) flat in uvec4 texRect;
+layout(location = 6) flat in vec2 texParams;  // layer, alpha threshold
+#ifdef GBUFFER_SHADOWS
+layout(binding = GBUFFER_BINDING_ATLAS_SHADOWED) uniform texture2DArray atlas;
+#else
+layout(binding = GBUFFER_BINDING_ATLAS_UNSHADOWED) uniform texture2DArray atlas;
+#endif
+#endif
 
 layout(location = 0) out vec4 outColour;
 
@@ -60,7 +74,31 @@ float visibility(uint light, vec3 r, vec3 n) {
 }
 #endif
 
+// scene/lights.h spotFalloff: 1 inside the inner cone, 0 outside the outer, t^2 between with t
+// linear in the cosine (glTF's recommended falloff).
+float spotFalloff(float cosAngle, float cosInner, float cosOuter) {
+    if (cosAngle >= cosInner) return 1.0;
+    if (cosAngle <= cosOuter) return 0.0;
+    const float t = (cosAngle - cosOuter) / (cosInner - cosOuter);
+    return t * t;
+}
+
 void main() {
+#ifdef GBUFFER_MIRROR
+    // Only what lies on the viewer's side of the mirror is seen in it. A discard rather than
+    // gl_ClipDistance: the context does not enable shaderClipDistance; the pixels are the same.
+    if (dot(pc.clipPlane.xyz, worldPosition) < pc.clipPlane.w) discard;
+#endif
+#ifdef GBUFFER_TEXTURED
+    vec3 kd = vertexKd;
+    if (texRect.z > 0u) {
+        const vec4 texel = atlasBilinear(atlas, uv, texRect, texParams.x);
+        if (texel.a < texParams.y) discard;
+        kd *= texel.rgb;
+    }
+#else
+    const vec3 kd = vertexKd;
+#endif
     vec3 n = normalize(worldNormal);
     const vec3 toCamera = pc.cameraPos.xyz - worldPosition;
     const bool front = dot(n, toCamera) >= 0.0;
@@ -74,9 +112,12 @@ void main() {
         if (d2 <= 0.0) continue;
         const vec3 wi = toLight * inversesqrt(d2);
         const float cosSurface = max(dot(n, wi), 0.0);
-        float lobe = 1.0;
+        float lobe = 1.0;  // cosine lobe or spot cone, as the tracer's PointLightSource::angular
         const vec3 axis = lights[i].normal.xyz;
-        if (dot(axis, axis) > 0.0) lobe = max(dot(axis, -wi), 0.0);
+        if (dot(axis, axis) > 0.0) {
+            const vec4 cone = lights[i].cone;
+            lobe = cone.z > 0.0 ? spotFalloff(dot(axis, -wi), cone.x, cone.y) : max(dot(axis, -wi), 0.0);
+        }
         float weight = cosSurface * lobe / d2;
 #ifdef GBUFFER_SHADOWS
         if (weight > 0.0) weight *= visibility(i, -toLight, n);  // no lookups for unlit sides

@@ -1,10 +1,17 @@
 // The aamap filter chain on the CPU, following glsl/shared/aamap_filter.h.
 //
 // Scalar mode is the readable reference: one pixel at a time, every neighbour clamped to the edge.
-// Parallel mode splits rows into TBB blocks. Interior rows (no clamping needed) run
-// register-blocked vector code (8 float lanes with AVX2 where the CPU has it, else 4 with SSE;
-// several vectors at a time): each pixel still sums its taps in the same order (dy, then dx) starting from 0, so both
-// modes give bit-identical results. Borders reuse the scalar per-pixel code.
+// Parallel mode splits rows into TBB bands and computes the same values bit for bit:
+// - Laplacian: L = (sum of the 25 window values) - 25 g(p), summed in double. The window sum of
+//   25 floats is exact in double (53 bits hold 25 floats whose exponents span up to 24 binades),
+//   so L is the exactly rounded value of the shader's difference sum, and a constant image gives
+//   exactly 0. That makes the sum separable: each row's 5-wide sums are computed once and reused
+//   by the 5 output rows that see them (row-sliding, 8 adds per pixel instead of 48). Both modes
+//   add in the same order (dx, then dy), so they agree bit for bit even where a sum is not exact.
+//   The GPU sums 24 float differences and differs by its own rounding (< 5e-6 for inputs in [0,1]).
+// - Box blur: register-blocked vector code over interior rows (8 float lanes with AVX2 where the
+//   CPU has it, else 4 with SSE); each pixel sums its taps in the shader's order (dy, then dx)
+//   from 0, so both modes and the GPU agree bit for bit. Borders reuse the scalar code.
 #include "passes/cpu_aamap.h"
 
 #include <algorithm>
@@ -19,7 +26,6 @@
 
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 namespace aamap::cpu {
@@ -62,19 +68,22 @@ void forRows(int height, Mode mode, Body&& body) {
                       [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
 }
 
-// --- 5x5 Laplacian in difference form --------------------------------------------------------
+// --- 5x5 Laplacian, exactly summed --------------------------------------------------------------
+
+// Sum of the 5 values of row `row` centred on column x (clamped), in dx order.
+inline double rowSum5(const float* row, int w, int x) {
+    double s = static_cast<double>(row[clampIndex(x - 2, w)]);
+    for (int dx = -1; dx <= 2; ++dx) s += static_cast<double>(row[clampIndex(x + dx, w)]);
+    return s;
+}
 
 float laplacianAt(const float* g, int w, int h, int x, int y) {
-    const float centre = g[static_cast<std::size_t>(y) * w + x];
-    float sum = 0.0f;
-    for (int dy = -kLaplacianRadius; dy <= kLaplacianRadius; ++dy) {
-        const float* row = g + static_cast<std::size_t>(clampIndex(y + dy, h)) * w;
-        for (int dx = -kLaplacianRadius; dx <= kLaplacianRadius; ++dx) {
-            if (dx == 0 && dy == 0) continue;
-            sum += row[clampIndex(x + dx, w)] - centre;
-        }
-    }
-    return std::fabs(sum);
+    static_assert(kLaplacianRadius == 2, "the row-sliding Laplacian is written for the 5x5 window");
+    const auto row = [&](int yy) { return g + static_cast<std::size_t>(clampIndex(yy, h)) * w; };
+    double box = rowSum5(row(y - 2), w, x);
+    for (int dy = -1; dy <= 2; ++dy) box += rowSum5(row(y + dy), w, x);
+    const double centre = static_cast<double>(g[static_cast<std::size_t>(y) * w + x]);
+    return std::fabs(static_cast<float>(box - 25.0 * centre));
 }
 
 // --- Box blur ----------------------------------------------------------------------------------
@@ -89,9 +98,75 @@ float blurAt(const float* e, int w, int h, int x, int y, int radius) {
     return sum / static_cast<float>(side * side);
 }
 
-// --- Register-blocked interior rows ------------------------------------------------------------
+// --- Row-sliding Laplacian -----------------------------------------------------------------------
+// A band of output rows [y0, y1) is computed in column tiles of at most kTileColumns: each input
+// row clamp(r), r in [y0-2, y1+2), is widened to double with its clamped 2-column margins (`wide`),
+// summed 5 wide once (`rowSums`, a ring of the 5 rows an output row needs), and each output row
+// adds its 5 row sums and subtracts 25 centres. Plain loops over restrict pointers: the compiler
+// vectorises them (4 doubles per AVX2 register). The scratch is per thread and reused (no
+// allocation per call); a tile's 6 rows of doubles (192 KiB) stay in L2 while the band streams.
+
+constexpr int kTileColumns = 4096;
+// Ring rows 320 bytes apart beyond a power of two: otherwise the 5 rows the inner loop reads and
+// writes map to the same L1 sets (and 4K-alias the store), measured 5% slower.
+constexpr int kRowStride = kTileColumns + 40;
+constexpr int kBandRows = 64;  // rows per TBB task at least: 4 extra row sums per band (6% at most)
+
+struct LaplacianScratch {
+    std::vector<double> wide = std::vector<double>(kTileColumns + 4);
+    std::vector<double> rowSums = std::vector<double>(5 * static_cast<std::size_t>(kRowStride));
+};
+
+#define AAMAP_ALWAYS_INLINE inline __attribute__((always_inline))
+
+// wide[0, n+4) = row clamp(r), columns x0-2 .. x0+n+1 (clamped), as doubles.
+AAMAP_ALWAYS_INLINE void widenRow(const float* g, int w, int h, int r, int x0, int n, double* __restrict wide) {
+    const float* src = g + static_cast<std::size_t>(clampIndex(r, h)) * w;
+    // Only columns outside [0, w) (2 at most per side) need clamping.
+    const int inLo = std::max(0, 2 - x0), inHi = std::min(n + 4, w - x0 + 2);
+    for (int i = 0; i < inLo; ++i) wide[i] = static_cast<double>(src[0]);
+    const float* __restrict in = src + x0 - 2;
+    for (int i = inLo; i < inHi; ++i) wide[i] = static_cast<double>(in[i]);
+    for (int i = inHi; i < n + 4; ++i) wide[i] = static_cast<double>(src[w - 1]);
+}
+
+// out[x0, x0+n) of rows [y0, y1); n <= kTileColumns.
+AAMAP_ALWAYS_INLINE void laplacianTileImpl(const float* g, int w, int h, int y0, int y1, int x0, int n, float* out,
+                                           LaplacianScratch& scratch) {
+    double* __restrict wide = scratch.wide.data();
+    // The ring of 5-wide row sums: sums[k] holds row y - 2 + k while output row y is computed.
+    double* sums[5];
+    for (int k = 0; k < 5; ++k) sums[k] = scratch.rowSums.data() + static_cast<std::size_t>(k) * kRowStride;
+    for (int k = 0; k < 4; ++k) {
+        widenRow(g, w, h, y0 - 2 + k, x0, n, wide);
+        double* __restrict s = sums[k];
+        for (int i = 0; i < n; ++i) s[i] = wide[i] + wide[i + 1] + wide[i + 2] + wide[i + 3] + wide[i + 4];
+    }
+    for (int y = y0; y < y1; ++y) {
+        widenRow(g, w, h, y + 2, x0, n, wide);
+        const double* __restrict s0 = sums[0];
+        const double* __restrict s1 = sums[1];
+        const double* __restrict s2 = sums[2];
+        const double* __restrict s3 = sums[3];
+        double* __restrict s4 = sums[4];
+        const float* __restrict centre = g + static_cast<std::size_t>(y) * w + x0;
+        float* __restrict o = out + static_cast<std::size_t>(y) * w + x0;
+#pragma GCC unroll 2
+        for (int i = 0; i < n; ++i) {
+            const double newest = wide[i] + wide[i + 1] + wide[i + 2] + wide[i + 3] + wide[i + 4];
+            s4[i] = newest;
+            const double box = s0[i] + s1[i] + s2[i] + s3[i] + newest;
+            o[i] = std::fabs(static_cast<float>(box - 25.0 * static_cast<double>(centre[i])));
+        }
+        double* const oldest = sums[0];
+        for (int k = 0; k < 4; ++k) sums[k] = sums[k + 1];
+        sums[4] = oldest;
+    }
+}
+
+// --- Register-blocked interior rows (box blur) -------------------------------------------------
 // Interior rows (every tap in range) run 8 (AVX2) or 4 (SSE) pixels per vector and several vectors at a time, so the
-// accumulators and centres stay in registers and independent add chains overlap. Each lane sums
+// accumulators stay in registers and independent add chains overlap. Each lane sums
 // its taps in the order of `taps` starting from 0: the scalar order, so the results are the same
 // bit for bit (no multiplies, so no FMA contraction either).
 
@@ -115,7 +190,6 @@ struct LaneTypes<32> {
 };
 template <int Bytes>
 using Lanes = typename LaneTypes<Bytes>::Floats;
-#define AAMAP_ALWAYS_INLINE inline __attribute__((always_inline))
 
 template <class V>
 AAMAP_ALWAYS_INLINE V loadLanes(const float* p) {
@@ -128,20 +202,9 @@ AAMAP_ALWAYS_INLINE void storeLanes(float* p, V v) {
     std::memcpy(p, &v, sizeof v);
 }
 
-struct DiffTerm {  // Laplacian tap: g(p+o) - g(p)
-    template <class V>
-    AAMAP_ALWAYS_INLINE V operator()(V src, V centre) const { return src - centre; }
-};
 struct PlainTerm {  // blur tap: e(p+o)
     template <class V>
     AAMAP_ALWAYS_INLINE V operator()(V src, V) const { return src; }
-};
-struct AbsFinish {  // |sum|: clear the sign bit, as std::fabs does
-    template <class V>
-    AAMAP_ALWAYS_INLINE V operator()(V v) const {
-        using Bits = typename LaneTypes<sizeof(V)>::Bits;
-        return reinterpret_cast<V>(reinterpret_cast<Bits>(v) & 0x7fffffff);
-    }
 };
 struct DivideFinish {  // sum / count, one division
     float count;
@@ -178,21 +241,6 @@ AAMAP_ALWAYS_INLINE int tapRow(const float* const* taps, int tapCount, const flo
     return i;
 }
 
-// Interior row y, columns [R, w-R): the 24 off-centre taps in row-major order.
-template <int Bytes, int K>
-AAMAP_ALWAYS_INLINE void laplacianRowImpl(const float* g, int w, int h, int y, float* out) {
-    constexpr int R = kLaplacianRadius;
-    const float* taps[(2 * R + 1) * (2 * R + 1) - 1];
-    int count = 0;
-    for (int dy = -R; dy <= R; ++dy)
-        for (int dx = -R; dx <= R; ++dx)
-            if (dx != 0 || dy != 0) taps[count++] = g + static_cast<std::ptrdiff_t>(y + dy) * w + R + dx;
-    const float* centre = g + static_cast<std::size_t>(y) * w + R;
-    const int n = w - 2 * R;
-    for (int i = tapRow<Bytes, K>(taps, count, centre, out + R, n, DiffTerm{}, AbsFinish{}); i < n; ++i)
-        out[R + i] = laplacianAt(g, w, h, R + i, y);
-}
-
 // Interior row y of the box blur, columns [r, w-r), taps in row-major order.
 template <int Bytes, int K>
 AAMAP_ALWAYS_INLINE void blurRowImpl(const float* e, int w, int h, int y, int radius, float* out,
@@ -213,8 +261,9 @@ AAMAP_ALWAYS_INLINE void blurRowImpl(const float* e, int w, int h, int y, int ra
 // baseline SSE build (4 vectors = 16 pixels). Streaming (non-temporal) stores for large outputs
 // were tried and measured slower here, so the stores stay plain.
 #define AAMAP_ROW_VARIANTS(attr, suffix, Bytes, K)                                                        \
-    attr void laplacianRow##suffix(const float* g, int w, int h, int y, float* out) {                    \
-        laplacianRowImpl<Bytes, K>(g, w, h, y, out);                                                     \
+    attr void laplacianTile##suffix(const float* g, int w, int h, int y0, int y1, int x0, int n, float* out, \
+                                    LaplacianScratch& scratch) {                                        \
+        laplacianTileImpl(g, w, h, y0, y1, x0, n, out, scratch);                                         \
     }                                                                                                   \
     attr void blurRow##suffix(const float* e, int w, int h, int y, int radius, float* out,              \
                               std::vector<const float*>& taps) {                                       \
@@ -226,7 +275,7 @@ AAMAP_ROW_VARIANTS(__attribute__((target("avx2"))), Avx2, 32, 4)
 const bool kHaveAvx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
 #else
 constexpr bool kHaveAvx2 = false;
-#define laplacianRowAvx2 laplacianRowBase
+#define laplacianTileAvx2 laplacianTileBase
 #define blurRowAvx2 blurRowBase
 #endif
 #undef AAMAP_ROW_VARIANTS
@@ -234,8 +283,7 @@ constexpr bool kHaveAvx2 = false;
 // A clamped stencil of the given radius: scalar everywhere, or vectorised interior rows plus
 // scalar borders. `atPixel(x, y)` and `interiorRow(y, out)` compute the same values.
 template <class AtPixel, class InteriorRow>
-ImageGrey stencil(int w, int h, int radius, Mode mode, AtPixel&& atPixel, InteriorRow&& interiorRow) {
-    ImageGrey out(w, h);
+void stencil(ImageGrey& out, int w, int h, int radius, Mode mode, AtPixel&& atPixel, InteriorRow&& interiorRow) {
     const bool vectorised = mode == Mode::Parallel && w > 2 * radius;
     forRows(h, mode, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
@@ -251,7 +299,13 @@ ImageGrey stencil(int w, int h, int radius, Mode mode, AtPixel&& atPixel, Interi
             }
         }
     });
-    return out;
+}
+
+// The filters write into `out`, reallocating it only when its size differs: a caller that keeps
+// its output image between calls pays no allocation and no zero-fill (64 MiB at 4096^2).
+void prepareOutput(const ImageGrey& in, ImageGrey& out, const char* what) {
+    if (&in == &out) throw std::invalid_argument(std::string(what) + ": the output must not be the input");
+    if (out.width() != in.width() || out.height() != in.height()) out = ImageGrey(in.width(), in.height());
 }
 
 // --- Max reduction -----------------------------------------------------------------------------
@@ -288,23 +342,47 @@ ImageGrey greyscale(const ImageRGB& rgb, float exposure, Mode mode) {
     return out;
 }
 
-ImageGrey laplacianMagnitude(const ImageGrey& grey, Mode mode) {
+void laplacianMagnitudeInto(const ImageGrey& grey, ImageGrey& out, Mode mode) {
+    prepareOutput(grey, out, "laplacianMagnitude");
     const int w = grey.width(), h = grey.height();
     const float* g = grey.data();
-    return stencil(
-        w, h, kLaplacianRadius, mode, [&](int x, int y) { return laplacianAt(g, w, h, x, y); },
-        [&](int y, float* out) { (kHaveAvx2 ? laplacianRowAvx2 : laplacianRowBase)(g, w, h, y, out); });
+    float* o = out.data();
+    if (mode == Mode::Scalar) {
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) o[static_cast<std::size_t>(y) * w + x] = laplacianAt(g, w, h, x, y);
+        return;
+    }
+    const auto tile = kHaveAvx2 ? laplacianTileAvx2 : laplacianTileBase;
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, kBandRows), [&](const tbb::blocked_range<int>& rows) {
+        thread_local LaplacianScratch scratch;
+        for (int x0 = 0; x0 < w; x0 += kTileColumns)
+            tile(g, w, h, rows.begin(), rows.end(), x0, std::min(kTileColumns, w - x0), o, scratch);
+    });
+}
+
+ImageGrey laplacianMagnitude(const ImageGrey& grey, Mode mode) {
+    ImageGrey out;
+    laplacianMagnitudeInto(grey, out, mode);
+    return out;
+}
+
+void boxBlurInto(const ImageGrey& edges, int radius, ImageGrey& out, Mode mode) {
+    if (radius < 0) throw std::invalid_argument("boxBlur: negative radius " + std::to_string(radius));
+    prepareOutput(edges, out, "boxBlur");
+    const int w = edges.width(), h = edges.height();
+    const float* e = edges.data();
+    stencil(
+        out, w, h, radius, mode, [&](int x, int y) { return blurAt(e, w, h, x, y, radius); },
+        [&](int y, float* row) {
+            thread_local std::vector<const float*> taps;  // reused across rows and calls
+            (kHaveAvx2 ? blurRowAvx2 : blurRowBase)(e, w, h, y, radius, row, taps);
+        });
 }
 
 ImageGrey boxBlur(const ImageGrey& edges, int radius, Mode mode) {
-    if (radius < 0) throw std::invalid_argument("boxBlur: negative radius " + std::to_string(radius));
-    const int w = edges.width(), h = edges.height();
-    const float* e = edges.data();
-    // One tap list per thread, reused across rows (the radius is not a compile-time constant).
-    tbb::enumerable_thread_specific<std::vector<const float*>> taps;
-    return stencil(
-        w, h, radius, mode, [&](int x, int y) { return blurAt(e, w, h, x, y, radius); },
-        [&](int y, float* out) { (kHaveAvx2 ? blurRowAvx2 : blurRowBase)(e, w, h, y, radius, out, taps.local()); });
+    ImageGrey out;
+    boxBlurInto(edges, radius, out, mode);
+    return out;
 }
 
 ImageGrey deadZone(const ImageGrey& blurred, float noiseFloor, float gain, Mode mode) {

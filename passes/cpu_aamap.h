@@ -2,7 +2,8 @@
 // The aamap filter chain on the CPU: the reference the GPU passes are tested against, the
 // fallback when no Vulkan device is usable, and the CPU side of the filter benchmark.
 // Each stage exists as a scalar single-threaded version (the reference) and a TBB-parallel,
-// vectorisable version; both follow glsl/shared/aamap_filter.h exactly.
+// vectorised version that gives bit-identical results; both follow glsl/shared/aamap_filter.h
+// (the Laplacian exactly summed in double: see cpu_aamap.cpp).
 #include "core/image.h"
 #include "passes/filter_params.h"
 
@@ -13,6 +14,10 @@ enum class Mode { Scalar, Parallel };
 ImageGrey greyscale(const ImageRGB& rgb, float exposure, Mode mode = Mode::Parallel);
 ImageGrey laplacianMagnitude(const ImageGrey& grey, Mode mode = Mode::Parallel);  // e = |L|
 ImageGrey boxBlur(const ImageGrey& edges, int radius, Mode mode = Mode::Parallel);
+// The same, into `out` (resized only when its size differs, so a kept image costs no allocation
+// or zero-fill; it must not be the input). Identical results.
+void laplacianMagnitudeInto(const ImageGrey& grey, ImageGrey& out, Mode mode = Mode::Parallel);
+void boxBlurInto(const ImageGrey& edges, int radius, ImageGrey& out, Mode mode = Mode::Parallel);
 ImageGrey deadZone(const ImageGrey& blurred, float noiseFloor, float gain, Mode mode = Mode::Parallel);
 ImageGrey reduceMax(const ImageGrey& map, int width, int height, Mode mode = Mode::Parallel);
 

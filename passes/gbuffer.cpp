@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 #include <vector>
 
@@ -11,6 +12,8 @@
 
 #include "engine/vk/context.h"
 #include "glsl/shared/snapshot_interface.h"
+#include "passes/gbuffer_textures.h"
+#include "passes/mirror.h"
 
 namespace aamap::passes {
 namespace {
@@ -26,11 +29,71 @@ struct Vertex {
 };
 static_assert(sizeof(Vertex) == GBufferPass::kVertexStride);
 
-std::vector<Vertex> flatten(const TriangleMesh& mesh, const std::vector<Material>& materials) {
+// The textured layout: the material's atlas entry travels with the vertex too (flat), as kd does.
+struct TexturedVertex {
+    Vertex base;
+    glm::vec2 uv;
+    std::uint16_t rect[4];  // atlas entry x, y, width, height; width 0: samples nothing
+    glm::vec2 params;       // atlas layer, alpha threshold (discard where coverage < it)
+};
+static_assert(sizeof(TexturedVertex) == GBufferPass::kTexturedVertexStride);
+static_assert(offsetof(TexturedVertex, uv) == GBufferPass::kUvOffset);
+static_assert(offsetof(TexturedVertex, rect) == GBufferPass::kTexRectOffset);
+static_assert(offsetof(TexturedVertex, params) == GBufferPass::kTexParamsOffset);
+
+// How one material samples the atlas and tests alpha.
+struct MaterialSampling {
+    glm::vec3 kd{0.0f};    // mirrors: the diffuse part the tracer keeps (passes/mirror.h)
+    bool dropped = false;  // constant coverage below the cutoff: the triangles are never seen
+    TexturedVertex fields{};  // rect and params (uv and base filled per vertex)
+};
+
+MaterialSampling sampling(const Material& m, const Scene& scene, const TextureAtlas& atlas) {
+    MaterialSampling out;
+    out.kd = m.kd;
+    if (m.kind == MaterialKind::Mirror) {
+        glm::vec3 reflectance;
+        mirrorAlbedos(m, out.kd, reflectance);
+    }
+    const auto key = atlasKey(m, scene);
+    const auto entry = atlas.entries.find(key);
+    const bool sampled = entry != atlas.entries.end();
+    // The tracer's rule (tracer/embree_scene.cpp): cut where alpha * coverage < cutoff, i.e.
+    // coverage < cutoff / alpha; with no coverage texture the whole material is in or out.
+    const bool coverageTexture = sampled && isAlphaTested(m) && key.second == m.alphaTexture && m.alphaTexture >= 0;
+    float threshold = 0.0f;
+    if (isAlphaTested(m)) {
+        const float cutoff = effectiveAlphaCutoff(m);
+        if (!coverageTexture || m.alpha <= 0.0f) out.dropped = m.alpha < cutoff;
+        else threshold = cutoff / m.alpha;
+    }
+    if (sampled) {
+        const AtlasEntry& e = entry->second;
+        out.fields.rect[0] = static_cast<std::uint16_t>(e.x);
+        out.fields.rect[1] = static_cast<std::uint16_t>(e.y);
+        out.fields.rect[2] = static_cast<std::uint16_t>(e.width);
+        out.fields.rect[3] = static_cast<std::uint16_t>(e.height);
+        out.fields.params = {static_cast<float>(e.layer), threshold};
+    }
+    return out;
+}
+
+// Unindexed vertices in the plain or the textured layout, as bytes.
+std::vector<std::byte> flatten(const Scene& scene, const TextureAtlas& atlas, bool textured, bool& alphaMasked,
+                               std::uint32_t& vertexCount) {
+    const TriangleMesh& mesh = scene.mesh;
+    const std::vector<Material>& materials = scene.materials;
     const Material fallback;  // for ids past the material list
-    std::vector<Vertex> out;
-    out.reserve(mesh.triangles.size() * 3);
+    std::vector<MaterialSampling> perMaterial;
+    for (const Material& m : materials) perMaterial.push_back(sampling(m, scene, atlas));
+    const MaterialSampling fallbackSampling;
+    const std::size_t stride = textured ? sizeof(TexturedVertex) : sizeof(Vertex);
+    std::vector<std::byte> out;
+    out.reserve(mesh.triangles.size() * 3 * stride);
     const bool hasNormals = mesh.normals.size() == mesh.positions.size();
+    const bool hasUvs = !mesh.uvs.empty() && mesh.uvs.size() == mesh.positions.size();
+    alphaMasked = false;
+    vertexCount = 0;
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const glm::uvec3 tri = mesh.triangles[t];
         const glm::vec3 p[3] = {mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]};
@@ -39,13 +102,61 @@ std::vector<Vertex> flatten(const TriangleMesh& mesh, const std::vector<Material
         const glm::vec3 face = len > 0.0f ? cross / len : glm::vec3(0, 0, 1);
         const std::uint32_t id = t < mesh.materialIds.size() ? mesh.materialIds[t] : 0u;
         const Material& m = id < materials.size() ? materials[id] : fallback;
+        const MaterialSampling& ms = id < materials.size() ? perMaterial[id] : fallbackSampling;
+        if (ms.dropped) continue;
+        alphaMasked |= ms.fields.params.y > 0.0f;
         for (int k = 0; k < 3; ++k) {
             glm::vec3 n = hasNormals ? mesh.normals[tri[k]] : face;
             if (!(glm::dot(n, n) > 0.0f)) n = face;  // zero or NaN normals in the file
-            out.push_back({p[k], n, m.kd, m.ke});
+            TexturedVertex v = ms.fields;
+            v.base = {p[k], n, id < materials.size() ? ms.kd : m.kd, m.ke};
+            v.uv = hasUvs ? mesh.uvs[tri[k]] : glm::vec2(0.0f);
+            const auto* bytes = reinterpret_cast<const std::byte*>(&v);
+            out.insert(out.end(), bytes, bytes + stride);
+            ++vertexCount;
         }
     }
     return out;
+}
+
+// The atlas as a sampled RGBA8 sRGB array image, uploaded once.
+vk::Image uploadAtlas(VulkanContext& context, const TextureAtlas& atlas) {
+    vk::ImageInfo info;
+    info.format = VK_FORMAT_R8G8B8A8_SRGB;
+    info.width = info.height = atlas.pageSide;
+    info.layers = atlas.layers;
+    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    vk::Image image(context, info);
+    const VkDeviceSize bytes = atlas.texels.size() * sizeof(std::uint32_t);
+    vk::Buffer staging(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memcpy(staging.mapped(), atlas.texels.data(), bytes);
+    vk::submitAndWait(context, [&](VkCommandBuffer cmd) {
+        VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        barrier.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
+        barrier.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+        barrier.image = image.handle();
+        barrier.subresourceRange = image.range();
+        VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dependency.imageMemoryBarrierCount = 1;
+        dependency.pImageMemoryBarriers = &barrier;
+        vkCmdPipelineBarrier2(cmd, &dependency);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, atlas.layers};
+        region.imageExtent = {atlas.pageSide, atlas.pageSide, 1};
+        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        barrier.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        barrier.dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+        barrier.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+        barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        vkCmdPipelineBarrier2(cmd, &dependency);
+    });
+    return image;
 }
 
 template <class T>
@@ -53,23 +164,40 @@ std::span<const std::byte> bytesOf(const std::vector<T>& v) {
     return std::as_bytes(std::span<const T>(v));
 }
 
-vk::Pipeline makePipeline(VulkanContext& context, bool shadowed) {
+vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, bool mirrored = false) {
     vk::GraphicsDesc desc;
-    desc.vertexSpirv = spirv::gbuffer_vert;
-    desc.fragmentSpirv = shadowed ? spirv::gbuffer_shadowed_frag : spirv::gbuffer_frag;
-    desc.vertexInput.stride = sizeof(Vertex);
+    if (mirrored) {
+        desc.vertexSpirv = textured ? spirv::gbuffer_mirror_textured_vert : spirv::gbuffer_mirror_vert;
+        desc.fragmentSpirv = textured ? (shadowed ? spirv::gbuffer_mirror_textured_shadowed_frag
+                                                  : spirv::gbuffer_mirror_textured_frag)
+                                      : (shadowed ? spirv::gbuffer_mirror_shadowed_frag : spirv::gbuffer_mirror_frag);
+    } else {
+        desc.vertexSpirv = textured ? spirv::gbuffer_textured_vert : spirv::gbuffer_vert;
+        desc.fragmentSpirv = textured ? (shadowed ? spirv::gbuffer_textured_shadowed_frag : spirv::gbuffer_textured_frag)
+                                      : (shadowed ? spirv::gbuffer_shadowed_frag : spirv::gbuffer_frag);
+    }
+    desc.vertexInput.stride = textured ? sizeof(TexturedVertex) : sizeof(Vertex);
     desc.vertexInput.attributes = {
         {GBUFFER_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
         {GBUFFER_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
         {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, kd)},
         {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, ke)},
     };
+    if (textured) {
+        desc.vertexInput.attributes.push_back({GBUFFER_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kUvOffset});
+        desc.vertexInput.attributes.push_back(
+            {GBUFFER_LOCATION_TEX_RECT, 0, VK_FORMAT_R16G16B16A16_UINT, GBufferPass::kTexRectOffset});
+        desc.vertexInput.attributes.push_back(
+            {GBUFFER_LOCATION_TEX_PARAMS, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kTexParamsOffset});
+    }
     desc.colorFormats = {vk::toVkFormat(GBufferPass::kColourFormat)};
     desc.depthFormat = vk::toVkFormat(GBufferPass::kDepthFormat);
     desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth
     std::vector<VkDescriptorType> bindings{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};  // GBUFFER_BINDING_LIGHTS
     static_assert(GBUFFER_BINDING_LIGHTS == 0 && GBUFFER_BINDING_SHADOW == 1);
     if (shadowed) bindings.push_back(VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);  // texelFetch only: no sampler
+    static_assert(GBUFFER_BINDING_ATLAS_UNSHADOWED == 1 && GBUFFER_BINDING_ATLAS_SHADOWED == 2);
+    if (textured) bindings.push_back(VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);  // the atlas, after the shadow maps
     return vk::Pipeline(context, desc,
                         vk::LayoutDesc{bindings, static_cast<std::uint32_t>(sizeof(gpu::GBufferPush)),
                                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT});
@@ -78,23 +206,38 @@ vk::Pipeline makePipeline(VulkanContext& context, bool shadowed) {
 }  // namespace
 
 GBufferPass::GBufferPass(VulkanContext& context, const Scene& scene) : context_(&context) {
-    pipeline_ = makePipeline(context, false);
-    const std::vector<Vertex> vertices = flatten(scene.mesh, scene.materials);
-    vertexCount_ = static_cast<std::uint32_t>(vertices.size());
-    vertices_ = vk::uploadBuffer(context, bytesOf(vertices), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    const TextureAtlas atlas = buildTextureAtlas(scene);
+    textured_ = !atlas.empty();
+    atlasEntries_ = static_cast<std::uint32_t>(atlas.entries.size());
+    if (textured_) atlas_ = uploadAtlas(context, atlas);
+    pipeline_ = makePipeline(context, false, textured_);
+    const std::vector<std::byte> vertices = flatten(scene, atlas, textured_, alphaMasked_, vertexCount_);
+    if (!vertices.empty())
+        vertices_ = vk::uploadBuffer(context, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+    positions_.resize(vertexCount_);
+    for (std::uint32_t i = 0; i < vertexCount_; ++i)
+        std::memcpy(&positions_[i], vertices.data() + static_cast<std::size_t>(i) * vertexStride(), sizeof(glm::vec3));
 
     setLights({});
 }
 
 void GBufferPass::setLights(std::span<const PointLight> lights) {
     std::vector<gpu::GpuLight> gpuLights;
-    for (const PointLight& l : lights)
-        gpuLights.push_back({glm::vec4(l.position, 1.0f), glm::vec4(l.intensity, 0.0f), glm::vec4(l.normal, 0.0f)});
+    for (const PointLight& l : lights) {
+        // A lobe wins over a spot cone, as in the tracer (tracer/lights.cpp).
+        const bool spot = glm::dot(l.normal, l.normal) == 0.0f && glm::dot(l.spotDirection, l.spotDirection) > 0.0f;
+        gpuLights.push_back({glm::vec4(l.position, 1.0f), glm::vec4(l.intensity, 0.0f),
+                             glm::vec4(spot ? glm::normalize(l.spotDirection) : l.normal, 0.0f),
+                             glm::vec4(l.cosInner, std::min(l.cosOuter, l.cosInner), spot ? 1.0f : 0.0f, 0.0f)});
+    }
     if (gpuLights.size() > GBUFFER_MAX_LIGHTS)
         throw std::invalid_argument(fmt::format("the Snapshot raster takes at most {} point lights, the scene gives {} "
                                                 "(point lights plus areaLightSamples per area light)",
                                                 GBUFFER_MAX_LIGHTS, gpuLights.size()));
     lightCount_ = static_cast<std::uint32_t>(gpuLights.size());
+    lightPositions_.clear();
+    for (const PointLight& l : lights) lightPositions_.push_back(l.position);
+    ++lightsVersion_;
     gpuLights.resize(GBUFFER_MAX_LIGHTS);  // the shader declares the whole array
     lights_ = vk::uploadBuffer(*context_, bytesOf(gpuLights), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 }
@@ -108,16 +251,12 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
     const graph::PassId id = graph.addPass(
         {"gbuffer", graph::QueueKind::Graphics, accesses,
-         shadowed ? "rasterise the scene with local illumination and shadow-map visibility per light"
-                  : "rasterise the scene with local illumination"});
-    if (shadowed && !shadowedPipeline_.handle()) shadowedPipeline_ = makePipeline(*context_, true);
+         std::string(shadowed ? "rasterise the scene with local illumination and shadow-map visibility per light"
+                              : "rasterise the scene with local illumination") +
+             (textured_ ? "; " + atlasSummary() : "")});
+    if (shadowed && !shadowedPipeline_.handle()) shadowedPipeline_ = makePipeline(*context_, true, textured_);
     gpu::GBufferPush push{};
-    // Reversed depth (z' = w - z, cleared to 0, GREATER wins): float depth then has about uniform
-    // relative precision, so a small near plane does not cost z-fighting far away.
-    glm::mat4 reverse(1.0f);
-    reverse[2][2] = -1.0f;
-    reverse[3][2] = 1.0f;
-    push.viewProj = reverse * camera.projectionMatrix(nearPlane, farPlane) * camera.viewMatrix();
+    push.viewProj = reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), camera.viewMatrix());
     push.cameraPos = glm::vec4(camera.origin, 1.0f);
     push.lightCount = lightCount_;
     push.shadowPcf = std::max(shadows.pcf, 1u);
@@ -125,49 +264,104 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
                             static_cast<float>(shadows.faceSize));
     const vk::Pipeline& pipeline = shadowed ? shadowedPipeline_ : pipeline_;
     executor.setRecord("gbuffer", [this, colour, depth, push, &pipeline, shadow = shadows.resource](
-                                      vk::PassContext& pc) {
-        const vk::Image& target = pc.image(colour);
-        const vk::Image& z = pc.image(depth);
-        const VkExtent2D extent{target.info().width, target.info().height};
-        VkRenderingAttachmentInfo colourInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        colourInfo.imageView = target.view();
-        colourInfo.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colourInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        colourInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        colourInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // background: black, as rays that miss
-        VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depthInfo.imageView = z.view();
-        depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-        depthInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        depthInfo.clearValue.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
-        VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        rendering.renderArea = {{0, 0}, extent};
-        rendering.layerCount = 1;
-        rendering.colorAttachmentCount = 1;
-        rendering.pColorAttachments = &colourInfo;
-        rendering.pDepthAttachment = &depthInfo;
+                                      vk::PassContext& pc) { record(pc, colour, depth, pipeline, shadow, {&push, 1}); });
+    return id;
+}
 
-        VkCommandBuffer cmd = pc.cmd();
-        vkCmdBeginRendering(cmd, &rendering);
-        vk::setFullViewport(cmd, extent);
-        if (vertexCount_ > 0) {
-            pipeline.bind(cmd);
-            vk::DescriptorPush descriptors;
-            descriptors.uniformBuffer(GBUFFER_BINDING_LIGHTS, lights_.handle());
-            if (!shadow.empty())
-                descriptors.sampledImage(GBUFFER_BINDING_SHADOW, pc.image(shadow).view(),
-                                         VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
-            descriptors.push(*context_, cmd, pipeline);
-            pipeline.pushConstants(cmd, push);
-            const VkBuffer vb = vertices_.handle();
-            const VkDeviceSize offset = 0;
-            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-            vkCmdDraw(cmd, vertexCount_, 1, 0, 0);
-        }
-        vkCmdEndRendering(cmd);
+glm::mat4 GBufferPass::reversedViewProjection(const glm::mat4& projection, const glm::mat4& view) {
+    // Reversed depth (z' = w - z, cleared to 0, GREATER wins): float depth then has about uniform
+    // relative precision, so a small near plane does not cost z-fighting far away.
+    glm::mat4 reverse(1.0f);
+    reverse[2][2] = -1.0f;
+    reverse[3][2] = 1.0f;
+    return reverse * projection * view;
+}
+
+graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExecutor& executor,
+                                        const std::string& pass, const std::string& colour, const std::string& depth,
+                                        std::span<const ReflectedView> views, const GBufferShadows& shadows,
+                                        std::string purpose) {
+    const bool shadowed = !shadows.resource.empty();
+    std::vector<graph::Access> accesses{graph::writes(colour, graph::Usage::ColorAttachment),
+                                        graph::writes(depth, graph::Usage::DepthAttachment)};
+    if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
+    const graph::PassId id = graph.addPass({pass, graph::QueueKind::Graphics, accesses, std::move(purpose)});
+    vk::Pipeline& pipeline = mirrorPipelines_[shadowed ? 1 : 0];
+    if (!pipeline.handle()) pipeline = makePipeline(*context_, shadowed, textured_, true);
+    std::vector<gpu::GBufferPush> pushes;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        gpu::GBufferPush push{};
+        push.viewProj = views[i].viewProj;
+        push.cameraPos = glm::vec4(views[i].eye, 1.0f);
+        push.lightCount = lightCount_;
+        push.shadowPcf = std::max(shadows.pcf, 1u);
+        push.mirrorLayer = static_cast<std::uint32_t>(i);
+        push.shadow = glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias,
+                                static_cast<float>(shadows.faceSize));
+        push.clipPlane = views[i].clipPlane;
+        pushes.push_back(push);
+    }
+    executor.setRecord(pass, [this, colour, depth, pushes, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
+        record(pc, colour, depth, pipeline, shadow, pushes);
     });
     return id;
+}
+
+void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const std::string& depth,
+                         const vk::Pipeline& pipeline, const std::string& shadow,
+                         std::span<const gpu::GBufferPush> draws) const {
+    const vk::Image& target = pc.image(colour);
+    const vk::Image& z = pc.image(depth);
+    const VkExtent2D extent{target.info().width, target.info().height};
+    VkRenderingAttachmentInfo colourInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    colourInfo.imageView = target.view();
+    colourInfo.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    colourInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    colourInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    colourInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // background: black, as rays that miss
+    VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depthInfo.imageView = z.view();
+    depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    depthInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depthInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depthInfo.clearValue.depthStencil = {0.0f, 0};  // reversed depth: 0 is the far plane
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, extent};
+    rendering.layerCount = target.info().layers;  // mirror.colour: one layer per mirror (gl_Layer)
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachments = &colourInfo;
+    rendering.pDepthAttachment = &depthInfo;
+
+    VkCommandBuffer cmd = pc.cmd();
+    vkCmdBeginRendering(cmd, &rendering);
+    vk::setFullViewport(cmd, extent);
+    if (vertexCount_ > 0) {
+        pipeline.bind(cmd);
+        vk::DescriptorPush descriptors;
+        descriptors.uniformBuffer(GBUFFER_BINDING_LIGHTS, lights_.handle());
+        if (!shadow.empty())
+            descriptors.sampledImage(GBUFFER_BINDING_SHADOW, pc.image(shadow).view(),
+                                     VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+        if (textured_)
+            descriptors.sampledImage(shadow.empty() ? GBUFFER_BINDING_ATLAS_UNSHADOWED : GBUFFER_BINDING_ATLAS_SHADOWED,
+                                     atlas_.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        descriptors.push(*context_, cmd, pipeline);
+        const VkBuffer vb = vertices_.handle();
+        const VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        for (const gpu::GBufferPush& push : draws) {
+            pipeline.pushConstants(cmd, push);
+            vkCmdDraw(cmd, vertexCount_, 1, 0, 0);
+        }
+    }
+    vkCmdEndRendering(cmd);
+}
+
+std::string GBufferPass::atlasSummary() const {
+    if (!textured_) return "no textures: no texture binding";
+    return fmt::format("base-colour textures from a {}x{}x{} atlas of {} entr{} (the scene samples textures){}",
+                       atlas_.info().width, atlas_.info().height, atlas_.info().layers, atlasEntries_,
+                       atlasEntries_ == 1 ? "y" : "ies", alphaMasked_ ? ", with alpha test" : "");
 }
 
 }  // namespace aamap::passes

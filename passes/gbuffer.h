@@ -1,14 +1,21 @@
 #pragma once
 // The Snapshot raster: the scene's mesh with Lambert shading from point lights (and cosine-lobe
 // point samples of area lights) plus emission, into linear colour and depth. Holds the scene's
-// GPU state (vertices, materials, lights) so that several views reuse it.
+// GPU state (vertices, materials, lights, the texture atlas) so that several views reuse it.
+//
+// Textures and alpha (passes/gbuffer_textures.h): a scene whose used materials sample a texture
+// gets the textured pipeline variants (uv and atlas entry per vertex, one atlas binding); other
+// scenes bind no texture at all. Alpha-tested materials with constant coverage need no texture:
+// their triangles are either dropped (alpha < cutoff) or opaque.
 #include <span>
 #include <string>
+#include <vector>
 
 #include "engine/graph/render_graph.h"
 #include "engine/vk/graph_executor.h"
 #include "engine/vk/pipeline.h"
 #include "engine/vk/resources.h"
+#include "glsl/shared/snapshot_interface.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -21,6 +28,15 @@ struct GBufferShadows {
     std::uint32_t faceSize = 0;
     float depthBias = 0.0f, slopeBias = 0.0f;  // in shadow-map texels at the receiver
     std::uint32_t pcf = 1;
+};
+
+// One planar mirror's reflected view (passes/mirror.h): the camera's reversed view-projection
+// times the reflection in the mirror plane, the reflected eye (for two-sided shading), and the
+// plane, xyz . p >= w on the side that is seen in the mirror.
+struct ReflectedView {
+    glm::mat4 viewProj{1.0f};
+    glm::vec3 eye{0.0f};
+    glm::vec4 clipPlane{0.0f};
 };
 
 class GBufferPass {
@@ -39,18 +55,50 @@ public:
                       const std::string& depth, const PinholeCamera& camera, float nearPlane, float farPlane,
                       const GBufferShadows& shadows = {});
 
+    // Declares pass `pass`, which renders the scene once per view into layer i of the layered
+    // `colour` and `depth` (the G-buffer's shading, clipped to each view's plane).
+    graph::PassId addReflected(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& pass,
+                               const std::string& colour, const std::string& depth,
+                               std::span<const ReflectedView> views, const GBufferShadows& shadows,
+                               std::string purpose);
+    // Reversed depth (z' = w - z, cleared to 0, GREATER wins) applied to projection * view.
+    static glm::mat4 reversedViewProjection(const glm::mat4& projection, const glm::mat4& view);
+
     std::uint32_t vertexCount() const { return vertexCount_; }
+    bool textured() const { return textured_; }        // the atlas is bound (scene has textures)
+    bool alphaMasked() const { return alphaMasked_; }  // some texel can be cut out (shadows test it)
+    const vk::Image& atlas() const { return atlas_; }  // valid only when textured()
+    std::string atlasSummary() const;                  // for --explain
     std::uint32_t lightCount() const { return lightCount_; }
     // For the shadow pass, which draws the same vertices from the same lights.
     const vk::Buffer& vertexBuffer() const { return vertices_; }
     const vk::Buffer& lightBuffer() const { return lights_; }
+    // CPU copies for the shadow pass's per-face culling: the drawn vertices' positions (three per
+    // triangle, in vertex-buffer order) and the lights' positions, with a counter of setLights.
+    std::span<const glm::vec3> vertexPositions() const { return positions_; }
+    std::span<const glm::vec3> lightPositions() const { return lightPositions_; }
+    std::uint64_t lightsVersion() const { return lightsVersion_; }
+    // Vertex layout (passes/gbuffer.cpp): position at 0; uv, atlas entry and its parameters at
+    // the offsets below only in the textured layout.
+    std::uint32_t vertexStride() const { return textured_ ? kTexturedVertexStride : kVertexStride; }
     static constexpr std::uint32_t kVertexStride = 48;
+    static constexpr std::uint32_t kTexturedVertexStride = 72;
+    static constexpr std::uint32_t kUvOffset = 48, kTexRectOffset = 56, kTexParamsOffset = 64;
 
 private:
+    void record(vk::PassContext& pc, const std::string& colour, const std::string& depth, const vk::Pipeline& pipeline,
+                const std::string& shadow, std::span<const gpu::GBufferPush> draws) const;
+
     VulkanContext* context_;
     vk::Pipeline pipeline_;
     vk::Pipeline shadowedPipeline_;  // built on first use: scenes without lights never need it
+    vk::Pipeline mirrorPipelines_[2];  // reflected views, unshadowed / shadowed: built on first use
     vk::Buffer vertices_, lights_;
+    vk::Image atlas_;
+    std::vector<glm::vec3> positions_, lightPositions_;
+    std::uint64_t lightsVersion_ = 0;
+    bool textured_ = false, alphaMasked_ = false;
+    std::uint32_t atlasEntries_ = 0;
     std::uint32_t vertexCount_ = 0;
     std::uint32_t lightCount_ = 0;
 };

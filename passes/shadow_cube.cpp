@@ -23,24 +23,91 @@ ShadowCubePass::ShadowCubePass(VulkanContext& context) : context_(&context) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(context.physicalDevice(), &props);
     maxLayers_ = std::min(props.limits.maxFramebufferLayers, props.limits.maxImageArrayLayers);
+}
 
+const vk::Pipeline& ShadowCubePass::pipelineFor(const GBufferPass& geometry) const {
+    const bool masked = geometry.alphaMasked();
+    const int variant = masked ? 2 : (geometry.textured() ? 1 : 0);
+    vk::Pipeline& pipeline = pipelines_[variant];
+    if (pipeline.handle()) return pipeline;
     vk::GraphicsDesc desc;
-    desc.vertexSpirv = spirv::shadow_cube_vert;
-    desc.fragmentSpirv = spirv::shadow_cube_frag;
-    desc.vertexInput.stride = GBufferPass::kVertexStride;  // the G-buffer's vertices, position at 0
+    desc.vertexSpirv = masked ? spirv::shadow_cube_masked_vert : spirv::shadow_cube_vert;
+    desc.fragmentSpirv = masked ? spirv::shadow_cube_masked_frag : spirv::shadow_cube_frag;
+    desc.vertexInput.stride = geometry.vertexStride();  // the G-buffer's vertices, position at 0
     desc.vertexInput.attributes = {{SHADOW_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+    std::vector<VkDescriptorType> bindings{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
+    static_assert(SHADOW_BINDING_LIGHTS == 0 && SHADOW_BINDING_ATLAS == 1);
+    if (masked) {
+        desc.vertexInput.attributes.push_back(
+            {SHADOW_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kUvOffset});
+        desc.vertexInput.attributes.push_back(
+            {SHADOW_LOCATION_TEX_RECT, 0, VK_FORMAT_R16G16B16A16_UINT, GBufferPass::kTexRectOffset});
+        desc.vertexInput.attributes.push_back(
+            {SHADOW_LOCATION_TEX_PARAMS, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kTexParamsOffset});
+        bindings.push_back(VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);
+    }
     desc.depthFormat = vk::toVkFormat(kFormat);
     desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed: near/ma, nearer is larger
-    static_assert(SHADOW_BINDING_LIGHTS == 0);
-    pipeline_ = vk::Pipeline(context, desc,
-                             vk::LayoutDesc{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
-                                            static_cast<std::uint32_t>(sizeof(gpu::ShadowPush)),
-                                            VK_SHADER_STAGE_VERTEX_BIT});
+    pipeline = vk::Pipeline(*context_, desc,
+                            vk::LayoutDesc{bindings, static_cast<std::uint32_t>(sizeof(gpu::ShadowPush)),
+                                           static_cast<VkShaderStageFlags>(
+                                               masked ? VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT
+                                                      : VK_SHADER_STAGE_VERTEX_BIT)});
+    return pipeline;
+}
+
+ShadowCubePass::FaceLists ShadowCubePass::cullPerFace(std::span<const glm::vec3> positions,
+                                                     std::span<const glm::vec3> lights, float nearPlane) {
+    FaceLists lists;
+    const std::size_t triangles = positions.size() / 3;
+    for (const glm::vec3& light : lights) {
+        std::vector<std::uint32_t> faces[6];
+        for (std::size_t t = 0; t < triangles; ++t) {
+            glm::vec3 r[3];
+            for (int k = 0; k < 3; ++k) r[k] = positions[3 * t + static_cast<std::size_t>(k)] - light;
+            for (int f = 0; f < 6; ++f) {
+                const int axis = f >> 1, b = (axis + 1) % 3, c = (axis + 2) % 3;
+                const float sign = (f & 1) ? -1.0f : 1.0f;
+                // The pyramid: major >= |r_b|, major >= |r_c|, major >= near; culled when all three
+                // vertices fail one of these five half-spaces.
+                int out[5] = {0, 0, 0, 0, 0};
+                for (const glm::vec3& v : r) {
+                    const float major = sign * v[axis];
+                    out[0] += major < v[b];
+                    out[1] += major < -v[b];
+                    out[2] += major < v[c];
+                    out[3] += major < -v[c];
+                    out[4] += major < nearPlane;
+                }
+                if (out[0] == 3 || out[1] == 3 || out[2] == 3 || out[3] == 3 || out[4] == 3) continue;
+                const auto first = static_cast<std::uint32_t>(3 * t);
+                faces[f].insert(faces[f].end(), {first, first + 1, first + 2});
+            }
+        }
+        for (const auto& face : faces) {
+            lists.ranges.emplace_back(static_cast<std::uint32_t>(lists.indices.size()),
+                                      static_cast<std::uint32_t>(face.size()));
+            lists.indices.insert(lists.indices.end(), face.begin(), face.end());
+        }
+    }
+    return lists;
+}
+
+void ShadowCubePass::updateFaceLists(const GBufferPass& geometry, float nearPlane) {
+    if (listsGeometry_ == &geometry && listsVersion_ == geometry.lightsVersion() && listsNear_ == nearPlane) return;
+    FaceLists lists = cullPerFace(geometry.vertexPositions(), geometry.lightPositions(), nearPlane);
+    faceRanges_ = std::move(lists.ranges);
+    if (lists.indices.empty()) lists.indices.push_back(0);  // a buffer needs a size; no range reads it
+    faceIndices_ = vk::uploadBuffer(*context_, std::as_bytes(std::span<const std::uint32_t>(lists.indices)),
+                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    listsGeometry_ = &geometry;
+    listsVersion_ = geometry.lightsVersion();
+    listsNear_ = nearPlane;
 }
 
 graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& resource,
                                   const GBufferPass& geometry, std::span<const std::string> lightNames,
-                                  std::uint32_t faceSize, float nearPlane) const {
+                                  std::uint32_t faceSize, float nearPlane) {
     const auto lights = static_cast<std::uint32_t>(lightNames.size());
     if (lights == 0 || lights != geometry.lightCount())
         throw std::logic_error("ShadowCubePass::add: one name per light of the G-buffer, and at least one");
@@ -56,17 +123,26 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
     desc.layers = layers;  // an array, not `cube`: the receiver picks faces itself (texelFetch)
     graph.addResource(desc);
 
+    std::uint64_t kept = 0;
+    if (geometry.vertexCount() > 0) {
+        updateFaceLists(geometry, nearPlane);
+        for (const auto& range : faceRanges_) kept += range.second;
+    }
+    const double keptShare = geometry.vertexCount() > 0 ? static_cast<double>(kept) / (6.0 * lights * geometry.vertexCount()) : 0.0;
     std::string names;
     for (std::uint32_t i = 0; i < lights && i < 6; ++i) names += fmt::format("{}'{}'", i ? ", " : "", lightNames[i]);
     if (lights > 6) names += fmt::format(", ... ({} more)", lights - 6);
     const graph::PassId id = graph.addPass(
         {kShadowPass, graph::QueueKind::Graphics, {graph::writes(resource, graph::Usage::DepthAttachment)},
-         fmt::format("shadow cube maps ({}^2 per face, 6 layers each) for {} light{}: {}", faceSize, lights,
-                     lights == 1 ? "" : "s", names)});
+         fmt::format("shadow cube maps ({}^2 per face, 6 layers each) for {} light{}: {}; per-face culling draws "
+                     "{:.1f}% of triangles x faces{}",
+                     faceSize, lights, lights == 1 ? "" : "s", names, 100.0 * keptShare,
+                     geometry.alphaMasked() ? "; alpha test from the G-buffer's atlas (the scene has masks)" : "")});
 
     gpu::ShadowPush push{};
     push.nearPlane = nearPlane;
-    executor.setRecord(kShadowPass, [this, &geometry, resource, push, layers](vk::PassContext& pc) {
+    const vk::Pipeline& pipeline = pipelineFor(geometry);
+    executor.setRecord(kShadowPass, [this, &geometry, &pipeline, resource, push, layers](vk::PassContext& pc) {
         const vk::Image& target = pc.image(resource);
         const VkExtent2D extent{target.info().width, target.info().height};
         VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -84,15 +160,22 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
         vkCmdBeginRendering(cmd, &rendering);
         vk::setFullViewport(cmd, extent);
         if (geometry.vertexCount() > 0) {
-            pipeline_.bind(cmd);
-            vk::DescriptorPush()
-                .uniformBuffer(SHADOW_BINDING_LIGHTS, geometry.lightBuffer().handle())
-                .push(*context_, cmd, pipeline_);
-            pipeline_.pushConstants(cmd, push);
+            pipeline.bind(cmd);
+            vk::DescriptorPush descriptors;
+            descriptors.uniformBuffer(SHADOW_BINDING_LIGHTS, geometry.lightBuffer().handle());
+            if (geometry.alphaMasked())
+                descriptors.sampledImage(SHADOW_BINDING_ATLAS, geometry.atlas().view(),
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            descriptors.push(*context_, cmd, pipeline);
+            pipeline.pushConstants(cmd, push);
             const VkBuffer vb = geometry.vertexBuffer().handle();
             const VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-            vkCmdDraw(cmd, geometry.vertexCount(), layers, 0, 0);  // instance 6i+f: face f of light i
+            vkCmdBindIndexBuffer(cmd, faceIndices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+            for (std::uint32_t layer = 0; layer < layers; ++layer) {  // gl_InstanceIndex = layer: face f of light i
+                const auto [first, count] = faceRanges_[layer];
+                if (count > 0) vkCmdDrawIndexed(cmd, count, 1, first, 0, layer);
+            }
         }
         vkCmdEndRendering(cmd);
     });

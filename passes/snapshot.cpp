@@ -13,6 +13,7 @@
 #include "engine/vk/context.h"
 #include "engine/vk/graph_executor.h"
 #include "passes/gbuffer.h"
+#include "passes/mirror.h"
 #include "passes/gpu_aamap.h"
 #include "passes/shadow_cube.h"
 #include "scene/camera.h"
@@ -83,7 +84,11 @@ struct SnapshotRenderer::Impl {
     Bounds bounds;
     bool emptyMesh;
     passes::GBufferPass gbuffer;
+    passes::MirrorPass mirrors;  // planar mirrors: passes only when one is in view
     passes::FilterChain chain;
+    passes::BlockSumPass blockSums;
+    passes::GeometryBufferPass geometry;  // uploads its vertices on first use
+    passes::GeometricEdgePass geometricEdges;
     vk::GraphExecutor executor;
     int lightSamples = -1;  // k the light buffer was built for
     std::vector<std::string> lightNames;     // of the light buffer, in order
@@ -95,7 +100,11 @@ struct SnapshotRenderer::Impl {
           bounds(sceneBounds(scene)),
           emptyMesh(scene.mesh.triangles.empty()),
           gbuffer(c, scene),
+          mirrors(c, scene),
           chain(c),
+          blockSums(c),
+          geometry(c, scene),
+          geometricEdges(c),
           executor(c) {}
 
     void updateLights(int k) {
@@ -167,15 +176,29 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
                        shadows.nearPlane);
     }
     s.gbuffer.add(graph, s.executor, kSnapshot, kDepth, camera, nearPlane, farPlane, shadows);
-    s.chain.add(graph, s.executor, kSnapshot, width, height, settings.filter);
+    std::string mirrorWhy;
+    s.mirrors.add(graph, s.executor, s.gbuffer, kSnapshot, kDepth, camera, nearPlane, farPlane,
+                  glm::length(s.bounds.extent()), shadows, &mirrorWhy);
+    passes::MapChainInputs mapInputs{kSnapshot, &camera, nearPlane, farPlane, width, height, settings.filter};
+    passes::addAamapChain(graph, s.executor, s.chain, s.geometry, s.geometricEdges, settings.map, mapInputs);
+    // Always declared: culled (with the reason in `explain`) unless a strategy asked for it.
+    s.blockSums.add(graph, s.executor, passes::kAamap, width, height,
+                    "O(1) aamap block sums for adaptive subsampling");
 
     std::vector<std::string> outputs{passes::kAamap};
     if (settings.keepDebugImages) {
         outputs.push_back(kSnapshot);
-        outputs.push_back(passes::kLaplacian);
+        if (settings.map != passes::AamapSource::Geometric) outputs.push_back(passes::kLaplacian);
+        if (settings.map != passes::AamapSource::Luminance) outputs.push_back(passes::kEdges);
+    }
+    if (settings.blockSums) {
+        outputs.push_back(passes::kBlockSums);
+        outputs.push_back(passes::kBlockCounts);
     }
     const graph::CompiledGraph compiled = graph.compile(outputs);
     if (spdlog::should_log(spdlog::level::debug)) spdlog::debug("Snapshot {}", compiled.explain());
+    for (const graph::CompiledPass& p : compiled.passes)
+        if (p.name == "geometry_buffer") s.geometry.prepare();
     const vk::ExecutionResult run = s.executor.execute(compiled);
 
     SnapshotResult result;
@@ -183,12 +206,19 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     result.aamap = passes::toImageGrey(run.outputs.at(passes::kAamap));
     if (settings.keepDebugImages) {
         result.snapshot = passes::toImageRGB(run.outputs.at(kSnapshot));
-        result.laplacian = passes::toImageGrey(run.outputs.at(passes::kLaplacian));
+        if (settings.map != passes::AamapSource::Geometric)
+            result.laplacian = passes::toImageGrey(run.outputs.at(passes::kLaplacian));
+        if (settings.map != passes::AamapSource::Luminance)
+            result.edges = passes::toImageGrey(run.outputs.at(passes::kEdges));
     }
+    if (settings.blockSums)
+        result.blockSums = passes::toBlockSumTables(run.outputs.at(passes::kBlockSums),
+                                                    run.outputs.at(passes::kBlockCounts), width, height);
     result.readbackSeconds = run.readbackSeconds + secondsSince(convert);
     for (const vk::PassTime& t : run.passTimes) result.passTimes.push_back({t.pass, t.milliseconds});
     result.deviceName = s.context.deviceName();
-    result.explain = explainWithPurposes(graph, compiled);
+    result.explain = explainWithPurposes(graph, compiled) + "mirrors: " + mirrorWhy + "\n";
+    result.dot = compiled.toDot();
     result.shadowCubeMaps = shadowed ? static_cast<int>(s.gbuffer.lightCount()) : 0;
     result.totalSeconds = secondsSince(start);
     return result;

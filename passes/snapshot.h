@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "core/image.h"
+#include "passes/block_sums.h"
 #include "passes/filter_params.h"
+#include "passes/geometric_aamap.h"
 #include "scene/scene.h"
 
 namespace aamap {
@@ -27,6 +29,12 @@ struct SnapshotSettings {
     int areaLightSamples = 5;    // point samples per area light (the paper used 5)
     FilterParams filter;
     bool keepDebugImages = true;  // also read back snapshot colour and laplacian
+    // Also build and read back the aamap's block-sum tables (passes/block_sums.h) for adaptive
+    // subsampling; false leaves the block-sum passes culled.
+    bool blockSums = false;
+    // Edges the aamap is built from: the luminance Laplacian (the paper), G-buffer
+    // discontinuities, or their max (passes/geometric_aamap.h).
+    passes::AamapSource map = passes::AamapSource::Luminance;
     ShadowSettings shadows;
 };
 
@@ -37,13 +45,16 @@ struct PassTiming {
 
 struct SnapshotResult {
     ImageRGB snapshot;     // linear colour at snapshot resolution (if keepDebugImages)
-    ImageGrey laplacian;   // |L| at snapshot resolution (if keepDebugImages)
+    ImageGrey laplacian;   // |L| at snapshot resolution (if keepDebugImages; not for the geometric map)
+    ImageGrey edges;       // geometric/combined map: the edge image the blur read (if keepDebugImages)
     ImageGrey aamap;       // render resolution, values in [0,1]
+    passes::BlockSumTables blockSums;  // of the aamap, if SnapshotSettings::blockSums (else empty)
     std::vector<PassTiming> passTimes;
     double totalSeconds = 0.0;     // CPU wall time: graph build, upload, execute, readback
     double readbackSeconds = 0.0;  // CPU wall time of the readback alone
     std::string deviceName;
     std::string explain;  // the compiled graph, CompiledGraph::explain(), and each kept pass's purpose
+    std::string dot;      // the compiled graph as Graphviz DOT (CompiledGraph::toDot())
     int shadowCubeMaps = 0;  // cube maps rendered: one per shadowed point light / area-light sample
 };
 

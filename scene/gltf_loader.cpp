@@ -149,6 +149,15 @@ private:
             out.kind = MaterialKind::Mirror;
         }
         if (pbr.baseColorTexture.index >= 0) out.diffuseTexture = texture(pbr.baseColorTexture.index, m.name);
+        // Coverage: baseColorFactor.a times the base-colour texture's alpha.
+        if (m.alphaMode == "MASK") out.alphaMode = AlphaMode::Mask;
+        else if (m.alphaMode == "BLEND") out.alphaMode = AlphaMode::Blend;
+        else if (!m.alphaMode.empty() && m.alphaMode != "OPAQUE")
+            throw InputError(file_, fmt::format("material '{}' has alphaMode '{}' (expected OPAQUE, MASK or BLEND)",
+                                                m.name, m.alphaMode));
+        out.alpha = pbr.baseColorFactor.size() == 4 ? static_cast<float>(std::clamp(pbr.baseColorFactor[3], 0.0, 1.0)) : 1.0f;
+        out.alphaCutoff = static_cast<float>(m.alphaCutoff);
+        if (out.alphaMode != AlphaMode::Opaque) out.alphaTexture = out.diffuseTexture;
         return out;
     }
 
@@ -215,6 +224,9 @@ private:
             const auto pos = prim.attributes.find("POSITION");
             if (pos == prim.attributes.end()) throw InputError(file_, fmt::format("mesh '{}' has a primitive without POSITION", mesh.name));
             const std::vector<float> p = detail::readFloats(model_, pos->second, 3, file_);
+            if (std::any_of(p.begin(), p.end(), [](float v) { return !std::isfinite(v); })) {
+                throw InputError(file_, fmt::format("mesh '{}': POSITION accessor {} holds a NaN or infinite value", mesh.name, pos->second));
+            }
             const std::size_t count = p.size() / 3;
             std::vector<float> n, uv;
             if (const auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) n = detail::readFloats(model_, it->second, 3, file_);
@@ -261,7 +273,7 @@ private:
             glm::vec3 normal = c / len;
             if (!n.empty()) {
                 const glm::vec3 v = normalMatrix * glm::vec3(n[3 * tri[k]], n[3 * tri[k] + 1], n[3 * tri[k] + 2]);
-                if (glm::length(v) > 0.0f) normal = glm::normalize(v);
+                if (glm::length(v) > 0.0f && std::isfinite(glm::length(v))) normal = glm::normalize(v);
             }
             mesh.positions.push_back(pos[k]);
             mesh.normals.push_back(normal);
@@ -316,10 +328,23 @@ private:
             warn(fmt::format("directional light '{}' is not supported; skipped", light.name));
             return;
         }
-        if (light.type == "spot") warn(fmt::format("spot light '{}' is treated as a point light", light.name));
         const glm::vec3 colour = light.color.size() == 3 ? glm::vec3(light.color[0], light.color[1], light.color[2]) : glm::vec3(1.0f);
-        scene_.pointLights.push_back({light.name.empty() ? fmt::format("light{}", index) : light.name, glm::vec3(world[3]),
-                                      colour * static_cast<float>(light.intensity), glm::vec3(0.0f)});
+        PointLight p{light.name.empty() ? fmt::format("light{}", index) : light.name, glm::vec3(world[3]),
+                     colour * static_cast<float>(light.intensity), glm::vec3(0.0f)};
+        if (light.type == "spot") {
+            // The cone points down the node's local -Z; angles are half-angles from that axis.
+            const glm::vec3 axis = glm::vec3(world * glm::vec4(0, 0, -1, 0));
+            const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+            if (!(glm::length(axis) > 0.0f) || !(outer > 0.0) || !(inner >= 0.0) || inner > outer) {
+                warn(fmt::format("spot light '{}' has cone angles inner {} outer {} (need 0 <= inner <= outer, outer > 0) "
+                                 "or a degenerate transform; skipped", p.name, inner, outer));
+                return;
+            }
+            p.spotDirection = glm::normalize(axis);
+            p.cosInner = static_cast<float>(std::cos(inner));
+            p.cosOuter = static_cast<float>(std::cos(outer));
+        }
+        scene_.pointLights.push_back(std::move(p));
     }
 
     const fs::path& file_;

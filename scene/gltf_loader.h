@@ -12,8 +12,9 @@
 //   KHR_materials_transmission > 0 -> Glass (ior from KHR_materials_ior); metallic >= 0.99 with
 //   roughness <= 0.05 -> Mirror. Texture transforms and other textures are ignored.
 // - Perspective cameras -> Scene::views (vv = yfov, vh from aspectRatio, else vv).
-// - KHR_lights_punctual point and spot lights -> isotropic PointLights with intensity =
-//   colour * intensity taken as W/sr (no photometric conversion); directional ones are skipped.
+// - KHR_lights_punctual point and spot lights -> PointLights with intensity = colour * intensity
+//   taken as W/sr (no photometric conversion); spots keep their cone (axis = the node's -Z,
+//   innerConeAngle / outerConeAngle, glTF's smooth falloff); directional ones are skipped.
 #include <filesystem>
 
 #include "scene/scene.h"

@@ -1,5 +1,6 @@
 #include "scene/obj_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <fstream>
@@ -14,6 +15,7 @@
 #include <tiny_obj_loader.h>
 
 #include "core/error.h"
+#include "core/memory_budget.h"
 #include "scene/lights.h"
 #include "scene/obj_prescan.h"
 #include "scene/polygon.h"
@@ -205,7 +207,12 @@ Scene loadObj(const fs::path& file, ObjLoadReport* report) {
     ObjLoadReport& rep = report ? *report : localReport;
     rep = {};
     const std::string text = readWholeFile(file, "OBJ file");
-    detail::prescanObj(file, text);
+    const detail::ObjPrescan counts = detail::prescanObj(file, text);
+    // Before any big allocation: tinyobjloader's copy (floats, 12 B per face corner), then per face
+    // up to two triangles of three unshared 32 B vertices, and the BVH (~64 B per triangle).
+    checkMemoryBudget(text.size() + 4 * (3 * counts.positions + 3 * counts.normals + 2 * counts.uvs) + 400 * counts.faces,
+                      "loading " + file.string(),
+                      fmt::format("{} faces, {} vertices: parser copy, mesh and BVH", counts.faces, counts.positions));
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
@@ -236,6 +243,16 @@ Scene loadObj(const fs::path& file, ObjLoadReport* report) {
         if (!objMaterials[i].diffuse_texname.empty()) {
             m.diffuseTexture = textures.get(mtlReader.folderOf(i), objMaterials[i].diffuse_texname,
                                             mtlReader.libraryOf(i), &rep.warnings);
+        }
+        // Coverage: d (tinyobj turns Tr into d = 1 - Tr) times map_d. A map_d is an alpha mask
+        // (foliage cut-outs in Sponza-like scenes); a constant d < 1 is a blend, cut at 0.5.
+        m.alpha = std::clamp(static_cast<float>(objMaterials[i].dissolve), 0.0f, 1.0f);
+        if (!objMaterials[i].alpha_texname.empty()) {
+            m.alphaMode = AlphaMode::Mask;
+            m.alphaTexture = textures.getCoverage(mtlReader.folderOf(i), objMaterials[i].alpha_texname,
+                                                  mtlReader.libraryOf(i), &rep.warnings);
+        } else if (m.alpha < 1.0f) {
+            m.alphaMode = AlphaMode::Blend;
         }
         scene.materials.push_back(std::move(m));
     }

@@ -22,6 +22,29 @@ struct ForwardRef {
 
 constexpr std::array<const char*, 3> kKindNames = {"vertex", "texture coordinate", "normal"};
 
+// Binary data where text is expected (an image renamed .obj, a truncated download): control
+// bytes other than whitespace never occur in OBJ/MTL text. Reports the first one's line:col.
+void rejectBinary(const std::filesystem::path& file, std::string_view text, const char* what) {
+    int line = 1, column = 1;
+    for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\f' && c != '\v') || c == 0x7f) {
+            throw InputError(file, line, column, fmt::format("binary data (byte 0x{:02x}), not {} text", c, what));
+        }
+        if (c == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+    }
+}
+
+// Values are stored as 32-bit floats: 1e39 parses as a finite double but becomes inf.
+bool finiteAsFloat(double value) {
+    return std::isfinite(static_cast<float>(value));
+}
+
 class ObjScanner {
 public:
     explicit ObjScanner(const std::filesystem::path& file) : file_(file) {}
@@ -76,7 +99,7 @@ private:
         for (std::size_t i = 1; i < tokens.size(); ++i) {
             const auto value = text::parseNumber(tokens[i].text);
             if (!value) fail(tokens[i].column, fmt::format("'{}' is not a number ({})", tokens[i].text, what));
-            if (!std::isfinite(*value)) fail(tokens[i].column, fmt::format("{} '{}' is not finite", what, tokens[i].text));
+            if (!finiteAsFloat(*value)) fail(tokens[i].column, fmt::format("{} '{}' is not finite", what, tokens[i].text));
         }
     }
 
@@ -132,12 +155,14 @@ private:
 }  // namespace
 
 ObjPrescan prescanObj(const std::filesystem::path& file, std::string_view text) {
+    rejectBinary(file, text, "OBJ");
     ObjScanner scanner(file);
     text::forEachLine(text, [&](std::string_view line, int number) { scanner.scanLine(line, number); });
     return scanner.finish();
 }
 
 void prescanMtl(const std::filesystem::path& file, std::string_view text) {
+    rejectBinary(file, text, "MTL");
     text::forEachLine(text, [&](std::string_view line, int lineNumber) {
         const auto tokens = text::tokenize(line);
         if (tokens.empty()) return;
@@ -157,7 +182,7 @@ void prescanMtl(const std::filesystem::path& file, std::string_view text) {
             for (std::size_t i = first; i < tokens.size(); ++i) {
                 const auto value = text::parseNumber(tokens[i].text);
                 if (!value) fail(tokens[i].column, fmt::format("'{}' is not a number ({})", tokens[i].text, key));
-                if (!std::isfinite(*value)) fail(tokens[i].column, fmt::format("{} value '{}' is not finite", key, tokens[i].text));
+                if (!finiteAsFloat(*value)) fail(tokens[i].column, fmt::format("{} value '{}' is not finite", key, tokens[i].text));
             }
         };
         if (key == "Ka" || key == "Kd" || key == "Ks" || key == "Ke" || key == "Kt" || key == "Tf") {

@@ -20,6 +20,8 @@ enum class MaterialKind : std::uint8_t {
     Glass,    // dielectric (MTL illum 7)
 };
 
+enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
+
 struct Material {
     std::string name;
     MaterialKind kind = MaterialKind::Diffuse;
@@ -29,7 +31,21 @@ struct Material {
     glm::vec3 ke{0.0f};   // emitted radiance; non-zero makes its triangles area lights
     float ior = 1.5f;
     int diffuseTexture = -1;  // index into Scene::textures, -1 if untextured
+    // Coverage (docs/architecture.md, "Alpha"): alpha = alpha * (alphaTexture's alpha channel).
+    // Mask cuts out where alpha < alphaCutoff; Blend is treated as Mask at alphaCutoff = 0.5 by
+    // both the Snapshot and the tracer (a deterministic cut-out that both agree on).
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alpha = 1.0f;        // glTF baseColorFactor.a, MTL d (or 1 - Tr)
+    float alphaCutoff = 0.5f;  // glTF alphaCutoff
+    int alphaTexture = -1;     // glTF: the baseColorTexture; MTL: map_d (coverage in alpha)
 };
+
+// Whether a material can cut holes: Mask, or Blend (treated as a mask at 0.5).
+inline bool isAlphaTested(const Material& m) { return m.alphaMode != AlphaMode::Opaque; }
+// The cutoff that applies: Blend cuts at 0.5.
+inline float effectiveAlphaCutoff(const Material& m) {
+    return m.alphaMode == AlphaMode::Blend ? 0.5f : m.alphaCutoff;
+}
 
 // One merged triangle mesh: the scene is small enough that Embree and Vulkan both take it whole.
 struct TriangleMesh {
@@ -49,6 +65,11 @@ struct PointLight {
     // Zero: isotropic. Non-zero (unit): emits intensity * max(0, cos) around it, as a point sample
     // of a one-sided Lambertian area light does.
     glm::vec3 normal{0.0f};
+    // Spot cone (glTF KHR_lights_punctual spot; the light file's `spot`). Non-zero (unit, and
+    // `normal` zero): emits intensity * spotFalloff(cos to the axis, cosInner, cosOuter)
+    // (scene/lights.h): full inside the inner cone, nothing outside the outer one, smooth between.
+    glm::vec3 spotDirection{0.0f};
+    float cosInner = 1.0f, cosOuter = 0.0f;  // cosines of the half-angles, cosInner >= cosOuter
 };
 
 // A group of emissive triangles with one radiance (one OBJ object with a Ke material, say).

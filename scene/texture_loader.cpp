@@ -58,10 +58,23 @@ float srgbToLinear(float c) {
     return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
+// Decoded textures are float RGBA (16 bytes a texel): 8192 x 8192 is 1 GiB. A header declaring
+// more is refused before stb_image allocates for it (a hostile or corrupt file, or a mistake).
+constexpr long long kMaxTexels = 8192LL * 8192LL;
+
+bool withinTexelLimit(const std::string& name, std::string* error) {
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info(name.c_str(), &width, &height, &channels)) return true;  // stbi_load reports why
+    if (static_cast<long long>(width) * height <= kMaxTexels) return true;
+    if (error) *error = fmt::format("{} x {} texels, more than the 8192 x 8192 texture limit", width, height);
+    return false;
+}
+
 }  // namespace
 
 std::optional<Texture> loadTexture(const fs::path& path, std::string* error) {
     const std::string name = path.string();
+    if (!withinTexelLimit(name, error)) return std::nullopt;
     int width = 0, height = 0, channels = 0;
     Texture texture;
     texture.path = path;
@@ -93,8 +106,42 @@ std::optional<Texture> loadTexture(const fs::path& path, std::string* error) {
     return texture;
 }
 
+std::optional<Texture> loadCoverageTexture(const fs::path& path, std::string* error) {
+    const std::string name = path.string();
+    if (!withinTexelLimit(name, error)) return std::nullopt;
+    int width = 0, height = 0, channels = 0;
+    unsigned char* pixels = stbi_load(name.c_str(), &width, &height, &channels, 4);
+    if (!pixels) {
+        if (error) *error = stbi_failure_reason() ? stbi_failure_reason() : "unknown stb_image error";
+        return std::nullopt;
+    }
+    const bool hasAlpha = channels == 2 || channels == 4;
+    Texture texture;
+    texture.path = path;
+    texture.width = width;
+    texture.height = height;
+    const std::size_t texels = static_cast<std::size_t>(width) * height;
+    texture.rgba.resize(4 * texels);
+    for (std::size_t i = 0; i < texels; ++i) {
+        const float coverage = static_cast<float>(pixels[4 * i + (hasAlpha ? 3 : 0)]) / 255.0f;
+        for (int c = 0; c < 4; ++c) texture.rgba[4 * i + c] = coverage;
+    }
+    stbi_image_free(pixels);
+    return texture;
+}
+
 int TextureCache::get(const fs::path& baseDir, std::string_view name, const fs::path& referrer,
                       std::vector<std::string>* warnings) {
+    return load(baseDir, name, referrer, warnings, false);
+}
+
+int TextureCache::getCoverage(const fs::path& baseDir, std::string_view name, const fs::path& referrer,
+                              std::vector<std::string>* warnings) {
+    return load(baseDir, name, referrer, warnings, true);
+}
+
+int TextureCache::load(const fs::path& baseDir, std::string_view name, const fs::path& referrer,
+                       std::vector<std::string>* warnings, bool coverage) {
     const auto warn = [&](const std::string& message) {
         spdlog::warn("{}", message);
         if (warnings) warnings->push_back(message);
@@ -105,18 +152,19 @@ int TextureCache::get(const fs::path& baseDir, std::string_view name, const fs::
                          name, baseDir.string()));
         return -1;
     }
-    if (const auto it = byPath_.find(*resolved); it != byPath_.end()) return it->second;
+    const std::pair key(*resolved, coverage);
+    if (const auto it = byPath_.find(key); it != byPath_.end()) return it->second;
     std::string error;
-    auto texture = loadTexture(*resolved, &error);
+    auto texture = coverage ? loadCoverageTexture(*resolved, &error) : loadTexture(*resolved, &error);
     if (!texture) {
         warn(fmt::format("{}: texture '{}' could not be decoded ({}); using the plain colour instead",
                          referrer.string(), resolved->string(), error));
-        byPath_[*resolved] = -1;
+        byPath_[key] = -1;
         return -1;
     }
     const int index = static_cast<int>(textures_.size());
     textures_.push_back(std::move(*texture));
-    byPath_[*resolved] = index;
+    byPath_[key] = index;
     return index;
 }
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "scene/scene.h"
@@ -21,6 +22,10 @@ std::optional<std::filesystem::path> resolveCaseInsensitive(const std::filesyste
 // On failure returns nullopt and sets `error`.
 std::optional<Texture> loadTexture(const std::filesystem::path& path, std::string* error = nullptr);
 
+// Decodes a coverage map (MTL map_d) to a texture whose alpha channel is the coverage: the image's
+// alpha channel if it has one, else its first channel. Coverage is data, not colour: no sRGB decode.
+std::optional<Texture> loadCoverageTexture(const std::filesystem::path& path, std::string* error = nullptr);
+
 // De-duplicates textures by resolved path while a scene is loaded.
 class TextureCache {
 public:
@@ -30,10 +35,16 @@ public:
     // referring file, also appended to `warnings` if given) when it is missing or unreadable.
     int get(const std::filesystem::path& baseDir, std::string_view name, const std::filesystem::path& referrer,
             std::vector<std::string>* warnings = nullptr);
+    // The same for a coverage map (loadCoverageTexture), cached apart from colour textures.
+    int getCoverage(const std::filesystem::path& baseDir, std::string_view name, const std::filesystem::path& referrer,
+                    std::vector<std::string>* warnings = nullptr);
 
 private:
+    int load(const std::filesystem::path& baseDir, std::string_view name, const std::filesystem::path& referrer,
+             std::vector<std::string>* warnings, bool coverage);
+
     std::vector<Texture>& textures_;
-    std::map<std::filesystem::path, int> byPath_;
+    std::map<std::pair<std::filesystem::path, bool>, int> byPath_;  // (path, coverage)
 };
 
 }  // namespace aamap

@@ -10,8 +10,10 @@ packages=(
   # libraries
   libglm-dev libembree-dev libtbb-dev libopenexr-dev libtinygltf-dev libtinyobjloader-dev
   libglfw3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev libstb-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks (xvfb + xauth: a virtual display for the viewer test, xvfb-run)
+  libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+  # sanitizer build and libFuzzer targets (the asan preset): clang and its runtime libraries
+  clang libclang-rt-14-dev
   # plots and metric cross-checks (the venv is made by tools/python-env.sh)
   python3 python3-venv
 )

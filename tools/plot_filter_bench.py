@@ -12,6 +12,7 @@ import sys
 IMPLS = [  # (impl, label, style)
     ("cpu_scalar", "CPU 1 thread, scalar", dict(color="tab:red", marker="o")),
     ("cpu_parallel", "CPU all threads, TBB + SIMD", dict(color="tab:orange", marker="s")),
+    ("cpu_parallel_new", "CPU all threads, + new output image", dict(color="tab:brown", marker="s", ls=":")),
     ("gpu_kernel", "Vulkan compute, kernel (timestamps)", dict(color="tab:blue", marker="^")),
     ("gpu_total", "Vulkan compute, with upload + readback", dict(color="tab:purple", marker="v")),
     ("cpu_copy", "copy limit, CPU (parallel memcpy)", dict(color="tab:orange", ls="--", marker="")),

@@ -15,6 +15,44 @@
 namespace aamap {
 namespace {
 
+// Embree filter for primary, secondary and shadow rays alike: a hit on a cut-out texel is no hit.
+void alphaFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* scene = static_cast<const EmbreeScene*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] == 0) continue;
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        if (scene->cutOut(prim, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)))
+            args->valid[i] = 0;
+    }
+}
+
+// Bilinear taps with repeat; texel centres at (i + 0.5) / width, v = 0 is row 0 (the top).
+struct BilinearTaps {
+    std::size_t i00, i01, i10, i11;  // row-major indices: (x0,y0) (x1,y0) (x0,y1) (x1,y1)
+    float ax, ay;
+};
+bool bilinearTaps(glm::vec2 st, int width, int height, BilinearTaps& taps) {
+    const float x = st.x * static_cast<float>(width) - 0.5f, y = st.y * static_cast<float>(height) - 0.5f;
+    if (!std::isfinite(x) || !std::isfinite(y)) return false;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const auto wrap = [](float i, int n) {
+        const long k = static_cast<long>(i) % n;
+        return static_cast<std::size_t>(k < 0 ? k + n : k);
+    };
+    const std::size_t x0 = wrap(fx, width), x1 = wrap(fx + 1.0f, width);
+    const std::size_t y0 = wrap(fy, height), y1 = wrap(fy + 1.0f, height);
+    const std::size_t w = static_cast<std::size_t>(width);
+    taps = {y0 * w + x0, y0 * w + x1, y1 * w + x0, y1 * w + x1, x - fx, y - fy};
+    return true;
+}
+
+template <class T>
+T blend(const std::vector<T>& texels, const BilinearTaps& t) {
+    const T top = (1.0f - t.ax) * texels[t.i00] + t.ax * texels[t.i01];
+    const T bottom = (1.0f - t.ax) * texels[t.i10] + t.ax * texels[t.i11];
+    return (1.0f - t.ay) * top + t.ay * bottom;
+}
+
 void onEmbreeError(void*, RTCError code, const char* message) {
     spdlog::error("embree error {}: {}", static_cast<int>(code), message ? message : "(no message)");
 }
@@ -66,6 +104,11 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
         s.texture = mat.diffuseTexture;
     s.diffuse = kd.x != 0.0f || kd.y != 0.0f || kd.z != 0.0f;  // true for NaN: bad data is counted, not hidden
     s.glossy = mat.kind == MaterialKind::Diffuse && positive(ks);
+    s.alphaTested = isAlphaTested(mat);
+    s.alpha = mat.alpha;
+    s.alphaCutoff = effectiveAlphaCutoff(mat);
+    if (s.alphaTested && mat.alphaTexture >= 0 && static_cast<std::size_t>(mat.alphaTexture) < textureCount)
+        s.alphaTexture = mat.alphaTexture;
     s.ns = std::max(mat.ns, 0.0f);
     s.phongNorm = (s.ns + 2.0f) * 0.5f * std::numbers::inv_pi_v<float>;
     s.phongPdfNorm = (s.ns + 1.0f) * 0.5f * std::numbers::inv_pi_v<float>;
@@ -85,7 +128,10 @@ std::string SceneFeatures::describe() const {
         textures ? "a used material has a diffuse texture and the mesh has uvs" : "no textured material in use",
         on(glossy), glossy ? "a used diffuse material has Ks > 0" : "no Ks", on(mirror),
         mirror ? "a used material is a mirror" : "no mirror", on(glass), glass ? "a used material is glass" : "no glass",
-        on(emissive), emissive ? "a used material has Ke > 0" : "no Ke");
+        on(emissive), emissive ? "a used material has Ke > 0" : "no Ke") +
+           fmt::format(", alpha mask {} ({})", on(alphaMask),
+                       alphaMask ? "a used material is MASK or BLEND: Embree filters cut out its holes"
+                                 : "every used material is opaque: no Embree filter");
 }
 
 EmbreeScene::EmbreeScene(const Scene& scene) {
@@ -104,14 +150,37 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             spdlog::warn("material '{}' is textured but the mesh has no uvs; texture ignored", scene.materials[i].name);
             s.texture = -1;
         }
+        if (s.alphaTexture >= 0 && !hasUvs) {
+            spdlog::warn("material '{}' has an alpha texture but the mesh has no uvs; coverage is constant",
+                         scene.materials[i].name);
+            s.alphaTexture = -1;
+        }
+        // A constant coverage at or above the cutoff never cuts: no filter calls for it.
+        if (s.alphaTested && s.alphaTexture < 0 && s.alpha >= s.alphaCutoff) s.alphaTested = false;
+        features_.alphaMask |= s.alphaTested;
         features_.textures |= s.texture >= 0;
         features_.glossy |= s.glossy;
         features_.mirror |= s.kind == MaterialKind::Mirror;
         features_.glass |= s.kind == MaterialKind::Glass;
         features_.emissive |= s.emissive;
     }
+    std::vector<char> coverageUsed(scene.textures.size(), 0);
+    for (std::size_t i = 0; i < materials_.size(); ++i)
+        if (used[i] && materials_[i].alphaTested && materials_[i].alphaTexture >= 0)
+            coverageUsed[static_cast<std::size_t>(materials_[i].alphaTexture)] = 1;
+    const bool alphaTextures = std::find(coverageUsed.begin(), coverageUsed.end(), 1) != coverageUsed.end();
+    const bool needUvs = features_.textures || alphaTextures;
+    if (needUvs) textures_.resize(scene.textures.size());
+    for (std::size_t i = 0; i < coverageUsed.size(); ++i) {
+        const Texture& t = scene.textures[i];
+        const std::size_t texels = static_cast<std::size_t>(std::max(t.width, 0)) * std::max(t.height, 0);
+        if (!coverageUsed[i] || t.rgba.size() < 4 * texels || texels == 0) continue;  // unusable: alpha constant
+        textures_[i].width = t.width;
+        textures_[i].height = t.height;
+        textures_[i].alpha.resize(texels);
+        for (std::size_t k = 0; k < texels; ++k) textures_[i].alpha[k] = t.rgba[4 * k + 3];
+    }
     if (features_.textures) {
-        textures_.resize(scene.textures.size());
         for (std::size_t i = 0; i < scene.textures.size(); ++i) {
             const Texture& t = scene.textures[i];
             TextureData& d = textures_[i];
@@ -149,7 +218,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
         triangles_.push_back(tri);
         if (hasNormals)
             for (int c = 0; c < 3; ++c) vertexNormals_.push_back(m.normals[idx[c]]);
-        if (features_.textures)
+        if (needUvs)
             for (int c = 0; c < 3; ++c) vertexUvs_.push_back(m.uvs[idx[c]]);
     }
 
@@ -181,6 +250,11 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             for (int c = 0; c < 3; ++c) vertices[3 * i + c] = m.positions[i][c];
         for (std::size_t i = 0; i < m.triangles.size(); ++i)
             for (int c = 0; c < 3; ++c) indices[3 * i + c] = m.triangles[i][c];
+        if (features_.alphaMask) {  // only for scenes with holes: filters cost every hit
+            rtcSetGeometryUserData(geom, this);
+            rtcSetGeometryIntersectFilterFunction(geom, alphaFilter);
+            rtcSetGeometryOccludedFilterFunction(geom, alphaFilter);
+        }
         rtcCommitGeometry(geom);
         rtcAttachGeometry(scene_, geom);  // geometry id 0: primID indexes TriangleMesh::triangles
         rtcReleaseGeometry(geom);
@@ -205,26 +279,32 @@ glm::vec3 EmbreeScene::shadingNormal(std::uint32_t id, float u, float v) const {
     return interp / std::sqrt(len2);
 }
 
+glm::vec2 EmbreeScene::textureCoordinates(std::uint32_t id, float u, float v) const {
+    const glm::vec2* uv = &vertexUvs_[3 * static_cast<std::size_t>(id)];
+    return (1.0f - u - v) * uv[0] + u * uv[1] + v * uv[2];
+}
+
 glm::vec3 EmbreeScene::texel(int texture, std::uint32_t id, float u, float v) const {
     const TextureData& t = textures_[static_cast<std::size_t>(texture)];
     if (t.rgb.empty()) return glm::vec3(1.0f);
-    const glm::vec2* uv = &vertexUvs_[3 * static_cast<std::size_t>(id)];
-    const glm::vec2 st = (1.0f - u - v) * uv[0] + u * uv[1] + v * uv[2];
-    // Bilinear with repeat; texel centres at (i + 0.5) / width. v = 0 is row 0 (the top).
-    const float x = st.x * static_cast<float>(t.width) - 0.5f, y = st.y * static_cast<float>(t.height) - 0.5f;
-    const float fx = std::floor(x), fy = std::floor(y);
-    const float ax = x - fx, ay = y - fy;
-    const auto wrap = [](float i, int n) {
-        const long k = static_cast<long>(i) % n;
-        return static_cast<std::size_t>(k < 0 ? k + n : k);
-    };
-    if (!std::isfinite(x) || !std::isfinite(y)) return glm::vec3(1.0f);
-    const std::size_t x0 = wrap(fx, t.width), x1 = wrap(fx + 1.0f, t.width);
-    const std::size_t y0 = wrap(fy, t.height), y1 = wrap(fy + 1.0f, t.height);
-    const std::size_t w = static_cast<std::size_t>(t.width);
-    const glm::vec3 top = (1.0f - ax) * t.rgb[y0 * w + x0] + ax * t.rgb[y0 * w + x1];
-    const glm::vec3 bottom = (1.0f - ax) * t.rgb[y1 * w + x0] + ax * t.rgb[y1 * w + x1];
-    return (1.0f - ay) * top + ay * bottom;
+    BilinearTaps taps;
+    if (!bilinearTaps(textureCoordinates(id, u, v), t.width, t.height, taps)) return glm::vec3(1.0f);
+    return blend(t.rgb, taps);
+}
+
+float EmbreeScene::coverage(int texture, std::uint32_t id, float u, float v) const {
+    const TextureData& t = textures_[static_cast<std::size_t>(texture)];
+    if (t.alpha.empty()) return 1.0f;
+    BilinearTaps taps;
+    if (!bilinearTaps(textureCoordinates(id, u, v), t.width, t.height, taps)) return 1.0f;
+    return blend(t.alpha, taps);
+}
+
+bool EmbreeScene::cutOut(std::uint32_t id, float u, float v) const {
+    const ShadingMaterial& m = materials_[triangles_[id].material];
+    if (!m.alphaTested) return false;
+    const float a = m.alphaTexture < 0 ? m.alpha : m.alpha * coverage(m.alphaTexture, id, u, v);
+    return a < m.alphaCutoff;
 }
 
 }  // namespace aamap

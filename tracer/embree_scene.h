@@ -35,6 +35,11 @@ struct ShadingMaterial {
     float diffuseWeight = 1.0f;  // probability of sampling the Lambert lobe (vs glossy)
     float ior = 1.5f;
     glm::vec3 ke{0.0f};
+    // Alpha test (Mask, or Blend cut at 0.5; see scene.h): a hit is cut out where
+    // alpha * alphaTexture.a < alphaCutoff. Only tested materials reach the Embree filter.
+    bool alphaTested = false;
+    float alpha = 1.0f, alphaCutoff = 0.5f;
+    int alphaTexture = -1;  // index into the scene's textures, -1: constant alpha
 };
 
 struct Triangle {
@@ -48,12 +53,14 @@ struct Triangle {
 // Which optional shading paths the scene needs, and why (logged once per scene).
 struct SceneFeatures {
     bool textures = false, glossy = false, mirror = false, glass = false, emissive = false;
+    bool alphaMask = false;  // a used material can cut holes: Embree filter functions installed
     std::string describe() const;
 };
 
 struct TextureData {
     int width = 0, height = 0;
     std::vector<glm::vec3> rgb;  // linear, row 0 at the top (v = 0)
+    std::vector<float> alpha;    // coverage, only for textures an alpha-tested material uses
 };
 
 // A single ray from origin along dir over [0, inf), ready for rtcIntersect1: every field Embree
@@ -97,9 +104,14 @@ public:
     glm::vec3 albedo(const ShadingMaterial& m, std::uint32_t id, float u, float v) const {
         return m.texture < 0 ? m.kd : m.kd * texel(m.texture, id, u, v);
     }
+    // Whether the surface of triangle `id` at barycentrics (u, v) is cut out by its material's
+    // alpha test (bilinear coverage, the same texel rule as albedo()). False for opaque materials.
+    bool cutOut(std::uint32_t id, float u, float v) const;
 
 private:
     glm::vec3 texel(int texture, std::uint32_t id, float u, float v) const;
+    float coverage(int texture, std::uint32_t id, float u, float v) const;
+    glm::vec2 textureCoordinates(std::uint32_t id, float u, float v) const;
 
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
@@ -109,7 +121,8 @@ private:
     std::vector<ShadingMaterial> materials_;
     std::vector<glm::vec3> vertexNormals_;  // 3 per triangle, empty without normals
     std::vector<glm::vec2> vertexUvs_;      // 3 per triangle, only when a used material is textured
-    std::vector<TextureData> textures_;     // only when a used material is textured
+                                            // or alpha-tested with a texture
+    std::vector<TextureData> textures_;     // only when a used material is textured or alpha-tested
 };
 
 }  // namespace aamap

@@ -92,6 +92,16 @@ glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, con
     return shadeDirect(hit, sampler, 0, 0, 1.0f, rays);
 }
 
+glm::vec3 Integrator::primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler,
+                                     RayCounts& rays) const {
+    ++rays.primary;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return glm::vec3(0.0f);  // misses are black
+    SurfaceHit hit;
+    fillHit(rh, dir, hit);
+    if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
+    return shadeDirect(hit, sampler, 0, 0, 1.0f, rays);
+}
+
 glm::vec3 Integrator::radianceDirect(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
                                      RayCounts& rays) const {
     SurfaceHit hit;
@@ -153,7 +163,7 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
         if (glm::dot(hit.geometric, l) <= 0.0f) continue;
         const float cosSurface = glm::dot(hit.shading, l);
         if (cosSurface <= 0.0f) continue;
-        const float lobe = light.lobe ? glm::dot(light.normal, -l) : 1.0f;
+        const float lobe = light.angular(-l);  // cosine lobe or spot cone
         if (lobe <= 0.0f) continue;
         if (!unoccluded(origin, light.position, 1.0f, rays)) continue;  // a point: nothing to stop short of
         const glm::vec3 E = light.intensity * (lobe * cosSurface / d2);
@@ -273,7 +283,7 @@ glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin
         Le = p.intensity;
         const glm::vec3 w = target - hit.position;
         const float d2 = glm::dot(w, w);
-        const float lobe = p.lobe ? glm::dot(p.normal, -glm::normalize(w)) : 1.0f;
+        const float lobe = p.angular(-glm::normalize(w));
         if (!(d2 > 0.0f) || lobe <= 0.0f) return glm::vec3(0.0f);
         geometry = lobe / d2;
     } else {

@@ -101,6 +101,9 @@ public:
     // Radiance arriving at `origin` from unit direction -dir. Counts every ray it traces in `rays`
     // (the primary ray in rays.primary). Allocates nothing.
     glm::vec3 primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays) const;
+    // The same, for a primary ray the caller has already traced from `origin` along unit `dir`
+    // (rh: its Embree result, e.g. one lane of a packet of coherent primary rays).
+    glm::vec3 primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays) const;
 
     // Building blocks (also for the irradiance cache). intersect: false on a miss; counts the ray
     // in rays.other. radianceDirect: what Direct mode sees along a secondary ray (emission + direct

@@ -68,10 +68,21 @@ AreaLightSampler::AreaLightSampler(const AreaLight& light, const EmbreeScene& ge
 
 LightSet buildLights(const Scene& scene, const EmbreeScene& geometry) {
     LightSet set;
+    std::vector<double> pointSolidAngles;  // power = intensity * this
     for (const PointLight& p : scene.pointLights) {
         const float len = glm::length(p.normal);
-        const bool lobe = len > 0.0f;
-        set.points.push_back({p.position, p.intensity, lobe ? p.normal / len : glm::vec3(0.0f), lobe});
+        const float spotLen = glm::length(p.spotDirection);
+        PointLightSource s{p.position, p.intensity, glm::vec3(0.0f), len > 0.0f};
+        if (s.lobe) {
+            s.normal = p.normal / len;
+        } else if (spotLen > 0.0f) {
+            s.spot = true;
+            s.normal = p.spotDirection / spotLen;
+            s.cosInner = p.cosInner;
+            s.cosOuter = std::min(p.cosOuter, p.cosInner);
+        }
+        set.points.push_back(s);
+        pointSolidAngles.push_back(emittingSolidAngle(p));
     }
     std::vector<const AreaLight*> kept;  // the scene light behind each sampler
     for (const AreaLight& a : scene.areaLights) {
@@ -83,11 +94,13 @@ LightSet buildLights(const Scene& scene, const EmbreeScene& geometry) {
         set.areas.push_back(std::move(s));
         kept.push_back(&a);
     }
-    // Power: flux for area lights (pi L A), 4 pi I for isotropic points, pi I for cosine lobes.
-    // Luminance weights the channels; a black light keeps a tiny share so no light is unreachable.
+    // Power: flux for area lights (pi L A), 4 pi I for isotropic points, pi I for cosine lobes,
+    // I times the cone's solid-angle integral for spots (emittingSolidAngle). Luminance weights
+    // the channels; a black light keeps a tiny share so no light is unreachable.
     const auto lum = [](const glm::vec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
     std::vector<double> power;
-    for (const PointLightSource& p : set.points) power.push_back((p.lobe ? 1.0 : 4.0) * lum(p.intensity));
+    for (std::size_t i = 0; i < set.points.size(); ++i)
+        power.push_back(pointSolidAngles[i] / 3.14159265358979 * lum(set.points[i].intensity));
     const auto addLuminance = [&](const glm::vec3& c) { set.luminance.push_back(static_cast<float>(std::max(lum(c), 0.0))); };
     for (const PointLightSource& p : set.points) addLuminance(p.intensity);
     for (const AreaLightSampler& a : set.areas) addLuminance(a.radiance());
@@ -132,7 +145,7 @@ float LightSet::contribution(std::size_t l, const glm::vec3& x, const glm::vec3&
         if (!(d2 > 0.0f)) return 0.0f;
         const glm::vec3 dir = w * (1.0f / std::sqrt(d2));
         const float cosSurface = glm::dot(n, dir);
-        const float lobe = p.lobe ? glm::dot(p.normal, -dir) : 1.0f;
+        const float lobe = p.angular(-dir);
         if (cosSurface <= 0.0f || lobe <= 0.0f) return 0.0f;
         const float e = lum * lobe * cosSurface / d2;
         return std::isfinite(e) ? e : lum;

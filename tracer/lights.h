@@ -11,6 +11,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "scene/lights.h"
 #include "scene/scene.h"
 
 namespace aamap {
@@ -77,12 +78,22 @@ private:
     std::vector<float> cdfs_;  // Tri::cdf of each triangle, for the binary search; the last is exactly 1
 };
 
-// Point lights with the lobe factor resolved once.
+// Point and spot lights with the angular profile resolved once.
 struct PointLightSource {
     glm::vec3 position;
     glm::vec3 intensity;
-    glm::vec3 normal;  // zero: isotropic
+    glm::vec3 normal;  // lobe: its axis; spot: the cone axis; else zero
     bool lobe;
+    bool spot = false;
+    float cosInner = 1.0f, cosOuter = 0.0f;  // spot cone (scene/lights.h spotFalloff)
+
+    // The intensity's factor towards unit direction `out` (from the light to the receiver); 0
+    // where it emits nothing. Every estimator and contribution() test the same value.
+    float angular(const glm::vec3& out) const {
+        const float c = normal.x * out.x + normal.y * out.y + normal.z * out.z;
+        if (lobe) return c > 0.0f ? c : 0.0f;
+        return spot ? spotFalloff(c, cosInner, cosOuter) : 1.0f;
+    }
 };
 
 // All lights, plus what light selection and MIS need. Light index l < points.size() is a point

@@ -36,7 +36,7 @@ glm::vec3 Integrator::nextEvent(const SurfaceHit& hit, const Sampler& sampler, i
         if (!(d2 > 0.0f)) return glm::vec3(0.0f);
         const glm::vec3 wi = w * (1.0f / std::sqrt(d2));
         const float cosSurface = glm::dot(hit.shading, wi);
-        const float lobe = p.lobe ? glm::dot(p.normal, -wi) : 1.0f;
+        const float lobe = p.angular(-wi);
         if (glm::dot(hit.geometric, wi) <= 0.0f || cosSurface <= 0.0f || lobe <= 0.0f) return glm::vec3(0.0f);
         if (!unoccluded(origin, p.position, 1.0f, rays)) return glm::vec3(0.0f);
         const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, wi, cosSurface, diffusePick);

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "tracer/block_sums.h"
 #include "tracer/strategies/strategies.h"
 
 namespace aamap {
@@ -19,6 +20,7 @@ const char* toString(StrategyKind kind) {
         case StrategyKind::SupersampleFilter: return "supersample";
         case StrategyKind::VarianceAdaptive: return "variance";
         case StrategyKind::ShapeIdAdaptive: return "shape-id";
+        case StrategyKind::Hybrid: return "hybrid";
     }
     return "unknown";
 }
@@ -44,7 +46,7 @@ bool parseEnum(const std::string& name, Enum& out, const Enum (&all)[N]) {
 bool parse(const std::string& name, StrategyKind& kind) {
     using K = StrategyKind;
     const K all[] = {K::Uniform,           K::Aamap,           K::AamapSubsample, K::RpictAdaptive,
-                     K::SupersampleFilter, K::VarianceAdaptive, K::ShapeIdAdaptive};
+                     K::SupersampleFilter, K::VarianceAdaptive, K::ShapeIdAdaptive, K::Hybrid};
     return parseEnum(name, kind, all);
 }
 
@@ -142,7 +144,10 @@ std::unique_ptr<SamplingStrategy> makeStrategy(const StrategySettings& s, int wi
         case StrategyKind::AamapSubsample:
             require(s.spacing >= 1 && s.spacing <= 64, fmt::format("spacing must be in [1, 64], got {}", s.spacing));
             require(s.threshold >= 0.0, fmt::format("threshold must be >= 0, got {}", s.threshold));
-            strategy = makeSubsampleStrategy(n, s.mapping, s.spacing, s.threshold, requireMap(s, width, height));
+            require(s.blockSums == nullptr || (s.blockSums->width() == width && s.blockSums->height() == height),
+                    "block sums do not match the render size");
+            strategy = makeSubsampleStrategy(n, s.mapping, s.spacing, s.threshold, requireMap(s, width, height),
+                                             s.blockSums);
             break;
         case StrategyKind::RpictAdaptive:
             require(s.spacing >= 1 && s.spacing <= 64, fmt::format("spacing must be in [1, 64], got {}", s.spacing));
@@ -165,6 +170,11 @@ std::unique_ptr<SamplingStrategy> makeStrategy(const StrategySettings& s, int wi
         case StrategyKind::ShapeIdAdaptive:
             require(s.minSamples >= 1, fmt::format("min samples must be >= 1, got {}", s.minSamples));
             strategy = makeShapeIdStrategy(n, s.minSamples);
+            break;
+        case StrategyKind::Hybrid:
+            require(s.noiseThreshold >= 0.0, fmt::format("noise threshold must be >= 0, got {}", s.noiseThreshold));
+            require(s.sampleStep >= 1, fmt::format("sample step must be >= 1, got {}", s.sampleStep));
+            strategy = makeHybridStrategy(n, s.mapping, s.noiseThreshold, s.sampleStep, requireMap(s, width, height));
             break;
     }
     require(strategy != nullptr, "unknown sampling strategy");

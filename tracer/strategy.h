@@ -11,6 +11,8 @@
 // - supersample: f x f sub-pixels of n x n strata, then a pfilt-like box/Gaussian filter.
 // - variance: Cycles-style two half-buffer error estimate and stop rule; strategies/variance.h.
 // - shape-id: pbrt-v2 AdaptiveSampler, shape-id method; strategies/shape_id.h.
+// - hybrid: the aamap picks the pixels that get more than one ray, each pixel's sample contrast
+//   (Cycles' half-buffer error) decides when it stops; strategies/hybrid.h.
 #include <memory>
 #include <string>
 

@@ -1,5 +1,6 @@
 #include "tracer/tracer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -23,6 +24,79 @@
 
 namespace aamap {
 namespace {
+
+// Up to W coherent primary rays (strata of one pixel) for one rtcIntersect4/8. On the stack:
+// nothing is allocated per ray. Unused lanes are masked off.
+template <int W>
+struct PacketTypes;
+template <>
+struct PacketTypes<4> {
+    using RayHit = RTCRayHit4;
+    static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect4(valid, s, c, r); }
+};
+template <>
+struct PacketTypes<8> {
+    using RayHit = RTCRayHit8;
+    static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect8(valid, s, c, r); }
+};
+
+template <int W>
+struct PrimaryPacket {
+    static constexpr int kWidth = W;
+    typename PacketTypes<W>::RayHit rays;  // carries its own alignment
+    glm::vec3 dir[kWidth];
+
+    void set(int lane, const glm::vec3& origin, const glm::vec3& d) {
+        const RTCRayHit single = makeRayHit(origin, d);  // the same ray rtcIntersect1 would get
+        rays.ray.org_x[lane] = single.ray.org_x;
+        rays.ray.org_y[lane] = single.ray.org_y;
+        rays.ray.org_z[lane] = single.ray.org_z;
+        rays.ray.dir_x[lane] = single.ray.dir_x;
+        rays.ray.dir_y[lane] = single.ray.dir_y;
+        rays.ray.dir_z[lane] = single.ray.dir_z;
+        rays.ray.tnear[lane] = single.ray.tnear;
+        rays.ray.tfar[lane] = single.ray.tfar;
+        rays.ray.time[lane] = single.ray.time;
+        rays.ray.mask[lane] = single.ray.mask;
+        rays.ray.id[lane] = static_cast<unsigned>(lane);
+        rays.ray.flags[lane] = 0;
+        rays.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+        rays.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
+        dir[lane] = d;
+    }
+
+    void trace(RTCScene scene, int count) {
+        alignas(32) int valid[kWidth];
+        for (int lane = 0; lane < kWidth; ++lane) valid[lane] = lane < count ? -1 : 0;
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        PacketTypes<W>::intersect(valid, scene, &context, &rays);
+    }
+
+    // Lane `lane` as the single-ray result the integrator takes.
+    RTCRayHit hit(int lane) const {
+        RTCRayHit rh{};
+        rh.ray.org_x = rays.ray.org_x[lane];
+        rh.ray.org_y = rays.ray.org_y[lane];
+        rh.ray.org_z = rays.ray.org_z[lane];
+        rh.ray.dir_x = rays.ray.dir_x[lane];
+        rh.ray.dir_y = rays.ray.dir_y[lane];
+        rh.ray.dir_z = rays.ray.dir_z[lane];
+        rh.ray.tnear = rays.ray.tnear[lane];
+        rh.ray.tfar = rays.ray.tfar[lane];
+        rh.ray.mask = rays.ray.mask[lane];
+        rh.hit.Ng_x = rays.hit.Ng_x[lane];
+        rh.hit.Ng_y = rays.hit.Ng_y[lane];
+        rh.hit.Ng_z = rays.hit.Ng_z[lane];
+        rh.hit.u = rays.hit.u[lane];
+        rh.hit.v = rays.hit.v[lane];
+        rh.hit.primID = rays.hit.primID[lane];
+        rh.hit.geomID = rays.hit.geomID[lane];
+        rh.hit.instID[0] = rays.hit.instID[0][lane];
+        return rh;
+    }
+};
 
 // Counted per thread, summed once at the end: no shared atomics on the ray path.
 struct ThreadCounters {
@@ -60,20 +134,33 @@ public:
         return s;
     }
 
-    // The hot path of uniform/aamap sampling: one thread-local lookup per pixel.
+    // The hot path of uniform/aamap sampling: one thread-local lookup per pixel. With k > 1 the
+    // k x k primary rays of the pixel are coherent (one origin, directions within a pixel): they
+    // are traced as Embree packets (8 wide, 4 wide for the last 2-4, singly for a last one), then
+    // shaded one by one in sample order, so the sum (and the image) is the same as tracing them
+    // singly.
     glm::vec3 pixel(int x, int y, int k) const override {
         ThreadCounters& counters = counters_.local();
         glm::dvec3 sum(0.0);
         int kept = 0;
-        for (int sy = 0; sy < k; ++sy) {
-            for (int sx = 0; sx < k; ++sx) {
-                const glm::vec3 L = radiance(x, y, sx, sy, k, counters, nullptr);
-                if (!isFinite(L)) {
-                    ++counters.nonFinite;
-                    continue;
-                }
-                sum += glm::dvec3(L);
-                ++kept;
+        const auto accumulate = [&](const glm::vec3& L) {
+            if (!isFinite(L)) {
+                ++counters.nonFinite;
+                return;
+            }
+            sum += glm::dvec3(L);
+            ++kept;
+        };
+        const int n = k * k;
+        for (int first = 0; first < n;) {
+            const int left = n - first;
+            if (left == 1) {
+                accumulate(radiance(x, y, first % k, first / k, k, counters, nullptr));
+                ++first;
+            } else if (left <= 4) {
+                first += tracePacket<4>(x, y, k, first, left, counters, accumulate);
+            } else {
+                first += tracePacket<8>(x, y, k, first, std::min(left, 8), counters, accumulate);
             }
         }
         return kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
@@ -89,14 +176,37 @@ public:
     }
 
 private:
-    glm::vec3 radiance(int x, int y, int sx, int sy, int k, ThreadCounters& counters, PrimarySample* hit) const {
-        const std::uint64_t pixelIndex = static_cast<std::uint64_t>(y) * width_ + x;
-        const Sampler sampler(pixelIndex, static_cast<std::uint32_t>(sy * k + sx), seed_);
+    // Samples [first, first + count) of pixel (x, y) as one packet; returns count.
+    template <int W, class Accumulate>
+    int tracePacket(int x, int y, int k, int first, int count, ThreadCounters& counters, Accumulate& accumulate) const {
+        PrimaryPacket<W> packet;
+        for (int lane = 0; lane < count; ++lane) {
+            const int s = first + lane;
+            packet.set(lane, camera_.origin, direction(x, y, s % k, s / k, k));
+        }
+        packet.trace(geometry_.handle(), count);
+        for (int lane = 0; lane < count; ++lane) {
+            const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(first + lane), seed_);
+            accumulate(integrator_.primaryFromHit(packet.hit(lane), packet.dir[lane], sampler, counters.rays));
+        }
+        return count;
+    }
+
+    std::uint64_t pixelIndex(int x, int y) const { return static_cast<std::uint64_t>(y) * width_ + x; }
+
+    // The unit direction of stratum (sx, sy) of pixel (x, y): jittered by the sample's own sampler.
+    glm::vec3 direction(int x, int y, int sx, int sy, int k) const {
+        const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(sy * k + sx), seed_);
         const glm::vec2 j = sampler.stratified2D(dims::kFilm, sx, sy, k);
         // Film point exactly as the rasteriser defines pixel (x, y).
         const float u = (static_cast<float>(x) + j.x) * invW_;
         const float v = (static_cast<float>(y) + j.y) * invH_;
-        const glm::vec3 dir = glm::normalize(camera_.direction(u, v));
+        return glm::normalize(camera_.direction(u, v));
+    }
+
+    glm::vec3 radiance(int x, int y, int sx, int sy, int k, ThreadCounters& counters, PrimarySample* hit) const {
+        const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(sy * k + sx), seed_);
+        const glm::vec3 dir = direction(x, y, sx, sy, k);
         if (hit != nullptr) probe(dir, *hit, counters.rays);
         return integrator_.primary(camera_.origin, dir, sampler, counters.rays);
     }
@@ -155,6 +265,10 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     StrategyImages images(W, H);
     Scheduler scheduler(W, H, settings.onTileDone);
     scheduler.expectTilePhases(strategy->tilePhases());
+    if (settings.onTileFinished)
+        scheduler.onTileFinished([&](int x0, int y0, int x1, int y1) {
+            settings.onTileFinished({x0, y0, x1, y1, images.image, images.primaryRays});
+        });
     const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
     tbb::task_arena arena(threads);
     arena.execute([&] { strategy->render(source, scheduler, images); });

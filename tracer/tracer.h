@@ -12,6 +12,8 @@
 
 namespace aamap {
 
+class BlockSums;  // tracer/block_sums.h
+
 // How a hit is shaded (docs/tracer.md). Direct: emission + direct light + mirror/glass recursion,
 // no indirect diffuse. Path: unbiased path tracing (NEE + MIS + Russian roulette), the ground
 // truth. Cache: Direct plus indirect diffuse from the irradiance cache.
@@ -60,7 +62,7 @@ struct CacheStats {
 };
 
 // tracer/strategy.h describes each strategy. Names (toString/parse): "uniform", "aamap",
-// "aamap-subsample", "rpict", "supersample", "variance", "shape-id".
+// "aamap-subsample", "rpict", "supersample", "variance", "shape-id", "hybrid".
 enum class StrategyKind {
     Uniform,
     Aamap,
@@ -69,6 +71,7 @@ enum class StrategyKind {
     SupersampleFilter,
     VarianceAdaptive,
     ShapeIdAdaptive,
+    Hybrid,  // the aamap says where to look, sample contrast where to stop (strategies/hybrid.h)
 };
 const char* toString(StrategyKind kind);
 bool parse(const std::string& name, StrategyKind& kind);  // false for an unknown name
@@ -98,6 +101,9 @@ struct StrategySettings {
     // RpictAdaptive: -ps spacing and -pt relative colour/depth threshold (rpict defaults 4, 0.05).
     int spacing = 8;
     double threshold = 0.0;
+    // AamapSubsample: block sums of `aamap` computed elsewhere (the Snapshot's GPU pass); null:
+    // the strategy builds them on the CPU. Must be of the same map. Not owned.
+    const BlockSums* blockSums = nullptr;
     // SupersampleFilter: render at factor x the resolution (2 or 3), n x n strata per sub-pixel,
     // then filter down. Gaussian: weight exp(-(d/r)^2), d in output pixels, r = filterRadius.
     int supersample = 2;
@@ -112,6 +118,13 @@ struct StrategySettings {
     int sampleStep = 4;
 };
 
+// A finished tile, [x0, x1) x [y0, y1), of the render in progress (TraceSettings::onTileFinished).
+struct TileUpdate {
+    int x0, y0, x1, y1;
+    const ImageRGB& image;
+    const Image<std::uint16_t>& primaryRays;
+};
+
 struct TraceSettings {
     int width = 512, height = 512;
     std::uint64_t seed = 1;
@@ -119,6 +132,11 @@ struct TraceSettings {
     ShadingSettings shading;
     // Called from worker threads as tiles finish (for progress bars); may be empty.
     std::function<void(int tilesDone, int tilesTotal)> onTileDone;
+    // Live previews (the viewer): called from a worker thread as each tile of a tile phase
+    // finishes. Only the tile's own pixels may be read (other tiles are in flight); they are final
+    // for that phase (multi-phase strategies fill untraced pixels after the last tile). Reading
+    // never changes the result. Throwing from it cancels the render: render() rethrows.
+    std::function<void(const TileUpdate&)> onTileFinished;
 };
 
 struct TraceResult {

@@ -25,7 +25,8 @@ struct FilterBenchOptions {
 };
 
 // One implementation of one stage (or a copy) at one size. Implementations:
-//   cpu_scalar, cpu_parallel, gpu_kernel, gpu_total (stages); cpu_copy, gpu_copy (stage "copy").
+//   cpu_scalar, cpu_parallel (into a kept image), cpu_parallel_new (returns a new image),
+//   gpu_kernel, gpu_total (stages); cpu_copy, cpu_alloc, gpu_copy (stage "copy").
 struct FilterBenchRow {
     std::string stage, impl;
     int width = 0, height = 0;

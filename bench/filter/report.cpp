@@ -49,10 +49,10 @@ std::string filterBenchTable(const FilterBenchResult& result, const FilterBenchO
     out += fmt::format("median of {} runs after {} warm-up; [min, max]; bytes model: 4 B read + 4 B written per "
                        "pixel; 'of copy' = copy median / median on the same side (CPU or GPU)\n\n",
                        options.repeats, options.warmup);
-    out += fmt::format("{:<9} {:>9} {:<12} {:>11} {:>11} {:>11} {:>8} {:>8} {:>9}\n", "stage", "size", "impl",
+    out += fmt::format("{:<9} {:>9} {:<16} {:>11} {:>11} {:>11} {:>8} {:>8} {:>9}\n", "stage", "size", "impl",
                        "median ms", "min ms", "max ms", "GB/s", "of copy", "max|diff|");
     for (const FilterBenchRow& r : result.rows)
-        out += fmt::format("{:<9} {:>9} {:<12} {:>11.3f} {:>11.3f} {:>11.3f} {:>8.2f} {:>8} {:>9}\n", r.stage,
+        out += fmt::format("{:<9} {:>9} {:<16} {:>11.3f} {:>11.3f} {:>11.3f} {:>8.2f} {:>8} {:>9}\n", r.stage,
                            fmt::format("{}x{}", r.width, r.height), r.impl, r.ms.median, r.ms.min, r.ms.max,
                            r.gigabytesPerSecond(),
                            std::isnan(r.fractionOfCopy) ? std::string("-")

@@ -1,12 +1,16 @@
 // bench_snapshot: the Snapshot (raster + aamap) of a scene, per-pass GPU ms and total.
-//   bench_snapshot [--scene builtin:cornell|file.obj|file.gltf] [--size 512] [--scale 1.5] ...
+//   bench_snapshot [--scene builtin:cornell|file.obj|file.gltf] [--view file.vf] [--lights file.yaml]
+//                  [--size 512] [--scale 1.5] ...
 #include <cstdio>
 #include <exception>
 
 #include <CLI/CLI.hpp>
 
 #include "engine/vk/context.h"
+#include "eval/light_list.h"
+#include "scene/light_file.h"
 #include "scene/load_scene.h"
+#include "scene/view_file.h"
 #include "snapshot_bench.h"
 
 int main(int argc, char** argv) {
@@ -17,6 +21,11 @@ int main(int argc, char** argv) {
     int size = 512;
     bool explain = false;
     app.add_option("--scene", sceneSpec, "scene spec: builtin:<name> or an .obj/.gltf/.glb file");
+    std::string viewFile, lightFile;
+    int viewIndex = 0;
+    app.add_option("--view", viewFile, "Radiance .vf view file (default: the scene's first view)");
+    app.add_option("--view-index", viewIndex, "which view of the view file");
+    app.add_option("--lights", lightFile, "light file added to the scene (docs/lights.md)");
     app.add_option("--size", size, "render resolution (square)");
     app.add_option("--scale", options.settings.scale, "snapshot resolution / render resolution");
     app.add_option("--area-samples", options.settings.areaLightSamples, "point samples per area light");
@@ -35,13 +44,15 @@ int main(int argc, char** argv) {
     options.settings.keepDebugImages = false;  // the aamap alone, as the experiment pipeline reads it
 
     try {
-        const aamap::Scene scene = aamap::loadScene(sceneSpec);
-        if (scene.views.empty()) {
-            std::fprintf(stderr, "scene '%s' has no view\n", sceneSpec.c_str());
+        aamap::Scene scene = aamap::loadScene(sceneSpec);
+        if (!lightFile.empty()) aamap::addLights(scene, aamap::loadLightFile(lightFile));
+        const std::vector<aamap::View> views = viewFile.empty() ? scene.views : aamap::loadViewFile(viewFile);
+        if (viewIndex < 0 || static_cast<std::size_t>(viewIndex) >= views.size()) {
+            std::fprintf(stderr, "scene '%s' has no view %d; pass --view FILE.vf\n", sceneSpec.c_str(), viewIndex);
             return 2;
         }
         aamap::VulkanContext context(contextOptions);
-        const auto result = aamap::bench::runSnapshotBench(context, scene, scene.views.front(), options);
+        const auto result = aamap::bench::runSnapshotBench(context, scene, views[static_cast<std::size_t>(viewIndex)], options);
         std::printf("scene: %s (%zu triangles)\n%s", sceneSpec.c_str(), scene.mesh.triangles.size(),
                     aamap::bench::formatSnapshotBench(result, options).c_str());
         if (explain) std::printf("%s\n", result.explain.c_str());

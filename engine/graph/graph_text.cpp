@@ -113,23 +113,29 @@ std::string CompiledGraph::toDot() const {
                            output ? ", peripheries=2" : "",
                            live == resources.end() ? ", color=gray60, fontcolor=gray50" : "");
     }
+    // One edge per access direction (resource -> pass for reads, pass -> resource for writes; an
+    // update both ways), labelled with the usage; a culled pass's edges are dashed like the pass.
     auto edges = [&](const std::string& node, const std::vector<Access>& accesses, bool grey) {
-        const char* style = grey ? " [color=gray60, style=dashed]" : "";
+        const char* style = grey ? ", color=gray60, fontcolor=gray50, style=dashed" : "";
         for (const Access& a : accesses) {
             const std::string& r = ids.at(a.resource);
-            if (a.mode != AccessMode::Write) dot += fmt::format("  {} -> {}{};\n", r, node, style);
-            if (a.mode != AccessMode::Read) dot += fmt::format("  {} -> {}{};\n", node, r, style);
+            const std::string label = quoted(toString(a.usage));
+            if (a.mode != AccessMode::Write) dot += fmt::format("  {} -> {} [label={}{}];\n", r, node, label, style);
+            if (a.mode != AccessMode::Read) dot += fmt::format("  {} -> {} [label={}{}];\n", node, r, label, style);
         }
     };
+    // Tooltips carry why a pass was kept or culled (the --explain text) into SVG renderings.
     for (std::size_t i = 0; i < passes.size(); ++i) {
         const std::string node = fmt::format("p{}", passes[i].id);
-        dot += fmt::format("  {} [shape=box, label={}];\n", node, quoted(fmt::format("{}: {}", i, passes[i].name)));
+        dot += fmt::format("  {} [shape=box, label={}, tooltip={}];\n", node,
+                           quoted(fmt::format("{}: {}", i, passes[i].name)), quoted(passes[i].keptBecause));
         edges(node, passes[i].accesses, false);
     }
     for (const CulledPass& c : culled) {
         const std::string node = fmt::format("p{}", c.id);
-        dot += fmt::format("  {} [shape=box, style=\"filled,dashed\", fillcolor=gray90, fontcolor=gray50, label={}];\n",
-                           node, quoted(c.name + " (culled)"));
+        dot += fmt::format("  {} [shape=box, style=\"filled,dashed\", fillcolor=gray90, fontcolor=gray50, label={}, "
+                           "tooltip={}];\n",
+                           node, quoted(c.name + " (culled)"), quoted(c.reason));
         edges(node, c.accesses, true);
     }
     return dot + "}\n";

@@ -69,7 +69,8 @@ VkDebugUtilsMessengerCreateInfoEXT messengerInfo(std::atomic<std::uint64_t>* cou
     return info;
 }
 
-VkInstance createInstance(bool validation, std::atomic<std::uint64_t>* counter) {
+VkInstance createInstance(bool validation, const std::vector<std::string>& extraExtensions,
+                          std::atomic<std::uint64_t>* counter) {
     std::uint32_t version = 0;
     if (vkEnumerateInstanceVersion(&version) != VK_SUCCESS || version < VK_API_VERSION_1_3)
         throw EnvironmentError(fmt::format("the Vulkan loader offers version {}.{}, aamap needs 1.3",
@@ -89,6 +90,7 @@ VkInstance createInstance(bool validation, std::atomic<std::uint64_t>* counter) 
 
     VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     info.pApplicationInfo = &app;
+    for (const std::string& e : extraExtensions) extensions.push_back(e.c_str());
     if (validation) {
         if (!layerAvailable(kValidationLayer))
             throw EnvironmentError(
@@ -120,7 +122,7 @@ struct Candidate {
     std::string problem;  // empty: usable
 };
 
-Candidate inspect(VkPhysicalDevice device) {
+Candidate inspect(VkInstance instance, VkPhysicalDevice device, const ContextOptions& options) {
     Candidate c{device};
     vkGetPhysicalDeviceProperties(device, &c.props);
     if (c.props.apiVersion < VK_API_VERSION_1_3) {
@@ -145,17 +147,25 @@ Candidate inspect(VkPhysicalDevice device) {
         c.problem = "lacks VK_KHR_push_descriptor";
         return c;
     }
+    if (options.swapchain && std::none_of(exts.begin(), exts.end(), [](const VkExtensionProperties& e) {
+            return std::strcmp(e.extensionName, VK_KHR_SWAPCHAIN_EXTENSION_NAME) == 0;
+        })) {
+        c.problem = "lacks VK_KHR_swapchain";
+        return c;
+    }
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
     const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
     for (std::uint32_t i = 0; i < count; ++i) {
-        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0) {
+        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0 &&
+            (!options.canPresent || options.canPresent(instance, device, i))) {
             c.queueFamily = i;
             return c;
         }
     }
-    c.problem = "has no graphics+compute queue with timestamps";
+    c.problem = options.canPresent ? "has no graphics+compute queue with timestamps that can present to the window"
+                                   : "has no graphics+compute queue with timestamps";
     return c;
 }
 
@@ -177,9 +187,10 @@ std::vector<VkPhysicalDevice> enumerate(VkInstance instance) {
     return devices;
 }
 
-Candidate choose(VkInstance instance, const std::string& wanted) {
+Candidate choose(VkInstance instance, const ContextOptions& options) {
+    const std::string& wanted = options.device;
     std::vector<Candidate> all;
-    for (VkPhysicalDevice d : enumerate(instance)) all.push_back(inspect(d));
+    for (VkPhysicalDevice d : enumerate(instance)) all.push_back(inspect(instance, d, options));
     if (all.empty()) throw EnvironmentError("no Vulkan device found (Debian: mesa-vulkan-drivers provides lavapipe)");
     std::string listing;
     for (std::size_t i = 0; i < all.size(); ++i)
@@ -248,7 +259,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : impl_(std::make_un
     Impl& s = *impl_;
     s.validation = validationWanted(options.validation);
     try {
-        s.instance = createInstance(s.validation, &s.messages);
+        s.instance = createInstance(s.validation, options.instanceExtensions, &s.messages);
         if (s.validation) {
             auto fn = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
                 vkGetInstanceProcAddr(s.instance, "vkCreateDebugUtilsMessengerEXT"));
@@ -256,7 +267,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) : impl_(std::make_un
             if (!fn || fn(s.instance, &info, nullptr, &s.messenger) != VK_SUCCESS)
                 throw EnvironmentError("cannot create the Vulkan debug messenger");
         }
-        const Candidate chosen = choose(s.instance, options.device);
+        const Candidate chosen = choose(s.instance, options);
         s.physical = chosen.device;
         s.props = chosen.props;
         s.family = chosen.queueFamily;
@@ -288,11 +299,11 @@ VulkanContext::VulkanContext(const ContextOptions& options) : impl_(std::make_un
         f12.shaderOutputLayer = outputLayer;
         f13.pNext = &f12;
         VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13};
-        const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+        const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME, VK_KHR_SWAPCHAIN_EXTENSION_NAME};
         VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
         info.queueCreateInfoCount = 1;
         info.pQueueCreateInfos = &queueInfo;
-        info.enabledExtensionCount = 1;
+        info.enabledExtensionCount = options.swapchain ? 2 : 1;  // the swapchain only when asked for
         info.ppEnabledExtensionNames = extensions;
         const VkResult r = vkCreateDevice(s.physical, &info, nullptr, &s.device);
         if (r != VK_SUCCESS)

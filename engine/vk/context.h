@@ -2,6 +2,7 @@
 // The Vulkan 1.3 instance, device and queue, with the Khronos validation layer switchable.
 // Integration-facing part; the engine may add members but keeps these signatures.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +16,12 @@ struct ContextOptions {
     // "" picks the first discrete GPU, else integrated, else virtual, else CPU (lavapipe).
     // Otherwise a device index ("0") or a case-insensitive substring of the device name.
     std::string device;
+    // Opt-in for a window (the viewer); left empty, the context stays headless. Extra instance
+    // extensions (the surface ones GLFW names), VK_KHR_swapchain on the device, and a test the
+    // chosen queue family must also pass (presentation support).
+    std::vector<std::string> instanceExtensions;
+    bool swapchain = false;
+    std::function<bool(VkInstance, VkPhysicalDevice, std::uint32_t queueFamily)> canPresent;
 };
 
 class VulkanContext {

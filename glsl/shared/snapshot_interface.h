@@ -23,18 +23,26 @@ using uint = std::uint32_t;
 // Lights live in a uniform buffer: storage-buffer loads with a loop index are scalarised per
 // lane on lavapipe and made the raster 7x slower. Materials travel with the vertices (flat).
 #define GBUFFER_BINDING_LIGHTS 0     // uniform GpuLights
-#define GBUFFER_MAX_LIGHTS 256       // 12 KiB: within the 16 KiB every device allows for a UBO
+#define GBUFFER_MAX_LIGHTS 256       // 16 KiB: exactly the UBO range every device allows
 #define GBUFFER_LOCATION_POSITION 0  // vec3
 #define GBUFFER_LOCATION_NORMAL 1    // vec3
 #define GBUFFER_LOCATION_KD 2        // vec3, diffuse albedo of the vertex's triangle
 #define GBUFFER_LOCATION_KE 3        // vec3, emitted radiance of the vertex's triangle
 // Only in the shadowed variant (gbuffer.shadowed.frag): without shadows there is no binding 1.
 #define GBUFFER_BINDING_SHADOW 1     // texture2DArray (depth), 6 layers per light, SHADOW_* below
+// Only in the textured variants (gbuffer.textured*.{vert,frag}, passes/gbuffer_textures.h): the
+// vertex also carries uv and its material's atlas entry, and the atlas follows the other bindings.
+#define GBUFFER_LOCATION_UV 4         // vec2
+#define GBUFFER_LOCATION_TEX_RECT 5   // uvec4 (16-bit): atlas entry x, y, width, height; width 0: none
+#define GBUFFER_LOCATION_TEX_PARAMS 6 // vec2: atlas layer, alpha threshold (discard if a < it)
+#define GBUFFER_BINDING_ATLAS_UNSHADOWED 1  // texture2DArray, RGBA8 sRGB
+#define GBUFFER_BINDING_ATLAS_SHADOWED 2
 
 struct GpuLight {
     vec4 position;   // xyz
     vec4 intensity;  // rgb, W/sr
-    vec4 normal;     // xyz: lobe axis (unit), or 0 for an isotropic light
+    vec4 normal;     // xyz: lobe or spot-cone axis (unit), or 0 for an isotropic light
+    vec4 cone;       // x: cos inner, y: cos outer half-angle; z: 1 for a spot (axis in normal), else 0
 };
 
 struct GBufferPush {
@@ -42,8 +50,33 @@ struct GBufferPush {
     vec4 cameraPos;  // xyz
     uint lightCount;
     uint shadowPcf;  // PCF kernel side in texels (1: one tap)
-    uint pad1, pad2;
+    uint mirrorLayer;  // mirror variants (GBUFFER_MIRROR): the layer of mirror.colour to draw into
+    uint pad2;
     vec4 shadow;     // x: cube-map near plane, y: depth bias, z: slope bias (texels), w: face size
+    vec4 clipPlane;  // mirror variants: keep dot(xyz, p) >= w, the mirror's side of its plane
+};
+
+// --- Planar mirrors (passes/mirror.h) --------------------------------------------------------
+// mirror.colour: the scene seen in each mirror (gbuffer.mirror*: the G-buffer with the reflected
+// view and a clip plane, one layer per mirror). mirror_mask: the mirror triangles from the camera
+// write (reflectance, layer + 1) where they are the visible surface. mirror_composite adds
+// reflectance x reflected colour into the snapshot.
+#define MIRROR_MASK_LOCATION_POSITION 0     // vec3
+#define MIRROR_MASK_LOCATION_REFLECTANCE 1  // vec3
+#define MIRROR_MASK_LOCATION_LAYER 2        // float
+#define MIRROR_MASK_BINDING_DEPTH 0         // texture2D, the camera's depth (reversed)
+#define MIRROR_COMPOSITE_BINDING_SNAPSHOT 0  // rgba32f storage image, read and written
+#define MIRROR_COMPOSITE_BINDING_MASK 1      // rgba32f storage image, read
+#define MIRROR_COMPOSITE_BINDING_COLOUR 2    // texture2DArray, mirror.colour
+#define MIRROR_COMPOSITE_GROUP 8
+
+struct MirrorMaskPush {
+    mat4 viewProj;  // the camera's (reversed depth), as the G-buffer's
+};
+
+struct MirrorCompositePush {
+    ivec2 size;
+    ivec2 pad;
 };
 
 // --- Shadow cube maps (shadow_cube.vert / .frag) ----------------------------------------------
@@ -52,6 +85,12 @@ struct GBufferPush {
 // infinite-far projection: clear 0, nearer wins); the receiver turns it back into a distance.
 #define SHADOW_BINDING_LIGHTS 0     // uniform GpuLights, the G-buffer's light buffer
 #define SHADOW_LOCATION_POSITION 0  // vec3, the G-buffer's vertex buffer (position only)
+// The masked variant (shadow_cube.masked.*: a scene with alpha-tested textures) also reads the
+// G-buffer's uv and atlas entry and discards cut-out texels, so cut-outs cast cut-out shadows.
+#define SHADOW_LOCATION_UV 1          // = GBUFFER_LOCATION_UV's data
+#define SHADOW_LOCATION_TEX_RECT 2
+#define SHADOW_LOCATION_TEX_PARAMS 3
+#define SHADOW_BINDING_ATLAS 1        // texture2DArray, the G-buffer's atlas
 
 struct ShadowPush {
     float nearPlane;  // geometry nearer to the light than this along the face axis casts no shadow
@@ -71,10 +110,50 @@ struct FilterPush {
     float gain;
 };
 
+// --- Block sums (block_sum_rows.comp / block_sum_columns.comp) -------------------------------
+// Summed-area tables of the aamap for adaptive subsampling (tracer/block_sums.h has the layout):
+// rows: the aamap (storage image) -> per-row prefixes, (W + 1) x H; columns: prefixes of those
+// down each of the W + 1 columns -> the (W + 1) x (H + 1) tables. Sums are float-float (hi, lo).
+#define BLOCKSUM_ROWS_BINDING_MAP 0         // r32f storage image, read
+#define BLOCKSUM_ROWS_BINDING_SUMS 1        // vec2 row prefixes, written
+#define BLOCKSUM_ROWS_BINDING_COUNTS 2      // uint row counts, written
+#define BLOCKSUM_COLUMNS_BINDING_ROW_SUMS 0    // vec2 row prefixes, read
+#define BLOCKSUM_COLUMNS_BINDING_ROW_COUNTS 1  // uint row counts, read
+#define BLOCKSUM_COLUMNS_BINDING_SUMS 2        // vec2 table, written
+#define BLOCKSUM_COLUMNS_BINDING_COUNTS 3      // uint table, written
+#define BLOCKSUM_GROUP 64               // invocations per workgroup (one per row or column)
+
+struct BlockSumPush {
+    ivec2 size;  // aamap width, height
+    ivec2 pad;
+};
+
+// --- Geometric aamap (geometry_buffer.vert/.frag, geometric_edges[.combined].comp) ------------
+// Its own vertex buffer (position, normal, object and material id per vertex, unindexed) and two
+// RGBA32F colour attachments; the edge rule is glsl/shared/geometric_edges.h.
+#define GEOMETRY_LOCATION_POSITION 0  // vec3
+#define GEOMETRY_LOCATION_NORMAL 1    // vec3
+#define GEOMETRY_LOCATION_IDS 2       // uvec2: object id, material id
+#define GEOMETRIC_BINDING_NORMAL_DEPTH 0  // rgba32f storage image, read
+#define GEOMETRIC_BINDING_IDS 1           // rgba32f storage image, read
+#define GEOMETRIC_BINDING_OUTPUT 2        // r32f storage image, written
+#define GEOMETRIC_BINDING_LAPLACIAN 3     // r32f storage image, read (combined variant only)
+
+struct GeometryPush {
+    mat4 viewProj;       // world -> Vulkan clip space (reversed depth, as the G-buffer)
+    vec4 cameraPos;      // xyz
+    vec4 cameraForward;  // xyz, unit: view depth = dot(p - cameraPos, forward)
+};
+
 #ifdef __cplusplus
-static_assert(sizeof(GpuLight) == 48);
-static_assert(sizeof(GBufferPush) == 112);
+static_assert(sizeof(GeometryPush) == 96);
+static_assert(sizeof(BlockSumPush) == 16);
+static_assert(sizeof(GpuLight) == 64);
+static_assert(sizeof(GpuLight) * GBUFFER_MAX_LIGHTS <= 16384);  // maxUniformBufferRange's minimum
+static_assert(sizeof(GBufferPush) == 128);  // maxPushConstantsSize's minimum
 static_assert(sizeof(ShadowPush) == 16);
+static_assert(sizeof(MirrorMaskPush) == 64);
+static_assert(sizeof(MirrorCompositePush) == 16);
 static_assert(sizeof(FilterPush) == 32);
 }  // namespace aamap::gpu
 #endif

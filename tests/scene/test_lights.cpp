@@ -1,9 +1,13 @@
+#include <cmath>
 #include <set>
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
+#include "tests/scene/temp_dir.h"
+#include "scene/light_file.h"
 #include "scene/lights.h"
 
 namespace aamap {
@@ -75,6 +79,175 @@ TEST(SceneBounds, EmptyAndSimple) {
     EXPECT_EQ(b.lo, glm::vec3(-1, -2, 0));
     EXPECT_EQ(b.hi, glm::vec3(1, 5, 3));
     EXPECT_EQ(b.centre(), glm::vec3(0, 1.5f, 1.5f));
+}
+
+// ---- Lights from a light file (scene/light_file.h): quads and disks become emissive geometry ----
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The emitted power of an area light, pi L A, with A summed over its actual triangles (double).
+glm::dvec3 emittedPower(const Scene& s, const AreaLight& light, double* area = nullptr) {
+    double a = 0.0;
+    for (std::uint32_t t : light.triangles) {
+        const glm::uvec3 tri = s.mesh.triangles[t];
+        const glm::dvec3 p0(s.mesh.positions[tri.x]), p1(s.mesh.positions[tri.y]), p2(s.mesh.positions[tri.z]);
+        a += 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+    }
+    if (area) *area = a;
+    return kPi * a * glm::dvec3(light.radiance);
+}
+
+LightSpec quadSpec() {
+    LightSpec q;
+    q.type = LightType::Quad;
+    q.name = "panel";
+    q.position = {1, 2, 3};
+    q.normal = {0, -2, 0};
+    q.up = {0, 0, 1};
+    q.size = {0.5, 0.25};
+    q.unit = EmissionUnit::Power;
+    q.emission = {100, 50, 25};
+    return q;
+}
+
+TEST(LightFileLights, QuadBecomesAnAreaLightWithTheGivenPowerFacingItsNormal) {
+    Scene s = builtinScene("cornell");
+    const std::size_t trianglesBefore = s.mesh.triangles.size(), areasBefore = s.areaLights.size();
+    const LightSpec q = quadSpec();
+    addLights(s, std::span(&q, 1));
+    ASSERT_EQ(s.areaLights.size(), areasBefore + 1);
+    ASSERT_EQ(s.mesh.triangles.size(), trianglesBefore + 2);
+    ASSERT_EQ(s.mesh.normals.size(), s.mesh.positions.size());
+    ASSERT_EQ(s.mesh.materialIds.size(), s.mesh.triangles.size());
+    ASSERT_EQ(s.mesh.objectIds.size(), s.mesh.triangles.size());
+    const AreaLight& light = s.areaLights.back();
+    EXPECT_EQ(light.name, "panel");
+    double area = 0.0;
+    const glm::dvec3 power = emittedPower(s, light, &area);
+    EXPECT_NEAR(area, 0.125, 1e-7);
+    EXPECT_NEAR(light.area, 0.125f, 1e-6f);
+    EXPECT_NEAR(power.x, 100.0, 1e-4);
+    EXPECT_NEAR(power.y, 50.0, 1e-4);
+    EXPECT_NEAR(power.z, 25.0, 1e-4);
+    for (std::uint32_t t : light.triangles) {
+        EXPECT_NEAR(triangleNormal(s.mesh, t).y, -1.0f, 1e-6f);  // front (winding) faces the normal
+        EXPECT_EQ(s.materials[s.mesh.materialIds[t]].ke, light.radiance);
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 p = s.mesh.positions[s.mesh.triangles[t][k]];
+            EXPECT_NEAR(std::abs(p.x - 1.0f), 0.25f, 1e-6f);    // the size[0] side runs across up
+            EXPECT_NEAR(std::abs(p.z - 3.0f), 0.125f, 1e-6f);   // size[1] along up
+            EXPECT_EQ(p.y, 2.0f);
+        }
+    }
+    // The Snapshot's k-point approximation sums to the light's on-axis intensity L A.
+    glm::vec3 sum(0.0f);
+    for (const PointLight& p : approximateAreaLight(s, light, 5)) sum += p.intensity;
+    EXPECT_NEAR(sum.x, 100.0f / kPi, 1e-3f);
+}
+
+TEST(LightFileLights, DiskPowerIsExactForAnyTessellation) {
+    for (int segments : {3, 4, 7, 32, 500}) {
+        Scene s;
+        LightSpec d;
+        d.type = LightType::Disk;
+        d.name = "disk";
+        d.position = {0.5, 3, -1};
+        d.normal = {1, 1, 0};
+        d.radius = 0.4;
+        d.segments = segments;
+        d.unit = EmissionUnit::Power;
+        d.emission = {60, 30, 15};
+        addLights(s, std::span(&d, 1));
+        ASSERT_EQ(s.areaLights.size(), 1u);
+        const AreaLight& light = s.areaLights[0];
+        ASSERT_EQ(light.triangles.size(), static_cast<std::size_t>(segments));
+        double area = 0.0;
+        const glm::dvec3 power = emittedPower(s, light, &area);
+        EXPECT_NEAR(area, kPi * 0.16, 1e-6 * kPi * 0.16) << segments;
+        EXPECT_NEAR(power.x, 60.0, 1e-5 * 60.0) << segments;
+        EXPECT_NEAR(power.z, 15.0, 1e-5 * 15.0) << segments;
+        const glm::vec3 n = glm::normalize(glm::vec3(1, 1, 0));
+        for (std::uint32_t t : light.triangles) {
+            EXPECT_NEAR(glm::dot(triangleNormal(s.mesh, t), n), 1.0f, 1e-5f) << segments;
+            for (int k = 0; k < 3; ++k) {  // in the disk's plane, within the rim radius
+                const glm::vec3 p = s.mesh.positions[s.mesh.triangles[t][k]] - glm::vec3(0.5f, 3.0f, -1.0f);
+                EXPECT_NEAR(glm::dot(p, n), 0.0f, 1e-5f);
+                EXPECT_LE(glm::length(p), diskRimRadius(0.4, segments) * (1 + 1e-5));
+            }
+        }
+    }
+    // The rim approaches the radius as the fan gets finer.
+    EXPECT_NEAR(diskRimRadius(1.0, 4096), 1.0, 1e-6);
+    EXPECT_GT(diskRimRadius(1.0, 8), 1.0);
+}
+
+TEST(LightFileLights, RadianceIsKeptAsGivenAndPointsAndSpotsGetIntensity) {
+    Scene s;
+    std::vector<LightSpec> specs(4);
+    specs[0] = quadSpec();
+    specs[0].unit = EmissionUnit::Radiance;
+    specs[0].emission = {2, 3, 4};
+    specs[1].type = LightType::Point;
+    specs[1].name = "bulb";
+    specs[1].unit = EmissionUnit::Power;
+    specs[1].emission = {4 * kPi, 8 * kPi, 0};
+    specs[2].type = LightType::Spot;
+    specs[2].name = "spot";
+    specs[2].direction = {0, 0, -3};
+    specs[2].innerAngle = 10;
+    specs[2].outerAngle = 30;
+    specs[2].unit = EmissionUnit::Power;
+    specs[2].emission = {1, 1, 1};
+    specs[3].type = LightType::Point;
+    specs[3].normal = {0, 0, 2};
+    specs[3].emission = {5, 5, 5};
+    addLights(s, specs);
+    ASSERT_EQ(s.areaLights.size(), 1u);
+    EXPECT_EQ(s.areaLights[0].radiance, glm::vec3(2, 3, 4));
+    ASSERT_EQ(s.pointLights.size(), 3u);
+    EXPECT_NEAR(s.pointLights[0].intensity.x, 1.0f, 1e-6f);  // 4 pi I = power
+    EXPECT_NEAR(s.pointLights[0].intensity.y, 2.0f, 1e-6f);
+    const PointLight& spot = s.pointLights[1];
+    EXPECT_EQ(spot.spotDirection, glm::vec3(0, 0, -1));
+    EXPECT_NEAR(spot.cosInner, std::cos(10.0 * kPi / 180.0), 1e-7);
+    EXPECT_NEAR(spot.cosOuter, std::cos(30.0 * kPi / 180.0), 1e-7);
+    EXPECT_NEAR(spot.intensity.x * emittingSolidAngle(spot), 1.0, 1e-6);
+    EXPECT_EQ(s.pointLights[2].normal, glm::vec3(0, 0, 1));
+    EXPECT_EQ(emissionFactor(s.pointLights[2], {0, 0, 1}), 1.0f);
+    EXPECT_EQ(emissionFactor(s.pointLights[2], {0, 0, -1}), 0.0f);
+    EXPECT_EQ(emissionFactor(spot, {0, 0, -1}), 1.0f);
+    EXPECT_EQ(emissionFactor(spot, {1, 0, 0}), 0.0f);
+
+    LightSpec bad = quadSpec();
+    bad.normal = {0, 0, 0};
+    EXPECT_THROW(addLights(s, std::span(&bad, 1)), std::invalid_argument);
+}
+
+TEST(GltfSpotLight, KeepsItsConeAlongTheNodesMinusZ) {
+    const test::TempDir dir;
+    // The node turns -Z to -Y (a quarter turn about x) and sits at (1, 2, 3).
+    const auto file = dir.write("spot.gltf", R"({
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": {"KHR_lights_punctual": {"lights": [
+    {"type": "spot", "name": "stage", "color": [1, 0.5, 0.25], "intensity": 8,
+     "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.6}}]}},
+  "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"translation": [1, 2, 3], "rotation": [-0.70710678, 0, 0, 0.70710678],
+             "extensions": {"KHR_lights_punctual": {"light": 0}}}]
+})");
+    const Scene s = loadGltf(file);
+    ASSERT_EQ(s.pointLights.size(), 1u);
+    const PointLight& p = s.pointLights[0];
+    EXPECT_EQ(p.name, "stage");
+    EXPECT_NEAR(glm::length(p.position - glm::vec3(1, 2, 3)), 0.0f, 1e-6f);
+    EXPECT_NEAR(p.intensity.y, 4.0f, 1e-6f);
+    EXPECT_NEAR(p.spotDirection.y, -1.0f, 1e-6f);
+    EXPECT_NEAR(p.cosInner, std::cos(0.2f), 1e-7f);
+    EXPECT_NEAR(p.cosOuter, std::cos(0.6f), 1e-7f);
+    EXPECT_EQ(p.normal, glm::vec3(0.0f));
+    EXPECT_EQ(emissionFactor(p, {0, -1, 0}), 1.0f);
+    EXPECT_EQ(emissionFactor(p, glm::normalize(glm::vec3(1, -1, 0))), 0.0f);  // 45 degrees > 0.6 rad
 }
 
 }  // namespace

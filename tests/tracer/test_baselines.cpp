@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/tracer/synthetic_source.h"
+#include "tracer/strategies/hybrid.h"
 #include "tracer/strategies/rpict.h"
 #include "tracer/strategies/shape_id.h"
 #include "tracer/strategies/variance.h"
@@ -197,6 +198,63 @@ TEST(ShapeId, SupersamplesExactlyWhereShapesDiffer) {
     EXPECT_EQ(src.probes(), static_cast<std::uint64_t>(w * h * 4));
 }
 
+TEST(Hybrid, StartsAtTheMapsStrataAndStopsAtConvergence) {
+    EXPECT_EQ(hybridStartSamples(0.0f, 4, 1), 1);  // unflagged: one ray
+    EXPECT_EQ(hybridStartSamples(0.01f, 4, 1), 2);  // flagged: at least a half buffer
+    EXPECT_EQ(hybridStartSamples(0.5f, 4, 3), 9);
+    EXPECT_EQ(hybridStartSamples(std::nanf(""), 4, 4), 16);  // unsure: look
+    EXPECT_EQ(hybridStartSamples(1.0f, 1, 1), 1);
+    const glm::dvec3 a(1.0), b(1.5);
+    EXPECT_TRUE(hybridConverged(a, b, 16, 4, 0.0));   // n^2 reached
+    EXPECT_FALSE(hybridConverged(a, a, 1, 4, 1.0));   // no half buffer yet
+    EXPECT_TRUE(hybridConverged(a, a, 4, 4, 0.01));   // no contrast
+    EXPECT_FALSE(hybridConverged(a, b, 4, 4, 0.01));  // contrast
+    EXPECT_FALSE(hybridConverged(a, a, 4, 4, 0.0));   // threshold 0 never converges early
+}
+
+TEST(Hybrid, TheMapSaysWhereToLookContrastWhereToStop) {
+    // Columns 0-5 unflagged, 6-11 flagged with a = 1/3 (k = 2 of n = 4). A step runs through
+    // pixels 3 (unflagged: one ray regardless) and 10 (flagged: refined to n^2); the rest is flat.
+    const int w = 12, h = 3, n = 4;
+    auto f = [](float fx, float) {
+        if (fx >= 3.0f && fx < 4.0f) return glm::vec3(fx < 3.5f ? 1.0f : 3.0f);
+        return glm::vec3(fx < 10.5f ? 1.0f : 3.0f);
+    };
+    ImageGrey map(w, h, 0.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 6; x < w; ++x) map.at(x, y) = 1.0f / 3.0f;
+    const SyntheticSource src(w, h, f);
+    StrategySettings st = strategy(StrategyKind::Hybrid, n, &map);
+    st.noiseThreshold = 0.01;
+    st.sampleStep = 3;
+    const StrategyImages out = runStrategy(st, src);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::uint64_t expected = x < 6 ? 1 : x == 10 ? 16 : 4;
+            EXPECT_EQ(out.primaryRays.at(x, y), expected) << x << "," << y;
+            EXPECT_EQ(src.calls(x, y), expected) << x << "," << y;  // counted by the source itself
+            EXPECT_EQ(out.traced.at(x, y), 1);
+        }
+    EXPECT_GT(out.image.at(10, 0).x, 1.5f);  // the step's mean, from all 16 strata
+    EXPECT_LT(out.image.at(10, 0).x, 2.5f);
+}
+
+TEST(Hybrid, AllOnesWithThresholdZeroIsUniform) {
+    const int w = 7, h = 5, n = 3;
+    auto f = [](float fx, float fy) { return glm::vec3(std::sin(fx * 1.3f) + 2.0f, fy, 1.0f); };
+    const ImageGrey ones(w, h, 1.0f);
+    const SyntheticSource a(w, h, f), b(w, h, f);
+    StrategySettings st = strategy(StrategyKind::Hybrid, n, &ones);
+    st.noiseThreshold = 0.0;
+    const StrategyImages hybrid = runStrategy(st, a);
+    const StrategyImages uniform = runStrategy(strategy(StrategyKind::Uniform, n), b);
+    EXPECT_TRUE(hybrid.primaryRays == uniform.primaryRays);
+    for (std::size_t i = 0; i < hybrid.image.size(); ++i) {
+        const glm::vec3 d = hybrid.image.pixels()[i] - uniform.image.pixels()[i];
+        EXPECT_LT(std::abs(d.x) + std::abs(d.y) + std::abs(d.z), 1e-5f);  // same strata, another order
+    }
+}
+
 TEST(Baselines, RejectBadSettings) {
     StrategySettings st = strategy(StrategyKind::SupersampleFilter, 255);
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);  // 4 * 255^2 rays overflow the map
@@ -212,8 +270,15 @@ TEST(Baselines, RejectBadSettings) {
     st = strategy(StrategyKind::RpictAdaptive, 1);
     st.threshold = -0.1;
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
+    st = strategy(StrategyKind::Hybrid, 2);
+    EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);  // no map
+    const ImageGrey map(4, 4, 0.5f);
+    st.aamap = &map;
+    st.sampleStep = 0;
+    EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
     StrategyKind k{};
-    for (const char* name : {"uniform", "aamap", "aamap-subsample", "rpict", "supersample", "variance", "shape-id"}) {
+    for (const char* name :
+         {"uniform", "aamap", "aamap-subsample", "rpict", "supersample", "variance", "shape-id", "hybrid"}) {
         ASSERT_TRUE(parse(name, k)) << name;
         EXPECT_STREQ(toString(k), name);
     }

@@ -29,7 +29,7 @@ TraceSettings settingsFor(int w, int h, int threads) {
 const StrategyKind kAll[] = {StrategyKind::Uniform,           StrategyKind::Aamap,
                              StrategyKind::AamapSubsample,    StrategyKind::RpictAdaptive,
                              StrategyKind::SupersampleFilter, StrategyKind::VarianceAdaptive,
-                             StrategyKind::ShapeIdAdaptive};
+                             StrategyKind::ShapeIdAdaptive,   StrategyKind::Hybrid};
 
 StrategySettings configured(StrategyKind kind, int n, const ImageGrey* map) {
     StrategySettings s = strategy(kind, n, map);

@@ -201,6 +201,32 @@ TEST(Subsample, RejectsBadSettings) {
     st.threshold = 0.0;
     st.aamap = nullptr;
     EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
+    st.aamap = &map;
+    const BlockSums other(ImageGrey(9, 8, 0.0f));
+    st.blockSums = &other;  // tables of another size
+    EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
+}
+
+TEST(Subsample, GivenBlockSumsDecideTheSplitsAndAreNamed) {
+    // The map asks to refine everything, the given tables (as the GPU pass hands them over) say
+    // all blocks are empty: the tables decide, so only the grid is traced.
+    const int w = 17, h = 9;
+    const ImageGrey ones(w, h, 1.0f);
+    const ImageGrey zeros(w, h, 0.0f);
+    const BlockSums given(zeros);
+    StrategySettings st = strategy(StrategyKind::AamapSubsample, 2, &ones);
+    st.spacing = 8;
+    const SyntheticSource a(w, h, [](float fx, float) { return glm::vec3(fx); }, true);
+    const StrategyImages cpu = runStrategy(st, a);
+    st.blockSums = &given;
+    const SyntheticSource b(w, h, [](float fx, float) { return glm::vec3(fx); }, true);
+    const StrategyImages gpu = runStrategy(st, b);
+    const SubsamplePlan grid = planSubsampling(given, 8, 0.0);
+    EXPECT_TRUE(gpu.traced == grid.traced);
+    EXPECT_EQ(testing::sumOf(cpu.primaryRays), static_cast<std::uint64_t>(w * h * 4));  // all refined
+    EXPECT_NE(makeStrategy(st, w, h)->describe().find("block-sums=given"), std::string::npos);
+    st.blockSums = nullptr;
+    EXPECT_NE(makeStrategy(st, w, h)->describe().find("block-sums=cpu"), std::string::npos);
 }
 
 }  // namespace

@@ -35,7 +35,9 @@ void Scheduler::tiles(const std::function<void(int, int, int, int)>& fn) const {
     tbb::parallel_for(tbb::blocked_range<int>(0, count, 1), [&](const tbb::blocked_range<int>& r) {
         for (int t = r.begin(); t != r.end(); ++t) {
             const int x0 = (t % tilesX_) * kTileSize, y0 = (t / tilesX_) * kTileSize;
-            fn(x0, y0, std::min(x0 + kTileSize, width_), std::min(y0 + kTileSize, height_));
+            const int x1 = std::min(x0 + kTileSize, width_), y1 = std::min(y0 + kTileSize, height_);
+            fn(x0, y0, x1, y1);
+            if (tileFinished_) tileFinished_(x0, y0, x1, y1);
             const int done = tilesDone_.fetch_add(1, std::memory_order_relaxed) + 1;
             if (progress_) progress_(std::min(done, tilesTotal_), tilesTotal_);
         }

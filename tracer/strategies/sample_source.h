@@ -49,6 +49,10 @@ public:
     Scheduler(int width, int height, Progress progress = {});
     int tileCount() const { return tilesX_ * tilesY_; }
     void expectTilePhases(int phases) { tilesTotal_ = tileCount() * phases; }
+    // Called on the worker thread right after each tile of a tiles() phase, with its rectangle
+    // (half-open): live previews read the tile's finished pixels there. It may throw to cancel.
+    using TileFinished = std::function<void(int x0, int y0, int x1, int y1)>;
+    void onTileFinished(TileFinished fn) { tileFinished_ = std::move(fn); }
 
     // fn(x0, y0, x1, y1) for every 16 x 16 tile (half-open), in parallel, grain one tile.
     void tiles(const std::function<void(int, int, int, int)>& fn) const;
@@ -59,6 +63,7 @@ private:
     int width_, height_, tilesX_, tilesY_;
     int tilesTotal_;
     Progress progress_;
+    TileFinished tileFinished_;
     mutable std::atomic<int> tilesDone_{0};
 };
 

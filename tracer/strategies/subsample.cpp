@@ -1,5 +1,7 @@
 #include "tracer/strategies/subsample.h"
 
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "tracer/strategies/strategies.h"
@@ -108,17 +110,20 @@ namespace {
 
 class SubsampleStrategy final : public SamplingStrategy {
 public:
-    SubsampleStrategy(int n, StrataMapping mapping, int spacing, double threshold, const ImageGrey& map)
-        : n_(n), mapping_(mapping), spacing_(spacing), threshold_(threshold), map_(map) {}
+    SubsampleStrategy(int n, StrataMapping mapping, int spacing, double threshold, const ImageGrey& map,
+                      const BlockSums* sums)
+        : n_(n), mapping_(mapping), spacing_(spacing), threshold_(threshold), map_(map), sums_(sums) {}
     StrategyKind kind() const override { return StrategyKind::AamapSubsample; }
     int maxRaysPerPixel() const override { return n_ * n_; }
     std::string describe() const override {
-        return fmt::format("aamap-subsample n={} mapping={} spacing={} threshold={}", n_, toString(mapping_), spacing_,
-                           threshold_);
+        return fmt::format("aamap-subsample n={} mapping={} spacing={} threshold={} block-sums={}", n_,
+                           toString(mapping_), spacing_, threshold_, sums_ != nullptr ? "given" : "cpu");
     }
 
     void render(const SampleSource& source, const Scheduler& scheduler, StrategyImages& out) const override {
-        const SubsamplePlan plan = planSubsampling(BlockSums(map_), spacing_, threshold_);
+        std::optional<BlockSums> cpuSums;  // the fallback when no GPU tables were given
+        if (sums_ == nullptr) cpuSums.emplace(map_);
+        const SubsamplePlan plan = planSubsampling(sums_ != nullptr ? *sums_ : *cpuSums, spacing_, threshold_);
         scheduler.tiles([&](int x0, int y0, int x1, int y1) {
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
@@ -138,13 +143,14 @@ private:
     int spacing_;
     double threshold_;
     const ImageGrey& map_;
+    const BlockSums* sums_;
 };
 
 }  // namespace
 
 std::unique_ptr<SamplingStrategy> makeSubsampleStrategy(int n, StrataMapping mapping, int spacing, double threshold,
-                                                        const ImageGrey& map) {
-    return std::make_unique<SubsampleStrategy>(n, mapping, spacing, threshold, map);
+                                                        const ImageGrey& map, const BlockSums* sums) {
+    return std::make_unique<SubsampleStrategy>(n, mapping, spacing, threshold, map, sums);
 }
 
 }  // namespace aamap

@@ -1,0 +1,136 @@
+// `aamap snapshot`: load a scene (plus a light file), run only the Snapshot graph, write its
+// images, and optionally print or dump the compiled render graph.
+#include "app/snapshot_command.h"
+
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <glm/geometric.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "engine/vk/context.h"
+#include "eval/light_list.h"
+#include "passes/snapshot.h"
+#include "scene/light_file.h"
+#include "scene/load_scene.h"
+#include "scene/view_file.h"
+
+namespace aamap::app {
+namespace {
+
+constexpr int kExitValidation = 3;
+
+View pickView(const SnapshotOptions& o, const Scene& scene) {
+    const std::vector<View> views = o.view.empty() ? scene.views : loadViewFile(o.view);
+    const std::string source = o.view.empty() ? fmt::format("scene '{}'", o.scene) : o.view;
+    if (views.empty()) throw InputError(o.scene, "the scene has no view; pass --view FILE.vf");
+    if (o.viewIndex >= static_cast<int>(views.size()))
+        throw InputError(o.view.empty() ? o.scene : o.view,
+                         fmt::format("--view-index {} is out of range: {} has {} view(s)", o.viewIndex, source,
+                                     views.size()));
+    return views[static_cast<std::size_t>(o.viewIndex)];
+}
+
+// Why the scene needs (or does not need) its light-dependent passes, ahead of the compiled graph:
+// passes the scene does not call for are never declared, so the graph alone cannot say so.
+std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
+    int spots = 0, lobes = 0;
+    for (const PointLight& p : scene.pointLights) {
+        if (glm::dot(p.normal, p.normal) > 0.0f) ++lobes;
+        else if (glm::dot(p.spotDirection, p.spotDirection) > 0.0f) ++spots;
+    }
+    const int points = static_cast<int>(scene.pointLights.size()) - spots - lobes;
+    const int areas = static_cast<int>(scene.areaLights.size());
+    const int samples = static_cast<int>(scene.pointLights.size()) + areas * s.areaLightSamples;
+    std::string text = fmt::format("scene: {} triangles; lights: {} point, {} cosine-lobe point, {} spot, {} area "
+                                   "(x {} point samples each) -> {} light samples in the raster\n",
+                                   scene.mesh.triangles.size(), points, lobes, spots, areas, s.areaLightSamples, samples);
+    if (samples == 0)
+        text += "  shadow pass: not declared: the scene has no lights (unlit: emission only)\n";
+    else if (!s.shadows.enabled)
+        text += "  shadow pass: not declared: shadows are off (--no-shadows)\n";
+    else if (scene.mesh.triangles.empty())
+        text += "  shadow pass: not declared: no geometry to cast shadows\n";
+    else
+        text += fmt::format("  shadow pass: {} cube map(s) of {}^2 per face, one per light sample{}\n", samples,
+                            s.shadows.resolution, spots > 0 ? " (spots too: a cube map, not a 2D map)" : "");
+    return text;
+}
+
+}  // namespace
+
+CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
+    CLI::App* cmd = app.add_subcommand("snapshot", "Run only the Snapshot: snapshot.png, laplacian.png, aamap.png/.exr; "
+                                                   "--explain / --dot show the compiled render graph");
+    cmd->add_option("SCENE", o.scene, "Scene: builtin:<name>, or an .obj/.gltf/.glb file")->required();
+    cmd->add_option("--view", o.view, "Radiance .vf view file (default: the scene's own views)")->type_name("VF");
+    cmd->add_option("--view-index", o.viewIndex, "Which view of the file or scene")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--lights", o.lights, "Light file to add to the scene's lights (docs/lights.md)")->type_name("FILE");
+    cmd->add_flag("--explain", o.explain, "Print the compiled graph: each pass kept and why, each culled and why");
+    cmd->add_option("--dot", o.dot, "Write the compiled graph as Graphviz DOT (culled passes dashed)")->type_name("FILE");
+    cmd->add_option("-o,--out", o.outDir, "Output folder")->type_name("OUTDIR")->capture_default_str();
+    cmd->add_option("--width", o.width, "Render width (bounding box; the view's aspect ratio fits inside)")
+        ->check(CLI::Range(1, 16384))->capture_default_str();
+    cmd->add_option("--height", o.height, "Render height")->check(CLI::Range(1, 16384))->capture_default_str();
+    cmd->add_option("--scale", o.scale, "Snapshot resolution / render resolution")->check(CLI::Range(1.0, 4.0))
+        ->capture_default_str();
+    cmd->add_option("--area-light-samples", o.areaLightSamples, "Point samples per area light")
+        ->check(CLI::Range(1, 64))->capture_default_str();
+    cmd->add_option("--exposure", o.exposure, "Exposure of snapshot.png and of the aamap's greyscale")
+        ->check(CLI::PositiveNumber)->capture_default_str();
+    cmd->add_option("--shadow-resolution", o.shadowResolution, "Shadow cube-face size in texels")
+        ->check(CLI::Range(1, 8192))->capture_default_str();
+    cmd->add_flag("--no-shadows", o.noShadows, "No shadow maps");
+    cmd->add_option("--device", o.device, "Vulkan device: index or name substring (default: best GPU)")
+        ->type_name("NAME");
+    cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; any message fails (exit 3)");
+    return cmd;
+}
+
+int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::string& device) {
+    Scene scene = loadScene(o.scene);
+    if (!o.lights.empty()) addLights(scene, loadLightFile(o.lights));
+    const View view = pickView(o, scene);
+    const auto [width, height] = fitResolution(view, o.width, o.height);
+
+    SnapshotSettings settings;
+    settings.scale = o.scale;
+    settings.areaLightSamples = o.areaLightSamples;
+    settings.filter.exposure = o.exposure;
+    settings.shadows.enabled = !o.noShadows;
+    settings.shadows.resolution = o.shadowResolution;
+    settings.keepDebugImages = true;
+
+    VulkanContext context(ContextOptions{validation, device});
+    if (validation && !context.validationEnabled())
+        throw EnvironmentError("validation was requested but VK_LAYER_KHRONOS_validation is not available");
+    SnapshotResult r;
+    {
+        SnapshotRenderer renderer(context, scene);
+        r = renderer.render(view, width, height, settings);
+    }  // GPU objects freed here, so their destruction is validated too
+
+    const std::filesystem::path out(o.outDir);
+    std::filesystem::create_directories(out);
+    writePng(out / "snapshot.png", toneMap(r.snapshot, o.exposure));
+    writePng(out / "laplacian.png", quantise(r.laplacian));
+    writeExr(out / "aamap.exr", r.aamap);
+    writePng(out / "aamap.png", quantise(r.aamap));
+    if (!o.dot.empty()) writeTextAtomically(o.dot, r.dot);
+    if (o.explain) fmt::print("{}{}", sceneDecisions(scene, settings), r.explain);
+
+    double gpu = 0.0;
+    for (const PassTiming& t : r.passTimes) gpu += t.gpuMilliseconds;
+    spdlog::info("snapshot {}x{} for {}x{} on '{}': {:.1f} ms GPU, {:.1f} ms total; wrote {}", r.snapshot.width(),
+                 r.snapshot.height(), width, height, r.deviceName, gpu, r.totalSeconds * 1e3, out.string());
+    if (context.validationEnabled() && context.validationMessageCount() > 0) {
+        spdlog::error("{} Vulkan validation message(s), logged above", context.validationMessageCount());
+        return kExitValidation;
+    }
+    return 0;
+}
+
+}  // namespace aamap::app

@@ -1,0 +1,31 @@
+#pragma once
+// `aamap snapshot SCENE --view VF [--view-index N] [--lights FILE] [--explain] [--dot FILE]
+// [-o OUTDIR]`: the Snapshot alone (no tracing), its images, and its compiled render graph.
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace aamap::app {
+
+struct SnapshotOptions {
+    std::string scene, view, lights, dot, outDir = "out/snapshot";
+    int viewIndex = 0;
+    int width = 512, height = 512;  // render size (bounding box for the view's aspect ratio)
+    float scale = 1.5f;             // snapshot resolution / render resolution
+    int areaLightSamples = 5;
+    float exposure = 1.0f;
+    int shadowResolution = 256;
+    bool noShadows = false;
+    bool explain = false;
+    std::string device;       // "" = AAMAP_DEVICE or the best GPU
+    bool validation = false;  // or AAMAP_VALIDATION=1
+};
+
+// Adds the subcommand to `app`; the returned options are filled when it is parsed.
+CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& options);
+
+// Runs it. Throws InputError for bad input (scene, view, light file) and EnvironmentError for
+// Vulkan failures; returns 3 when the validation layer reported messages, else 0.
+int runSnapshotCommand(const SnapshotOptions& options, bool validation, const std::string& device);
+
+}  // namespace aamap::app

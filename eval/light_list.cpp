@@ -1,0 +1,195 @@
+#include "eval/light_list.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+
+namespace aamap {
+namespace {
+
+using yaml::MapReader;
+constexpr double kBig = 1e30;
+
+struct TypeInfo {
+    LightType type;
+    const char* name;
+    const char* nativeUnit;  // the emission key besides "power"
+    std::vector<std::string> keys;
+};
+
+const std::vector<TypeInfo>& types() {
+    static const std::vector<TypeInfo> t = {
+        {LightType::Point, "point", "intensity", {"type", "name", "position", "intensity", "power", "normal"}},
+        {LightType::Spot, "spot", "intensity",
+         {"type", "name", "position", "intensity", "power", "direction", "inner_angle", "outer_angle"}},
+        {LightType::Quad, "quad", "radiance", {"type", "name", "position", "radiance", "power", "normal", "up", "size"}},
+        {LightType::Disk, "disk", "radiance",
+         {"type", "name", "position", "radiance", "power", "normal", "radius", "segments"}},
+    };
+    return t;
+}
+
+void requireNonZero(const yaml::Context& ctx, MapReader& m, const std::string& key, const std::array<double, 3>& v) {
+    if (v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
+        ctx.fail(m.node(key), m.childPath(key), fmt::format("{}: must not be the zero vector", m.childPath(key)));
+}
+
+void getPositive2(const yaml::Context& ctx, MapReader& m, const std::string& key, std::array<double, 2>& out) {
+    const YAML::Node n = m.node(key);
+    if (!n.IsDefined()) return;
+    if (!n.IsSequence() || n.size() != 2)
+        ctx.fail(n, m.childPath(key),
+                 fmt::format("{}: expected a list of 2 numbers, found {}", m.childPath(key), yaml::describe(n)));
+    for (std::size_t i = 0; i < 2; ++i) {
+        double v = 0;
+        if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], v) || !std::isfinite(v) || !(v > 0.0) || v > kBig)
+            ctx.fail(n[i], m.childPath(key),
+                     fmt::format("{}[{}]: expected a positive number, found {}", m.childPath(key), i, yaml::describe(n[i])));
+        out[i] = v;
+    }
+}
+
+LightSpec readLight(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, std::size_t index) {
+    if (!node.IsMap())
+        ctx.fail(node, path, fmt::format("{}: expected a mapping (a light), found {}", path, yaml::describe(node)));
+    // The type decides which keys are allowed, so read it first.
+    std::string typeName = "point";
+    const YAML::Node& constNode = node;
+    if (const YAML::Node t = constNode["type"]; t.IsDefined()) {
+        if (!t.IsScalar()) ctx.fail(t, path + ".type", fmt::format("{}.type: expected a string, found {}", path, yaml::describe(t)));
+        typeName = t.Scalar();
+    }
+    const TypeInfo* info = nullptr;
+    for (const TypeInfo& t : types())
+        if (typeName == t.name) info = &t;
+    if (info == nullptr)
+        ctx.fail(constNode["type"], path + ".type",
+                 fmt::format("{}.type: unknown light type '{}' (supported: point, spot, quad, disk)", path, typeName));
+
+    MapReader m(ctx, node, path, info->keys);
+    LightSpec light;
+    light.type = info->type;
+    light.name = fmt::format("light{}", index);
+    m.getString("name", light.name);
+    m.require("position");
+    m.getVec3("position", light.position, -kBig, kBig);
+
+    // Emission: the type's own quantity or the total power, exactly one of them.
+    const bool hasNative = m.has(info->nativeUnit), hasPower = m.has("power");
+    if (hasNative == hasPower)
+        ctx.fail(hasPower ? m.node("power") : node, hasPower ? m.childPath("power") : path,
+                 fmt::format("{}: give exactly one of '{}' and 'power' for a {} light", path, info->nativeUnit, typeName));
+    light.unit = hasPower ? EmissionUnit::Power
+                 : info->type == LightType::Point || info->type == LightType::Spot ? EmissionUnit::Intensity
+                                                                                   : EmissionUnit::Radiance;
+    m.getVec3(toString(light.unit), light.emission, 0.0, kBig);
+
+    switch (info->type) {
+        case LightType::Point:
+            m.getVec3("normal", light.normal, -kBig, kBig);
+            break;
+        case LightType::Spot: {
+            m.require("direction");
+            m.getVec3("direction", light.direction, -kBig, kBig);
+            requireNonZero(ctx, m, "direction", light.direction);
+            m.getDouble("outer_angle", light.outerAngle, 0.0, 180.0, true);
+            m.getDouble("inner_angle", light.innerAngle, 0.0, 180.0);
+            if (light.innerAngle > light.outerAngle)
+                ctx.fail(m.has("inner_angle") ? m.node("inner_angle") : node, m.childPath("inner_angle"),
+                         fmt::format("{}: {} degrees is wider than outer_angle ({} degrees)", m.childPath("inner_angle"),
+                                     light.innerAngle, light.outerAngle));
+            break;
+        }
+        case LightType::Quad:
+            m.require("normal");
+            m.require("size");
+            m.getVec3("normal", light.normal, -kBig, kBig);
+            requireNonZero(ctx, m, "normal", light.normal);
+            m.getVec3("up", light.up, -kBig, kBig);
+            getPositive2(ctx, m, "size", light.size);
+            break;
+        case LightType::Disk:
+            m.require("normal");
+            m.require("radius");
+            m.getVec3("normal", light.normal, -kBig, kBig);
+            requireNonZero(ctx, m, "normal", light.normal);
+            m.getDouble("radius", light.radius, 0.0, kBig, true);
+            m.getInt("segments", light.segments, 3, 4096);
+            break;
+    }
+    m.finish();
+    return light;
+}
+
+}  // namespace
+
+std::vector<LightSpec> readLightList(const yaml::Context& ctx, const YAML::Node& node, const std::string& path) {
+    std::vector<LightSpec> lights;
+    if (!node.IsDefined() || node.IsNull()) return lights;
+    if (!node.IsSequence())
+        ctx.fail(node, path, fmt::format("{}: expected a list of lights, found {}", path, yaml::describe(node)));
+    for (std::size_t i = 0; i < node.size(); ++i)
+        lights.push_back(readLight(ctx, node[i], fmt::format("{}.{}", path, i), i));
+    return lights;
+}
+
+std::vector<LightSpec> loadLightFile(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in || std::filesystem::is_directory(file))
+        throw InputError(file, fmt::format("cannot read light file: {}",
+                                           std::filesystem::is_directory(file) ? "it is a directory" : std::strerror(errno)));
+    std::ostringstream text;
+    text << in.rdbuf();
+    YAML::Node root;
+    try {
+        root = YAML::Load(text.str());
+    } catch (const YAML::ParserException& e) {
+        throw InputError(file, e.mark.line + 1, e.mark.column + 1, fmt::format("invalid YAML: {}", e.msg));
+    }
+    const yaml::Context ctx(file);
+    if (!root.IsSequence())
+        ctx.fail(root, "lights",
+                 fmt::format("a light file is a YAML list of lights (docs/lights.md), found {}", yaml::describe(root)));
+    return readLightList(ctx, root, "lights");
+}
+
+std::vector<std::string> lightKeys() {
+    std::vector<std::string> keys;
+    for (const TypeInfo& t : types())
+        for (const std::string& k : t.keys)
+            if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+    return keys;
+}
+
+nlohmann::ordered_json lightJson(const LightSpec& l) {
+    nlohmann::ordered_json j{{"type", toString(l.type)}, {"name", l.name}, {"position", l.position},
+                             {toString(l.unit), l.emission}};
+    switch (l.type) {
+        case LightType::Point: j["normal"] = l.normal; break;
+        case LightType::Spot:
+            j["direction"] = l.direction;
+            j["inner_angle"] = l.innerAngle;
+            j["outer_angle"] = l.outerAngle;
+            break;
+        case LightType::Quad:
+            j["normal"] = l.normal;
+            j["up"] = l.up;
+            j["size"] = l.size;
+            break;
+        case LightType::Disk:
+            j["normal"] = l.normal;
+            j["radius"] = l.radius;
+            j["segments"] = l.segments;
+            break;
+    }
+    return j;
+}
+
+}  // namespace aamap

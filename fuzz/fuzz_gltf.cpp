@@ -1,0 +1,10 @@
+// glTF JSON text -> loadGltf (buffers as data: URIs; external files simply go missing).
+#include "fuzz_input.h"
+#include "scene/gltf_loader.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    using namespace aamap::fuzz;
+    const auto path = writeScratch("m.gltf", asText(data, size));
+    expectLoadOrInputError([&] { aamap::loadGltf(path); });
+    return 0;
+}

@@ -1,0 +1,5 @@
+#version 460
+// The shading of a planar mirror's reflected view: see gbuffer.glsl.
+#extension GL_GOOGLE_include_directive : require
+#define GBUFFER_MIRROR 1
+#include "gbuffer.glsl"

@@ -1,0 +1,131 @@
+#include "passes/block_sums.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include <aamap/spirv.h>
+
+#include "engine/vk/context.h"
+#include "glsl/shared/snapshot_interface.h"
+#include "passes/gpu_aamap.h"
+
+namespace aamap::passes {
+namespace {
+
+const std::string kRowSums = "block_sum_row_prefixes";
+const std::string kRowCounts = "block_count_row_prefixes";
+
+graph::ResourceDesc buffer(const std::string& name, std::uint64_t bytes) {
+    graph::ResourceDesc d;
+    d.name = name;
+    d.kind = graph::ResourceKind::Buffer;
+    d.bytes = bytes;
+    return d;
+}
+
+vk::LayoutDesc storageLayout(std::vector<VkDescriptorType> bindings) {
+    return {std::move(bindings), static_cast<std::uint32_t>(sizeof(gpu::BlockSumPush)), VK_SHADER_STAGE_COMPUTE_BIT};
+}
+
+std::size_t tableSize(int width, int height) {
+    return static_cast<std::size_t>(width + 1) * static_cast<std::size_t>(height + 1);
+}
+
+}  // namespace
+
+BlockSumPass::BlockSumPass(VulkanContext& context)
+    : context_(&context),
+      rows_(context, spirv::block_sum_rows_comp,
+            storageLayout({VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                           VK_DESCRIPTOR_TYPE_STORAGE_BUFFER})),
+      columns_(context, spirv::block_sum_columns_comp,
+               storageLayout({VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                              VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER})) {}
+
+void BlockSumPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& map, int width,
+                       int height, std::string purpose) const {
+    if (width <= 0 || height <= 0) throw std::invalid_argument("BlockSumPass: non-positive map size");
+    const std::uint64_t prefixes = static_cast<std::uint64_t>(width + 1) * static_cast<std::uint64_t>(height);
+    const std::uint64_t table = tableSize(width, height);
+    graph.addResource(buffer(kRowSums, prefixes * 2 * sizeof(float)));
+    graph.addResource(buffer(kRowCounts, prefixes * sizeof(std::uint32_t)));
+    graph.addResource(buffer(kBlockSums, table * 2 * sizeof(float)));
+    graph.addResource(buffer(kBlockCounts, table * sizeof(std::uint32_t)));
+    const gpu::BlockSumPush push{{width, height}, {0, 0}};
+
+    graph.addPass({"block_sum_rows",
+                   graph::QueueKind::Compute,
+                   {graph::reads(map, graph::Usage::StorageRead), graph::writes(kRowSums, graph::Usage::StorageWrite),
+                    graph::writes(kRowCounts, graph::Usage::StorageWrite)},
+                   purpose + " (row prefixes)"});
+    executor.setRecord("block_sum_rows", [this, map, push](vk::PassContext& pc) {
+        rows_.bind(pc.cmd());
+        vk::DescriptorPush()
+            .storageImage(BLOCKSUM_ROWS_BINDING_MAP, pc.image(map).view())
+            .storageBuffer(BLOCKSUM_ROWS_BINDING_SUMS, pc.buffer(kRowSums).handle())
+            .storageBuffer(BLOCKSUM_ROWS_BINDING_COUNTS, pc.buffer(kRowCounts).handle())
+            .push(*context_, pc.cmd(), rows_);
+        rows_.pushConstants(pc.cmd(), push);
+        vk::dispatch2D(pc.cmd(), static_cast<std::uint32_t>(push.size.y), 1, BLOCKSUM_GROUP, 1);
+    });
+
+    graph.addPass({"block_sum_columns",
+                   graph::QueueKind::Compute,
+                   {graph::reads(kRowSums, graph::Usage::StorageRead),
+                    graph::reads(kRowCounts, graph::Usage::StorageRead),
+                    graph::writes(kBlockSums, graph::Usage::StorageWrite),
+                    graph::writes(kBlockCounts, graph::Usage::StorageWrite)},
+                   std::move(purpose)});
+    executor.setRecord("block_sum_columns", [this, push](vk::PassContext& pc) {
+        columns_.bind(pc.cmd());
+        vk::DescriptorPush()
+            .storageBuffer(BLOCKSUM_COLUMNS_BINDING_ROW_SUMS, pc.buffer(kRowSums).handle())
+            .storageBuffer(BLOCKSUM_COLUMNS_BINDING_ROW_COUNTS, pc.buffer(kRowCounts).handle())
+            .storageBuffer(BLOCKSUM_COLUMNS_BINDING_SUMS, pc.buffer(kBlockSums).handle())
+            .storageBuffer(BLOCKSUM_COLUMNS_BINDING_COUNTS, pc.buffer(kBlockCounts).handle())
+            .push(*context_, pc.cmd(), columns_);
+        columns_.pushConstants(pc.cmd(), push);
+        vk::dispatch2D(pc.cmd(), static_cast<std::uint32_t>(push.size.x + 1), 1, BLOCKSUM_GROUP, 1);
+    });
+}
+
+BlockSumTables toBlockSumTables(const vk::HostData& sums, const vk::HostData& counts, int width, int height) {
+    const std::size_t n = tableSize(width, height);
+    if (sums.bytes.size() != n * 2 * sizeof(float) || counts.bytes.size() != n * sizeof(std::uint32_t))
+        throw std::invalid_argument("block-sum buffers do not match the map size");
+    BlockSumTables t;
+    t.width = width;
+    t.height = height;
+    std::vector<float> pairs(2 * n);
+    std::memcpy(pairs.data(), sums.bytes.data(), sums.bytes.size());
+    t.sums.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        t.sums[i] = static_cast<double>(pairs[2 * i]) + static_cast<double>(pairs[2 * i + 1]);
+    t.counts.resize(n);
+    std::memcpy(t.counts.data(), counts.bytes.data(), counts.bytes.size());
+    return t;
+}
+
+GpuBlockSums::GpuBlockSums(VulkanContext& context)
+    : pass_(context), executor_(std::make_unique<vk::GraphExecutor>(context)) {}
+GpuBlockSums::~GpuBlockSums() = default;
+
+BlockSumTables GpuBlockSums::compute(const ImageGrey& map) {
+    if (map.empty()) throw std::invalid_argument("GpuBlockSums: empty map");
+    executor_->clear();
+    graph::RenderGraph graph;
+    graph::ResourceDesc d;
+    d.name = "map";
+    d.format = graph::Format::R32Float;
+    d.size = graph::Size::absolute(static_cast<std::uint32_t>(map.width()), static_cast<std::uint32_t>(map.height()));
+    d.imported = true;
+    graph.addResource(d);
+    executor_->setUpload("map", toR32(map));
+    pass_.add(graph, *executor_, "map", map.width(), map.height(), "block sums of a host map");
+    const std::vector<std::string> outputs{kBlockSums, kBlockCounts};
+    const vk::ExecutionResult r = executor_->execute(graph.compile(outputs));
+    executor_->clear();
+    return toBlockSumTables(r.outputs.at(kBlockSums), r.outputs.at(kBlockCounts), map.width(), map.height());
+}
+
+}  // namespace aamap::passes

@@ -1,0 +1,137 @@
+#include "passes/gbuffer_textures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace aamap::passes {
+namespace {
+
+bool usable(const Scene& scene, int texture) {
+    if (texture < 0 || static_cast<std::size_t>(texture) >= scene.textures.size()) return false;
+    const Texture& t = scene.textures[static_cast<std::size_t>(texture)];
+    const std::size_t texels = static_cast<std::size_t>(std::max(t.width, 0)) * std::max(t.height, 0);
+    return texels > 0 && t.rgba.size() >= 4 * texels;
+}
+
+// Bilinear with repeat, texel centres at (i + 0.5) / width: the tracer's rule.
+float sample(const Texture& t, float s, float u, int channel) {
+    const float x = s * static_cast<float>(t.width) - 0.5f, y = u * static_cast<float>(t.height) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const auto wrap = [](float i, int n) {
+        const long k = static_cast<long>(i) % n;
+        return static_cast<std::size_t>(k < 0 ? k + n : k);
+    };
+    const std::size_t x0 = wrap(fx, t.width), x1 = wrap(fx + 1.0f, t.width);
+    const std::size_t y0 = wrap(fy, t.height), y1 = wrap(fy + 1.0f, t.height);
+    const std::size_t w = static_cast<std::size_t>(t.width);
+    const auto at = [&](std::size_t xi, std::size_t yi) { return t.rgba[4 * (yi * w + xi) + channel]; };
+    const float top = (1.0f - ax) * at(x0, y0) + ax * at(x1, y0);
+    const float bottom = (1.0f - ax) * at(x0, y1) + ax * at(x1, y1);
+    return (1.0f - ay) * top + ay * bottom;
+}
+
+std::uint32_t toByte(float v) { return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
+
+float linearToSrgb(float c) {
+    c = std::clamp(c, 0.0f, 1.0f);
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+std::uint32_t nextPowerOfTwo(std::uint32_t v) {
+    std::uint32_t p = 1;
+    while (p < v) p <<= 1;
+    return p;
+}
+
+}  // namespace
+
+std::pair<int, int> atlasKey(const Material& material, const Scene& scene) {
+    const bool hasUvs = !scene.mesh.uvs.empty() && scene.mesh.uvs.size() == scene.mesh.positions.size();
+    if (!hasUvs) return {-1, -1};
+    const int diffuse = usable(scene, material.diffuseTexture) ? material.diffuseTexture : -1;
+    const int alpha = isAlphaTested(material) && usable(scene, material.alphaTexture) ? material.alphaTexture : -1;
+    if (diffuse < 0 && alpha < 0) return {-1, -1};
+    return {diffuse, alpha >= 0 ? alpha : diffuse};
+}
+
+TextureAtlas buildTextureAtlas(const Scene& scene) {
+    TextureAtlas atlas;
+    std::set<std::uint32_t> usedMaterials(scene.mesh.materialIds.begin(), scene.mesh.materialIds.end());
+    std::set<std::pair<int, int>> keys;
+    for (std::uint32_t id : usedMaterials) {
+        if (id >= scene.materials.size()) continue;
+        const auto key = atlasKey(scene.materials[id], scene);
+        if (key.first >= 0 || key.second >= 0) keys.insert(key);
+    }
+    if (keys.empty()) return atlas;
+
+    // Entry sizes: the colour texture's (else the coverage's), halved until they fit.
+    struct Pending {
+        std::pair<int, int> key;
+        std::uint32_t width, height;
+    };
+    std::vector<Pending> pending;
+    std::uint64_t area = 0;
+    std::uint32_t widest = 1;
+    for (const auto& key : keys) {
+        const Texture& base = scene.textures[static_cast<std::size_t>(key.first >= 0 ? key.first : key.second)];
+        auto w = static_cast<std::uint32_t>(base.width), h = static_cast<std::uint32_t>(base.height);
+        while (w > TextureAtlas::kMaxEntrySide || h > TextureAtlas::kMaxEntrySide) {
+            w = (w + 1) / 2;
+            h = (h + 1) / 2;
+        }
+        pending.push_back({key, w, h});
+        area += static_cast<std::uint64_t>(w) * h;
+        widest = std::max({widest, w, h});
+    }
+    const auto side = static_cast<std::uint32_t>(std::ceil(std::sqrt(static_cast<double>(area))));
+    atlas.pageSide = std::max(nextPowerOfTwo(widest), std::min(TextureAtlas::kMaxPageSide, nextPowerOfTwo(side)));
+
+    // Shelf packing, tallest first.
+    std::sort(pending.begin(), pending.end(), [](const Pending& a, const Pending& b) {
+        return a.height != b.height ? a.height > b.height : a.key < b.key;
+    });
+    std::uint32_t x = 0, y = 0, shelf = 0, layer = 0;
+    for (const Pending& p : pending) {
+        if (x + p.width > atlas.pageSide) {
+            x = 0;
+            y += shelf;
+            shelf = 0;
+        }
+        if (y + p.height > atlas.pageSide) {
+            x = y = shelf = 0;
+            ++layer;
+        }
+        atlas.entries[p.key] = {x, y, p.width, p.height, layer};
+        x += p.width;
+        shelf = std::max(shelf, p.height);
+    }
+    atlas.layers = std::max(layer + 1, 2u);  // two at least: the shader's view is always an array
+
+    const std::size_t page = static_cast<std::size_t>(atlas.pageSide) * atlas.pageSide;
+    atlas.texels.assign(page * atlas.layers, 0u);
+    for (const auto& [key, e] : atlas.entries) {
+        const Texture* colour = key.first >= 0 ? &scene.textures[static_cast<std::size_t>(key.first)] : nullptr;
+        const Texture* coverage = key.second >= 0 ? &scene.textures[static_cast<std::size_t>(key.second)] : nullptr;
+        for (std::uint32_t j = 0; j < e.height; ++j) {
+            for (std::uint32_t i = 0; i < e.width; ++i) {
+                // Sampling the source at the entry's texel centres: a copy at equal size, a 2x2
+                // box average where the entry was halved.
+                const float s = (static_cast<float>(i) + 0.5f) / static_cast<float>(e.width);
+                const float t = (static_cast<float>(j) + 0.5f) / static_cast<float>(e.height);
+                std::uint32_t rgba = 0xffu << 24 | 0xffffffu;
+                if (colour) {
+                    rgba = 0xffu << 24;
+                    for (int c = 0; c < 3; ++c) rgba |= toByte(linearToSrgb(sample(*colour, s, t, c))) << (8 * c);
+                }
+                if (coverage) rgba = (rgba & 0xffffffu) | toByte(sample(*coverage, s, t, 3)) << 24;
+                atlas.texels[page * e.layer + static_cast<std::size_t>(e.y + j) * atlas.pageSide + e.x + i] = rgba;
+            }
+        }
+    }
+    return atlas;
+}
+
+}  // namespace aamap::passes

@@ -1,0 +1,148 @@
+#include "passes/geometric_aamap.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include <aamap/spirv.h>
+
+#include "engine/vk/context.h"
+#include "glsl/shared/aamap_filter.h"
+#include "glsl/shared/snapshot_interface.h"
+
+namespace aamap::passes {
+namespace {
+
+graph::ResourceDesc image(const std::string& name, graph::Format format, graph::Size size, bool imported = false) {
+    graph::ResourceDesc d;
+    d.name = name;
+    d.format = format;
+    d.size = std::move(size);
+    d.imported = imported;
+    return d;
+}
+
+vk::Pipeline edgePipeline(VulkanContext& context, bool combined) {
+    std::vector<VkDescriptorType> bindings(combined ? 4 : 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    static_assert(GEOMETRIC_BINDING_NORMAL_DEPTH == 0 && GEOMETRIC_BINDING_IDS == 1 &&
+                  GEOMETRIC_BINDING_OUTPUT == 2 && GEOMETRIC_BINDING_LAPLACIAN == 3);
+    return vk::Pipeline(context, combined ? spirv::geometric_edges_combined_comp : spirv::geometric_edges_comp,
+                        vk::LayoutDesc{bindings, static_cast<std::uint32_t>(sizeof(gpu::FilterPush)),
+                                       VK_SHADER_STAGE_COMPUTE_BIT});
+}
+
+std::vector<std::byte> toRGBA32(const Image<glm::vec4>& image) {
+    std::vector<std::byte> bytes(image.size() * sizeof(glm::vec4));
+    std::memcpy(bytes.data(), image.data(), bytes.size());
+    return bytes;
+}
+
+graph::Size sizeOf(int width, int height) {
+    return graph::Size::absolute(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+}
+
+}  // namespace
+
+const char* toString(AamapSource source) {
+    switch (source) {
+        case AamapSource::Luminance: return "luminance";
+        case AamapSource::Geometric: return "geometric";
+        case AamapSource::Combined: return "combined";
+    }
+    return "?";
+}
+
+bool parse(const std::string& name, AamapSource& source) {
+    for (AamapSource s : {AamapSource::Luminance, AamapSource::Geometric, AamapSource::Combined})
+        if (name == toString(s)) {
+            source = s;
+            return true;
+        }
+    return false;
+}
+
+GeometricEdgePass::GeometricEdgePass(VulkanContext& context)
+    : context_(&context), geometric_(edgePipeline(context, false)), combined_(edgePipeline(context, true)) {}
+
+graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
+                                     const std::string& normalDepth, const std::string& ids,
+                                     const std::string& laplacian, const std::string& output) const {
+    const bool combined = !laplacian.empty();
+    std::vector<graph::Access> accesses{graph::reads(normalDepth, graph::Usage::StorageRead),
+                                        graph::reads(ids, graph::Usage::StorageRead),
+                                        graph::writes(output, graph::Usage::StorageWrite)};
+    if (combined) accesses.push_back(graph::reads(laplacian, graph::Usage::StorageRead));
+    const graph::PassId id = graph.addPass(
+        {"geometric_edges", graph::QueueKind::Compute, accesses,
+         combined ? "edges: max of G-buffer discontinuities and the luminance |L|"
+                  : "edges: G-buffer discontinuities (depth, normal, object and material id)"});
+    executor.setRecord("geometric_edges", [this, normalDepth, ids, laplacian, output, combined](vk::PassContext& pc) {
+        const vk::Image& out = pc.image(output);
+        gpu::FilterPush push{};
+        push.inSize = {static_cast<int>(out.info().width), static_cast<int>(out.info().height)};
+        push.outSize = push.inSize;
+        const vk::Pipeline& pipeline = combined ? combined_ : geometric_;
+        pipeline.bind(pc.cmd());
+        vk::DescriptorPush descriptors;
+        descriptors.storageImage(GEOMETRIC_BINDING_NORMAL_DEPTH, pc.image(normalDepth).view())
+            .storageImage(GEOMETRIC_BINDING_IDS, pc.image(ids).view())
+            .storageImage(GEOMETRIC_BINDING_OUTPUT, out.view());
+        if (combined) descriptors.storageImage(GEOMETRIC_BINDING_LAPLACIAN, pc.image(laplacian).view());
+        descriptors.push(*context_, pc.cmd(), pipeline);
+        pipeline.pushConstants(pc.cmd(), push);
+        vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, AAMAP_FILTER_GROUP_X, AAMAP_FILTER_GROUP_Y);
+    });
+    return id;
+}
+
+void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const FilterChain& chain,
+                   GeometryBufferPass& geometry, const GeometricEdgePass& edges, AamapSource source,
+                   const MapChainInputs& in) {
+    if (in.camera == nullptr) throw std::invalid_argument("addAamapChain: no camera");
+    geometry.add(graph, executor, in.colour, *in.camera, in.nearPlane, in.farPlane);
+    graph.addResource(image(kEdges, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    if (source == AamapSource::Luminance) {
+        chain.add(graph, executor, in.colour, in.width, in.height, in.params);
+        // Declared for the explanation only: nothing reads kEdges, so the graph culls both.
+        edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds, "", kEdges);
+        return;
+    }
+    graph.addResource(image(kGrey, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    graph.addResource(image(kLaplacian, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    graph.addResource(image(kMap, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    graph.addResource(image(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
+    chain.luminance.add(graph, executor, in.colour, kGrey, in.params.exposure);
+    chain.laplacian.add(graph, executor, kGrey, kLaplacian);  // geometric: kept only as a debug output
+    edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds,
+              source == AamapSource::Combined ? kLaplacian : "", kEdges);
+    chain.blur.add(graph, executor, kEdges, kMap, in.params.blurRadius, in.params.noiseFloor, in.params.gain);
+    chain.reduce.add(graph, executor, kMap, kAamap);
+}
+
+GpuGeometricEdges::GpuGeometricEdges(VulkanContext& context)
+    : pass_(context), executor_(std::make_unique<vk::GraphExecutor>(context)) {}
+GpuGeometricEdges::~GpuGeometricEdges() = default;
+
+ImageGrey GpuGeometricEdges::edges(const cpu::GeometryImages& g, const ImageGrey* laplacian) {
+    const int W = g.normalDepth.width(), H = g.normalDepth.height();
+    if (W <= 0 || H <= 0 || g.ids.width() != W || g.ids.height() != H ||
+        (laplacian != nullptr && (laplacian->width() != W || laplacian->height() != H)))
+        throw std::invalid_argument("GpuGeometricEdges: empty or mismatched images");
+    executor_->clear();
+    graph::RenderGraph graph;
+    graph.addResource(image(kGeometryNormalDepth, graph::Format::RGBA32Float, sizeOf(W, H), true));
+    graph.addResource(image(kGeometryIds, graph::Format::RGBA32Float, sizeOf(W, H), true));
+    graph.addResource(image(kEdges, graph::Format::R32Float, sizeOf(W, H)));
+    executor_->setUpload(kGeometryNormalDepth, toRGBA32(g.normalDepth));
+    executor_->setUpload(kGeometryIds, toRGBA32(g.ids));
+    if (laplacian != nullptr) {
+        graph.addResource(image(kLaplacian, graph::Format::R32Float, sizeOf(W, H), true));
+        executor_->setUpload(kLaplacian, toR32(*laplacian));
+    }
+    pass_.add(graph, *executor_, kGeometryNormalDepth, kGeometryIds, laplacian != nullptr ? kLaplacian : "", kEdges);
+    const std::vector<std::string> outputs{kEdges};
+    const vk::ExecutionResult r = executor_->execute(graph.compile(outputs));
+    executor_->clear();
+    return toImageGrey(r.outputs.at(kEdges));
+}
+
+}  // namespace aamap::passes

@@ -1,0 +1,70 @@
+#pragma once
+// The geometric aamap (beyond the paper): edges where the G-buffer is discontinuous -- depth,
+// normal, object and material id (glsl/shared/geometric_edges.h) -- replace the luminance
+// Laplacian (Geometric) or join it by a per-texel max (Combined); the luminance chain's blur,
+// dead zone and reduction follow unchanged. addAamapChain() assembles the Snapshot's map chain
+// for each source; GpuGeometricEdges runs the edge pass on host images (GPU-vs-CPU tests).
+#include <memory>
+#include <string>
+
+#include "core/image.h"
+#include "engine/vk/graph_executor.h"
+#include "engine/vk/pipeline.h"
+#include "passes/cpu_geometric.h"
+#include "passes/filter_params.h"
+#include "passes/geometry_buffer.h"
+#include "passes/gpu_aamap.h"
+#include "scene/camera.h"
+
+namespace aamap::passes {
+
+// Which edges the aamap is built from (config snapshot.map).
+enum class AamapSource { Luminance, Geometric, Combined };
+const char* toString(AamapSource source);                   // "luminance", "geometric", "combined"
+bool parse(const std::string& name, AamapSource& source);  // false for an unknown name
+
+inline const std::string kEdges = "edges";  // what the blur reads in the geometric and combined chains
+
+class GeometricEdgePass {
+public:
+    explicit GeometricEdgePass(VulkanContext& context);
+    // Declares the pass "geometric_edges": reads the geometry images (and `laplacian` unless
+    // empty: the combined variant), writes `output` (r32f, sized like the geometry images).
+    graph::PassId add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& normalDepth,
+                      const std::string& ids, const std::string& laplacian, const std::string& output) const;
+
+private:
+    VulkanContext* context_;
+    vk::Pipeline geometric_, combined_;
+};
+
+struct MapChainInputs {
+    std::string colour;  // the Snapshot's RGBA32F raster
+    const PinholeCamera* camera = nullptr;
+    float nearPlane = 0.0f, farPlane = 0.0f;
+    int width = 0, height = 0;  // render resolution
+    FilterParams params;
+};
+
+// Declares grey, laplacian, map and aamap (gpu_aamap.h) and the passes that make the aamap from
+// `source`. The geometry raster and edge pass are declared in every mode, so that a luminance
+// Snapshot culls them (CompiledGraph::explain says why); call geometry.prepare() before
+// executing a graph that keeps "geometry_buffer".
+void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const FilterChain& chain,
+                   GeometryBufferPass& geometry, const GeometricEdgePass& edges, AamapSource source,
+                   const MapChainInputs& in);
+
+// The edge pass alone on host images.
+class GpuGeometricEdges {
+public:
+    explicit GpuGeometricEdges(VulkanContext& context);
+    ~GpuGeometricEdges();
+    // laplacian: null for the geometric edges, else the combined max with it.
+    ImageGrey edges(const cpu::GeometryImages& geometry, const ImageGrey* laplacian = nullptr);
+
+private:
+    GeometricEdgePass pass_;
+    std::unique_ptr<vk::GraphExecutor> executor_;
+};
+
+}  // namespace aamap::passes

@@ -1,0 +1,82 @@
+// The CPU filters' output-image variants (laplacianMagnitudeInto, boxBlurInto) and the exactly
+// summed Laplacian: same results as the returning calls, the kept image reused, and |L| equal to
+// the correctly rounded difference sum of the shader's definition.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <utility>
+
+#include <gtest/gtest.h>
+
+#include "passes/cpu_aamap.h"
+
+namespace aamap::cpu {
+namespace {
+
+ImageGrey randomGrey(int w, int h, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    ImageGrey img(w, h);
+    for (float& v : img.pixels()) v = u(rng);
+    return img;
+}
+
+bool sameBits(const ImageGrey& a, const ImageGrey& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (std::signbit(a.data()[i]) != std::signbit(b.data()[i]) || !(a.data()[i] == b.data()[i])) return false;
+    return true;
+}
+
+// |sum over the 24 off-centre taps of (g(p+o) - g(p))|, clamped to the edge, in long double: exact
+// for floats in [2^-24, 1] (64-bit significand), so this is the value the CPU must round.
+float exactLaplacian(const ImageGrey& g, int x, int y) {
+    const auto at = [&](int xx, int yy) {
+        return static_cast<long double>(
+            g.at(std::clamp(xx, 0, g.width() - 1), std::clamp(yy, 0, g.height() - 1)));
+    };
+    long double sum = 0.0L;
+    for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) sum += at(x + dx, y + dy) - at(x, y);
+    return std::fabs(static_cast<float>(sum));
+}
+
+TEST(FilterOutputs, LaplacianIsTheCorrectlyRoundedDifferenceSum) {
+    const ImageGrey g = randomGrey(41, 23, 5);
+    const ImageGrey lap = laplacianMagnitude(g, Mode::Parallel);
+    for (int y = 0; y < g.height(); ++y)
+        for (int x = 0; x < g.width(); ++x) ASSERT_EQ(lap.at(x, y), exactLaplacian(g, x, y)) << x << "," << y;
+}
+
+TEST(FilterOutputs, IntoVariantsMatchAndReuseTheImage) {
+    // 4100 wide: two column tiles of the row-sliding Laplacian, the second clamped at the right.
+    for (auto [w, h] : {std::pair{4100, 37}, std::pair{7, 3}, std::pair{1, 1}, std::pair{64, 300}}) {
+        SCOPED_TRACE(testing::Message() << w << "x" << h);
+        const ImageGrey g = randomGrey(w, h, static_cast<std::uint32_t>(w * 31 + h));
+        const ImageGrey scalar = laplacianMagnitude(g, Mode::Scalar);
+        for (Mode mode : {Mode::Scalar, Mode::Parallel}) {
+            ImageGrey out(3, 2, 7.0f);  // wrong size: reallocated
+            laplacianMagnitudeInto(g, out, mode);
+            ASSERT_TRUE(sameBits(out, scalar));
+            const float* kept = out.data();
+            out.pixels().assign(out.size(), -1.0f);  // stale contents must be overwritten
+            laplacianMagnitudeInto(g, out, mode);
+            EXPECT_EQ(out.data(), kept);  // right size: reused, no allocation
+            ASSERT_TRUE(sameBits(out, scalar));
+
+            ImageGrey blurred(w, h, -1.0f);
+            boxBlurInto(scalar, 1, blurred, mode);
+            ASSERT_TRUE(sameBits(blurred, boxBlur(scalar, 1, Mode::Scalar)));
+        }
+    }
+}
+
+TEST(FilterOutputs, OutputMustNotBeTheInput) {
+    ImageGrey g = randomGrey(8, 8, 1);
+    EXPECT_THROW(laplacianMagnitudeInto(g, g), std::invalid_argument);
+    EXPECT_THROW(boxBlurInto(g, 1, g), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aamap::cpu

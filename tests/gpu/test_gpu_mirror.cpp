@@ -1,0 +1,213 @@
+// Planar mirrors in the Snapshot: a mirror facing a coloured object shows the object exactly
+// where the camera reflected in the mirror plane sees it, times the mirror's reflectance; the
+// mirror passes exist only when a planar mirror is in view, and --explain says why.
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <glm/geometric.hpp>
+
+#include "gpu_fixture.h"
+#include "passes/mirror.h"
+#include "passes/snapshot.h"
+#include "scene/camera.h"
+
+namespace aamap::test {
+namespace {
+
+struct Rect {
+    float x0, x1, y0, y1;
+    bool inside(glm::vec3 p, float margin) const {
+        return p.x > x0 + margin && p.x < x1 - margin && p.y > y0 + margin && p.y < y1 - margin;
+    }
+    bool outside(glm::vec3 p, float margin) const {
+        return p.x < x0 - margin || p.x > x1 + margin || p.y < y0 - margin || p.y > y1 + margin;
+    }
+};
+
+const Rect kMirror{-2.0f, 2.0f, -2.0f, 2.0f};  // at z = 0, facing +z
+const Rect kObject{0.3f, 1.5f, 0.2f, 1.0f};    // at z = 2, facing -z (towards the mirror)
+const glm::vec3 kEmission(2.0f, 0.5f, 0.25f);
+const glm::vec3 kReflectance(0.5f, 0.5f, 0.5f);
+
+void addRect(Scene& s, const Rect& r, float z, bool facingPlusZ, std::uint32_t material) {
+    const auto b = static_cast<std::uint32_t>(s.mesh.positions.size());
+    s.mesh.positions.insert(s.mesh.positions.end(), {{r.x0, r.y0, z}, {r.x1, r.y0, z}, {r.x1, r.y1, z}, {r.x0, r.y1, z}});
+    s.mesh.normals.insert(s.mesh.normals.end(), 4, glm::vec3(0, 0, facingPlusZ ? 1.0f : -1.0f));
+    if (facingPlusZ)
+        s.mesh.triangles.insert(s.mesh.triangles.end(), {{b, b + 1, b + 2}, {b, b + 2, b + 3}});
+    else
+        s.mesh.triangles.insert(s.mesh.triangles.end(), {{b, b + 2, b + 1}, {b, b + 3, b + 2}});
+    s.mesh.materialIds.insert(s.mesh.materialIds.end(), 2, material);
+    s.mesh.objectIds.insert(s.mesh.objectIds.end(), 2, material);
+}
+
+// A mirror (kd 0, ks 0.5) and an emissive rectangle facing it; no lights at all.
+Scene mirrorScene(MaterialKind mirrorKind) {
+    Scene s;
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.kind = mirrorKind;
+    mirror.kd = glm::vec3(0.0f);
+    mirror.ks = kReflectance;
+    Material glow;
+    glow.name = "glow";
+    glow.kd = glm::vec3(0.0f);
+    glow.ke = kEmission;
+    s.materials = {mirror, glow};
+    addRect(s, kMirror, 0.0f, true, 0);
+    addRect(s, kObject, 2.0f, false, 1);
+    return s;
+}
+
+View frontView() {
+    View v;
+    v.position = {0.1f, -0.2f, 4.0f};
+    v.direction = {0, 0, -1};
+    v.up = {0, 1, 0};
+    v.horizontalFovDeg = v.verticalFovDeg = 60.0f;
+    return v;
+}
+
+glm::vec3 onPlane(glm::vec3 origin, glm::vec3 d, float z) { return origin + ((z - origin.z) / d.z) * d; }
+
+TEST_F(GpuTest, MirrorShowsTheObjectWhereTheReflectedCameraSeesIt) {
+    const Scene scene = mirrorScene(MaterialKind::Mirror);
+    const View view = frontView();
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(view, 64, 64, SnapshotSettings{});
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int w = r.snapshot.width(), h = r.snapshot.height();
+    const float margin = 0.04f;
+    int reflected = 0, empty = 0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 d = camera.direction((x + 0.5f) / w, (y + 0.5f) / h);
+            const glm::vec3 direct = onPlane(camera.origin, d, 2.0f);
+            if (!kObject.outside(direct, margin)) continue;  // the object's unlit back, or its edge
+            const glm::vec3 m = onPlane(camera.origin, d, 0.0f);
+            if (!kMirror.inside(m, margin)) continue;
+            // The ray reflected at m (z flips) meets the object's plane at q.
+            const glm::vec3 q = onPlane(m, {d.x, d.y, -d.z}, 2.0f);
+            const glm::vec3 got = r.snapshot.at(x, y);
+            if (kObject.inside(q, margin)) {
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(got[c], kReflectance[c] * kEmission[c], 1e-5f) << "pixel " << x << "," << y;
+                ++reflected;
+            } else if (kObject.outside(q, margin)) {
+                ASSERT_EQ(got, glm::vec3(0.0f)) << "pixel " << x << "," << y;
+                ++empty;
+            }
+        }
+    }
+    EXPECT_GT(reflected, 50);
+    EXPECT_GT(empty, 500);
+
+    // The object's centre, reflected to z = -2, projects to the pixel that shows it.
+    const glm::vec3 centre(0.5f * (kObject.x0 + kObject.x1), 0.5f * (kObject.y0 + kObject.y1), -2.0f);
+    const glm::vec3 toCentre = centre - camera.origin;
+    const float along = glm::dot(toCentre, camera.forward);
+    const float u = 0.5f + 0.5f * glm::dot(toCentre, camera.right) / (along * camera.tanHalfH);
+    const float v = 0.5f - 0.5f * glm::dot(toCentre, camera.up) / (along * camera.tanHalfV);
+    const glm::vec3 atCentre = r.snapshot.at(static_cast<int>(u * w), static_cast<int>(v * h));
+    EXPECT_NEAR(atCentre.r, kReflectance.r * kEmission.r, 1e-5f);
+
+    // The passes and why they run.
+    std::set<std::string> names;
+    for (const PassTiming& t : r.passTimes) names.insert(t.pass);
+    EXPECT_TRUE(names.count("mirror") && names.count("mirror.mask") && names.count("mirror.composite"));
+    EXPECT_NE(r.explain.find("1 planar mirror"), std::string::npos) << r.explain;
+}
+
+TEST_F(GpuTest, MirrorPassesOnlyForAPlanarMirrorInView) {
+    const auto passes = [&](const Scene& scene, const View& view, std::string* explain = nullptr) {
+        SnapshotRenderer renderer(context(), scene);
+        const SnapshotResult r = renderer.render(view, 32, 32, SnapshotSettings{});
+        if (explain) *explain = r.explain;
+        std::set<std::string> names;
+        for (const PassTiming& t : r.passTimes) names.insert(t.pass);
+        return names;
+    };
+    const std::set<std::string> withMirror = passes(mirrorScene(MaterialKind::Mirror), frontView());
+    std::string why;
+    const std::set<std::string> without = passes(mirrorScene(MaterialKind::Diffuse), frontView(), &why);
+    std::set<std::string> added;
+    std::set_difference(withMirror.begin(), withMirror.end(), without.begin(), without.end(),
+                        std::inserter(added, added.end()));
+    EXPECT_EQ(added, (std::set<std::string>{"mirror", "mirror.mask", "mirror.composite"}));
+    EXPECT_TRUE(std::includes(withMirror.begin(), withMirror.end(), without.begin(), without.end()));
+    EXPECT_NE(why.find("no mirror"), std::string::npos) << why;
+
+    // Looking away from the mirror: no mirror passes, and the reason says it is out of view.
+    View away = frontView();
+    away.direction = {0, 0, 1};
+    EXPECT_EQ(passes(mirrorScene(MaterialKind::Mirror), away, &why), without);
+    EXPECT_NE(why.find("in view"), std::string::npos) << why;
+}
+
+TEST_F(GpuTest, MirrorUnderALightWithShadowsAndAlphaMaskedTextures) {
+    // Every pipeline variant of the reflected view at once: shadowed and textured (the object
+    // gets a texture whose left half is cut out), lit by a light between mirror and object.
+    Scene scene = mirrorScene(MaterialKind::Mirror);
+    Texture half;
+    half.width = half.height = 4;
+    half.rgba.assign(4 * 4 * 4, 1.0f);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 2; ++x) half.rgba[4 * (y * 4 + x) + 3] = 0.0f;
+    scene.textures.push_back(half);
+    scene.materials[1].ke = glm::vec3(0.0f);
+    scene.materials[1].kd = glm::vec3(0.8f);
+    scene.materials[1].diffuseTexture = scene.materials[1].alphaTexture = 0;
+    scene.materials[1].alphaMode = AlphaMode::Mask;
+    scene.mesh.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}, {0, 1}, {1, 1}, {1, 0}, {0, 0}};
+    PointLight light;
+    light.name = "bulb";
+    light.position = {0.9f, 0.6f, 1.0f};
+    light.intensity = glm::vec3(5.0f);
+    scene.pointLights.push_back(light);
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(frontView(), 64, 64, SnapshotSettings{});
+    std::set<std::string> names;
+    for (const PassTiming& t : r.passTimes) names.insert(t.pass);
+    EXPECT_TRUE(names.count("shadow") && names.count("mirror"));
+    // Some mirror pixels show the lit object's right half (x > 0.9 on the object).
+    const PinholeCamera camera = PinholeCamera::fromView(frontView());
+    const int w = r.snapshot.width(), h = r.snapshot.height();
+    int litRight = 0, cutLeft = 0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 d = camera.direction((x + 0.5f) / w, (y + 0.5f) / h);
+            if (!kObject.outside(onPlane(camera.origin, d, 2.0f), 0.04f)) continue;
+            const glm::vec3 m = onPlane(camera.origin, d, 0.0f);
+            if (!kMirror.inside(m, 0.04f)) continue;
+            const glm::vec3 q = onPlane(m, {d.x, d.y, -d.z}, 2.0f);
+            if (!kObject.inside(q, 0.04f)) continue;
+            const float split = 0.5f * (kObject.x0 + kObject.x1);
+            if (q.x > split + 0.05f) litRight += r.snapshot.at(x, y).r > 0.0f;
+            if (q.x < split - 0.05f) cutLeft += r.snapshot.at(x, y).r == 0.0f;
+        }
+    }
+    EXPECT_GT(litRight, 10);
+    EXPECT_GT(cutLeft, 10);
+}
+
+TEST(MirrorGeometry, PlanarGroupsAndCurvedOnes) {
+    Scene s = mirrorScene(MaterialKind::Mirror);
+    passes::MirrorGroups g = passes::findPlanarMirrors(s);
+    ASSERT_EQ(g.planar.size(), 1u);
+    EXPECT_NEAR(std::fabs(g.planar[0].normal.z), 1.0f, 1e-6f);
+    EXPECT_NEAR(g.planar[0].offset, 0.0f, 1e-6f);
+    EXPECT_EQ(g.planar[0].reflectance, kReflectance);
+    // Bend one corner of the mirror out of its plane: a curved mirror, no reflection.
+    s.mesh.positions[2].z = 0.3f;
+    g = passes::findPlanarMirrors(s);
+    EXPECT_TRUE(g.planar.empty());
+    EXPECT_EQ(g.curved.size(), 1u);
+    // The reflection matrix maps a point to its mirror image.
+    const glm::vec4 p = passes::reflectionMatrix({0, 0, 1}, 0.5f) * glm::vec4(1, 2, 3, 1);
+    EXPECT_NEAR(p.z, -2.0f, 1e-6f);
+    EXPECT_NEAR(p.x, 1.0f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace aamap::test

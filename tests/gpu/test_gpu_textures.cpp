@@ -1,0 +1,356 @@
+// Textures and alpha masks in the Snapshot: masked texels cut holes in the G-buffer (and in the
+// shadow cube maps), the aamap sees the cut-out boundary but nothing of the masked texels, the
+// same model from OBJ and glTF rasterises the same, and the texture binding exists only for
+// scenes that sample textures.
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <glm/geometric.hpp>
+
+#include "../scene/temp_dir.h"
+#include "../scene/textured_quad_files.h"
+#include "gpu_fixture.h"
+#include "passes/gbuffer_textures.h"
+#include "passes/snapshot.h"
+#include "scene/camera.h"
+#include "scene/gltf_loader.h"
+#include "scene/obj_loader.h"
+#include "tracer/embree_scene.h"
+
+namespace aamap::test {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// A square [-h, h]^2 in the plane z, facing +z, untextured (uvs 0 where the mesh has uvs).
+void addBackWall(Scene& scene, float h, float z, float kd) {
+    Material m;
+    m.name = "wall";
+    m.kd = glm::vec3(kd);
+    const auto material = static_cast<std::uint32_t>(scene.materials.size());
+    scene.materials.push_back(m);
+    const auto base = static_cast<std::uint32_t>(scene.mesh.positions.size());
+    scene.mesh.positions.insert(scene.mesh.positions.end(), {{-h, -h, z}, {h, -h, z}, {h, h, z}, {-h, h, z}});
+    scene.mesh.normals.insert(scene.mesh.normals.end(), 4, glm::vec3(0, 0, 1));
+    if (!scene.mesh.uvs.empty()) scene.mesh.uvs.insert(scene.mesh.uvs.end(), 4, glm::vec2(0.0f));
+    scene.mesh.triangles.insert(scene.mesh.triangles.end(), {{base, base + 1, base + 2}, {base, base + 2, base + 3}});
+    scene.mesh.materialIds.insert(scene.mesh.materialIds.end(), 2, material);
+    scene.mesh.objectIds.insert(scene.mesh.objectIds.end(), 2, material);
+}
+
+void addLight(Scene& scene, glm::vec3 position, float intensity) {
+    PointLight light;
+    light.name = "bulb";
+    light.position = position;
+    light.intensity = glm::vec3(intensity);
+    scene.pointLights.push_back(light);
+}
+
+View lookAt(glm::vec3 eye, glm::vec3 target, float fovDeg) {
+    View v;
+    v.position = eye;
+    v.direction = glm::normalize(target - eye);
+    v.up = {0, 1, 0};
+    v.horizontalFovDeg = v.verticalFovDeg = fovDeg;
+    return v;
+}
+
+// Where the camera ray through the centre of pixel (x, y) of a w x h image meets the plane z.
+glm::vec3 hitPlane(const PinholeCamera& camera, int x, int y, int w, int h, float z) {
+    const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(w),
+                                         (static_cast<float>(y) + 0.5f) / static_cast<float>(h));
+    return camera.origin + ((z - camera.origin.z) / d.z) * d;
+}
+
+// The glTF quad (hole of half-width 0.5 in the middle, checker inside it) before a grey wall.
+Scene maskedQuadScene(const TempDir& dir, const std::string& alphaMode, bool flat) {
+    writePng(dir, "tex.png", 16, holeTexture(16, flat));
+    Scene scene = loadGltf(writeQuadGltf(dir, "tex.png", alphaMode));
+    addBackWall(scene, 6.0f, -1.0f, 0.5f);
+    return scene;
+}
+
+TEST_F(GpuTest, AlphaMaskEdgesAtTheCutOutAndNoneInside) {
+    TempDir dir;
+    Scene scene = maskedQuadScene(dir, "MASK", true);
+    addLight(scene, {0, 0, 3}, 30.0f);
+    const View view = lookAt({0, 0, 3}, {0, 0, 0}, 60.0f);
+    SnapshotSettings settings;
+    settings.shadows.enabled = false;  // shadows have their own test below
+    SnapshotRenderer renderer(context(), scene);
+    const int w = 96, h = 96;
+    const SnapshotResult r = renderer.render(view, w, h, settings);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+
+    // Snapshot: through the hole the wall, lit as Lambert predicts; the checker never shows.
+    const int sw = r.snapshot.width(), sh = r.snapshot.height();
+    const glm::vec3 wall = hitPlane(camera, sw / 2, sh / 2, sw, sh, -1.0f);
+    const glm::vec3 toLight = scene.pointLights[0].position - wall;
+    const float expected = 0.5f / kPi * 30.0f * (toLight.z / glm::length(toLight)) / glm::dot(toLight, toLight);
+    EXPECT_NEAR(r.snapshot.at(sw / 2, sh / 2).r, expected, 1e-3f * expected);
+
+    // aamap: zero for every pixel whose footprint lies well inside the hole; an edge wherever
+    // a row crosses the hole's border (at x = +-0.5 on the quad).
+    int inside = 0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 q = hitPlane(camera, x, y, w, h, 0.0f);
+            const float pixel = 2.0f * 3.0f * std::tan(glm::radians(30.0f)) / static_cast<float>(w);  // at z = 0
+            if (std::max(std::fabs(q.x), std::fabs(q.y)) < 0.5f - 4.0f * pixel) {
+                EXPECT_EQ(r.aamap.at(x, y), 0.0f) << "inside the hole at " << x << "," << y;
+                ++inside;
+            }
+        }
+    }
+    EXPECT_GT(inside, 100);
+    for (int y = h / 2 - 5; y <= h / 2 + 5; ++y) {
+        float left = 0.0f, right = 0.0f;
+        for (int x = 0; x < w; ++x) {
+            const float qx = hitPlane(camera, x, y, w, h, 0.0f).x;
+            if (std::fabs(qx + 0.5f) < 0.05f) left = std::max(left, r.aamap.at(x, y));
+            if (std::fabs(qx - 0.5f) < 0.05f) right = std::max(right, r.aamap.at(x, y));
+        }
+        EXPECT_GT(left, 0.1f) << "row " << y;
+        EXPECT_GT(right, 0.1f) << "row " << y;
+    }
+
+    // Control: the same quad OPAQUE shows its checker in the hole, which the aamap flags.
+    TempDir opaqueDir;
+    Scene opaque = maskedQuadScene(opaqueDir, "OPAQUE", true);
+    addLight(opaque, {0, 0, 3}, 30.0f);
+    SnapshotRenderer opaqueRenderer(context(), opaque);
+    const SnapshotResult o = opaqueRenderer.render(view, w, h, settings);
+    EXPECT_GT(o.aamap.at(w / 2, h / 2), 0.5f);
+}
+
+TEST_F(GpuTest, CutOutsCastCutOutShadows) {
+    TempDir dir;
+    Scene scene = maskedQuadScene(dir, "MASK", true);
+    const glm::vec3 light(0, 0, 3);
+    addLight(scene, light, 30.0f);
+    // From the side, so that the quad's shadow on the wall is in view and not behind the quad.
+    const View view = lookAt({5, 0, 3}, {0, 0, -1}, 50.0f);
+    SnapshotSettings settings;
+    settings.shadows.resolution = 512;
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(view, 64, 64, settings);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int sw = r.snapshot.width(), sh = r.snapshot.height();
+    int lit = 0, shadowed = 0;
+    for (int y = 0; y < sh; ++y) {
+        for (int x = 0; x < sw; ++x) {
+            const glm::vec3 seen = hitPlane(camera, x, y, sw, sh, 0.0f);
+            if (std::max(std::fabs(seen.x), std::fabs(seen.y)) < 1.05f) continue;  // the quad (or near it) is in front
+            const glm::vec3 wall = hitPlane(camera, x, y, sw, sh, -1.0f);
+            if (std::max(std::fabs(wall.x), std::fabs(wall.y)) > 5.5f) continue;
+            // The segment from the wall point to the light crosses z = 0 a quarter of the way.
+            const glm::vec3 q = wall + 0.25f * (light - wall);
+            const float m = std::max(std::fabs(q.x), std::fabs(q.y));
+            if (std::fabs(m - 1.0f) < 0.06f || std::fabs(m - 0.5f) < 0.06f) continue;  // near a shadow edge
+            const bool blocked = m < 1.0f && m > 0.5f;
+            const float value = r.snapshot.at(x, y).r;
+            if (blocked) {
+                EXPECT_EQ(value, 0.0f) << "pixel " << x << "," << y << " should be in the ring's shadow";
+                ++shadowed;
+            } else {
+                EXPECT_GT(value, 0.0f) << "pixel " << x << "," << y << " should be lit (through the hole or beside)";
+                ++lit;
+            }
+        }
+    }
+    EXPECT_GT(shadowed, 50);
+    EXPECT_GT(lit, 50);
+}
+
+TEST_F(GpuTest, ObjAndGltfGiveTheSameGBuffer) {
+    TempDir dir;
+    writePng(dir, "tex.png", 16, holeTexture(16, false));
+    Scene fromObj = loadObj(writeQuadObj(dir, "tex.png"));
+    Scene fromGltf = loadGltf(writeQuadGltf(dir, "tex.png"));
+    for (Scene* s : {&fromObj, &fromGltf}) addLight(*s, {0.3f, 0.2f, 2.0f}, 5.0f);
+    const View view = lookAt({0.2f, -0.1f, 3}, {0, 0, 0}, 50.0f);
+    SnapshotSettings settings;
+    SnapshotRenderer objRenderer(context(), fromObj);
+    SnapshotRenderer gltfRenderer(context(), fromGltf);
+    const SnapshotResult a = objRenderer.render(view, 48, 48, settings);
+    const SnapshotResult b = gltfRenderer.render(view, 48, 48, settings);
+    ASSERT_EQ(a.snapshot.width(), b.snapshot.width());
+    int covered = 0, holes = 0;
+    for (int y = 0; y < a.snapshot.height(); ++y) {
+        for (int x = 0; x < a.snapshot.width(); ++x) {
+            const glm::vec3 p = a.snapshot.at(x, y), q = b.snapshot.at(x, y);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(p[c], q[c], 1e-5f * std::max(1.0f, q[c])) << x << "," << y;
+            covered += p.g > 0.0f;
+        }
+    }
+    // The quad covers part of the image and its hole shows the black background.
+    holes = a.snapshot.width() * a.snapshot.height() - covered;
+    EXPECT_GT(covered, 500);
+    EXPECT_GT(holes, 500);
+    EXPECT_EQ(a.snapshot.at(a.snapshot.width() / 2, a.snapshot.height() / 2), glm::vec3(0.0f));
+}
+
+// Bilinear coverage (repeat, texel centres at (i + 0.5) / 16) of holeTexture(16) at uv.
+float holeCoverage(glm::vec2 uv) {
+    const auto alpha = [](int x, int y) {
+        x = ((x % 16) + 16) % 16;
+        y = ((y % 16) + 16) % 16;
+        return x >= 4 && x < 12 && y >= 4 && y < 12 ? 0.0f : 1.0f;
+    };
+    const float x = uv.x * 16.0f - 0.5f, y = uv.y * 16.0f - 0.5f;
+    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+    const float ax = x - static_cast<float>(x0), ay = y - static_cast<float>(y0);
+    const float top = (1.0f - ax) * alpha(x0, y0) + ax * alpha(x0 + 1, y0);
+    const float bottom = (1.0f - ax) * alpha(x0, y0 + 1) + ax * alpha(x0 + 1, y0 + 1);
+    return (1.0f - ay) * top + ay * bottom;
+}
+
+TEST_F(GpuTest, SnapshotAndTracerCutTheSameTexels) {
+    // The masked quad alone, at an angle: every snapshot pixel is lit iff the tracer's camera ray
+    // through its centre hits (Embree with the alpha filter), except where the coverage at the
+    // hit is within a hair of the cutoff or the ray grazes the quad's outline.
+    TempDir dir;
+    writePng(dir, "tex.png", 16, holeTexture(16, false));
+    Scene scene = loadGltf(writeQuadGltf(dir, "tex.png", "MASK"));
+    addLight(scene, {0.5f, 0.5f, 3.0f}, 20.0f);
+    const View view = lookAt({1.2f, 0.7f, 2.5f}, {0.1f, 0.0f, 0.0f}, 55.0f);
+    SnapshotSettings settings;
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(view, 64, 64, settings);
+    const EmbreeScene tracer(scene);
+    ASSERT_TRUE(tracer.features().alphaMask);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int w = r.snapshot.width(), h = r.snapshot.height();
+    int hits = 0, cut = 0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 d = camera.direction((x + 0.5f) / w, (y + 0.5f) / h);
+            const glm::vec3 q = camera.origin + (-camera.origin.z / d.z) * d;  // the quad's plane, z = 0
+            if (std::fabs(std::max(std::fabs(q.x), std::fabs(q.y)) - 1.0f) < 1e-3f) continue;
+            const glm::vec2 uv(0.5f * (q.x + 1.0f), 0.5f * (1.0f - q.y));
+            const bool onQuad = std::max(std::fabs(q.x), std::fabs(q.y)) < 1.0f;
+            if (onQuad && std::fabs(holeCoverage(uv) - 0.5f) < 1e-3f) continue;
+            RTCRayHit rh = makeRayHit(camera.origin, d);
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            rtcIntersect1(tracer.handle(), &context, &rh);
+            const bool traced = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            const bool rastered = r.snapshot.at(x, y).g > 0.0f;
+            ASSERT_EQ(traced, rastered) << "pixel " << x << "," << y << " uv " << uv.x << "," << uv.y;
+            hits += traced;
+            cut += onQuad && !traced;
+        }
+    }
+    EXPECT_GT(hits, 500);
+    EXPECT_GT(cut, 200);
+}
+
+TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
+    Scene scene;
+    const auto texture = [](int w, int h) {
+        Texture t;
+        t.width = w;
+        t.height = h;
+        t.rgba.resize(static_cast<std::size_t>(w) * h * 4);
+        for (std::size_t i = 0; i < t.rgba.size(); ++i) t.rgba[i] = static_cast<float>((i * 37) % 256) / 255.0f;
+        return t;
+    };
+    scene.textures = {texture(5000, 40), texture(100, 100), texture(64, 32)};
+    for (int i = 0; i < 3; ++i) {
+        Material m;
+        m.diffuseTexture = i;
+        scene.materials.push_back(m);
+        const auto base = static_cast<std::uint32_t>(scene.mesh.positions.size());
+        scene.mesh.positions.insert(scene.mesh.positions.end(), {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+        scene.mesh.uvs.insert(scene.mesh.uvs.end(), {{0, 0}, {1, 0}, {0, 1}});
+        scene.mesh.triangles.push_back({base, base + 1, base + 2});
+        scene.mesh.materialIds.push_back(static_cast<std::uint32_t>(i));
+    }
+    const passes::TextureAtlas atlas = passes::buildTextureAtlas(scene);
+    ASSERT_EQ(atlas.entries.size(), 3u);
+    EXPECT_GE(atlas.layers, 2u);
+    EXPECT_EQ(atlas.texels.size(), static_cast<std::size_t>(atlas.pageSide) * atlas.pageSide * atlas.layers);
+    std::vector<passes::AtlasEntry> entries;
+    for (const auto& [key, e] : atlas.entries) {
+        EXPECT_LE(e.x + e.width, atlas.pageSide);
+        EXPECT_LE(e.y + e.height, atlas.pageSide);
+        EXPECT_LT(e.layer, atlas.layers);
+        EXPECT_LE(std::max(e.width, e.height), passes::TextureAtlas::kMaxEntrySide);
+        for (const passes::AtlasEntry& o : entries) {
+            const bool apart = o.layer != e.layer || o.x + o.width <= e.x || e.x + e.width <= o.x ||
+                               o.y + o.height <= e.y || e.y + e.height <= o.y;
+            EXPECT_TRUE(apart);
+        }
+        entries.push_back(e);
+    }
+    EXPECT_EQ(atlas.entries.at({0, 0}).width, 1250u);  // 5000 halved twice
+    EXPECT_EQ(atlas.entries.at({0, 0}).height, 10u);
+    // An entry at its texture's size holds its texels (sRGB-encoded colour, linear alpha).
+    const passes::AtlasEntry& e = atlas.entries.at({1, 1});
+    const Texture& t = scene.textures[1];
+    for (int y = 0; y < 100; y += 7) {
+        for (int x = 0; x < 100; x += 11) {
+            const std::uint32_t texel = atlas.texels[static_cast<std::size_t>(e.layer) * atlas.pageSide * atlas.pageSide +
+                                                     static_cast<std::size_t>(e.y + y) * atlas.pageSide + e.x + x];
+            const float* src = &t.rgba[4 * (static_cast<std::size_t>(y) * 100 + x)];
+            const float linear = (texel & 0xffu) / 255.0f;
+            const float encoded = src[0] <= 0.0031308f ? 12.92f * src[0] : 1.055f * std::pow(src[0], 1.0f / 2.4f) - 0.055f;
+            EXPECT_NEAR(linear, encoded, 0.5f / 255.0f + 1e-5f);
+            EXPECT_NEAR((texel >> 24) / 255.0f, src[3], 0.5f / 255.0f + 1e-5f);
+        }
+    }
+}
+
+std::set<std::string> passNames(const SnapshotResult& r) {
+    std::set<std::string> names;
+    for (const PassTiming& t : r.passTimes) names.insert(t.pass);
+    return names;
+}
+
+std::set<std::string> minus(const std::set<std::string>& a, const std::set<std::string>& b) {
+    std::set<std::string> out;
+    std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::inserter(out, out.end()));
+    return out;
+}
+
+TEST_F(GpuTest, SceneFeaturesAddExactlyTheirPassesAndBindings) {
+    TempDir dir;
+    writePng(dir, "tex.png", 16, holeTexture(16, true));
+    const Scene textured = loadGltf(writeQuadGltf(dir, "tex.png", "MASK"));
+    Scene plain = textured;  // the same geometry, untextured and opaque
+    plain.materials[0].diffuseTexture = plain.materials[0].alphaTexture = -1;
+    plain.materials[0].alphaMode = AlphaMode::Opaque;
+    plain.textures.clear();
+    Scene litPlain = plain, litTextured = textured;
+    addLight(litPlain, {0, 0, 3}, 10.0f);
+    addLight(litTextured, {0, 0, 3}, 10.0f);
+
+    const View view = lookAt({0, 0, 3}, {0, 0, 0}, 60.0f);
+    SnapshotSettings settings;
+    const auto run = [&](const Scene& s) { return SnapshotRenderer(context(), s).render(view, 32, 32, settings); };
+    const SnapshotResult rPlain = run(plain), rLit = run(litPlain), rTex = run(textured), rBoth = run(litTextured);
+
+    // Lights add the shadow pass and nothing else; textures add no pass, only the atlas binding
+    // (named in the G-buffer's purpose), and with masks the alpha test in the shadow pass.
+    EXPECT_EQ(minus(passNames(rLit), passNames(rPlain)), std::set<std::string>{"shadow"});
+    EXPECT_TRUE(minus(passNames(rPlain), passNames(rLit)).empty());
+    EXPECT_EQ(passNames(rTex), passNames(rPlain));
+    EXPECT_EQ(passNames(rBoth), passNames(rLit));
+    EXPECT_EQ(rPlain.explain.find("atlas"), std::string::npos);
+    EXPECT_EQ(rLit.explain.find("atlas"), std::string::npos);
+    EXPECT_NE(rTex.explain.find("atlas"), std::string::npos);
+    EXPECT_NE(rBoth.explain.find("alpha test from the G-buffer's atlas"), std::string::npos);
+    EXPECT_EQ(rLit.explain.find("alpha test"), std::string::npos);
+
+    // Textured but opaque: the atlas, and no alpha test anywhere.
+    Scene litOpaque = litTextured;
+    litOpaque.materials[0].alphaMode = AlphaMode::Opaque;
+    const SnapshotResult rOpaque = run(litOpaque);
+    EXPECT_EQ(passNames(rOpaque), passNames(rLit));
+    EXPECT_NE(rOpaque.explain.find("atlas"), std::string::npos);
+    EXPECT_EQ(rOpaque.explain.find("alpha test"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace aamap::test
