@@ -31,4 +31,11 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+// The user named a device (--device, AAMAP_DEVICE) that is absent or unusable: an error, never a
+// reason to fall back to the CPU path, since the user asked for that device.
+class RequestedDeviceError : public EnvironmentError {
+public:
+    using EnvironmentError::EnvironmentError;
+};
+
 }  // namespace aamap

@@ -79,11 +79,17 @@ Axis readAxis(const yaml::Context& ctx, MapReader& m, const std::string& key, bo
 }
 
 // "{rpp}", "{n}" and "{<param>}" in a name or series template.
+// fileName: the text becomes a render's file stem, so a value's '.' is written 'p' and '+' is
+// dropped ("noise_threshold0p02", "threshold1e06"): letters, digits, '_' and '-' only.
 std::string substitute(std::string text, const std::string& strategy,
-                       const std::vector<std::pair<std::string, double>>& values) {
+                       const std::vector<std::pair<std::string, double>>& values, bool fileName) {
     for (const auto& [key, v] : values) {
         const std::string token = "{" + key + "}";
-        const std::string value = paramText(strategy, key, v);
+        std::string value = paramText(strategy, key, v);
+        if (fileName) {
+            std::replace(value.begin(), value.end(), '.', 'p');
+            std::erase(value, '+');
+        }
         for (std::size_t at; (at = text.find(token)) != std::string::npos;) text.replace(at, token.size(), value);
     }
     return text;
@@ -163,8 +169,8 @@ std::vector<RenderConfig> expandEntry(const yaml::Context& ctx, const YAML::Node
         r.rpp = static_cast<int>(values[0].second);
         r.params.assign(values.begin() + 1, values.end());
         values.emplace_back("n", r.strata());
-        r.name = substitute(nameTemplate, strategy, values);
-        r.series = substitute(seriesTemplate, strategy, values);
+        r.name = substitute(nameTemplate, strategy, values, true);
+        r.series = substitute(seriesTemplate, strategy, values, false);
         const YAML::Node at = named ? m.node("name") : node;
         if (!isFileNameSafe(r.name))
             ctx.fail(at, m.childPath("name"),

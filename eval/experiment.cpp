@@ -126,7 +126,12 @@ public:
         std::unique_ptr<VulkanContext> context;
         try {
             context = std::make_unique<VulkanContext>(ContextOptions{options_.validation, options_.device});
+        } catch (const RequestedDeviceError&) {
+            throw;  // the user asked for that device: say so rather than quietly use the CPU
         } catch (const EnvironmentError& e) {
+            if (config_.snapshot.map != "luminance")
+                throw EnvironmentError(fmt::format("snapshot.map: {} needs a Vulkan device, and there is none usable ({})",
+                                                   config_.snapshot.map, e.what()));
             spdlog::warn("no usable Vulkan device ({}); building the aamap on the CPU instead", e.what());
             return cpuSnapshot(e.what());
         }
@@ -157,8 +162,8 @@ public:
 
     // No Vulkan device: the tracer renders the snapshot (1 ray per pixel, direct light) and the CPU
     // filter chain -- the GPU chain's reference -- builds the aamap. results.json records the
-    // path in vulkan_device ("cpu-fallback: <why>"). The luminance chain only, whatever
-    // snapshot.map asks for.
+    // path in vulkan_device ("cpu-fallback: <why>"). The luminance chain only: a geometric map
+    // needs the G-buffer, so those configs fail instead (above).
     SnapshotOutput cpuSnapshot(const std::string& reason) {
         const auto t0 = Clock::now();
         const SnapshotSettings settings = snapshotSettings(config_);

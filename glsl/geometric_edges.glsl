@@ -30,7 +30,7 @@ bool differs(vec4 np, vec4 ip, ivec2 q) {
     if (covered(np) != covered(nq)) return true;
     if (!covered(np)) return false;
     const vec4 iq = imageLoad(ids, q);
-    if (ip.x != iq.x || ip.y != iq.y) return true;
+    if (any(notEqual(ip, iq))) return true;  // object, material, occlusion mask
     precise float d = np.x * nq.x + np.y * nq.y + np.z * nq.z;
     return d < float(GEOMETRIC_CREASE_COS);
 }

@@ -24,7 +24,7 @@ bool depthJump(const glm::vec4& a, const glm::vec4& p, const glm::vec4& b) {
 bool differs(const glm::vec4& np, const glm::vec4& ip, const glm::vec4& nq, const glm::vec4& iq) {
     if (covered(np) != covered(nq)) return true;
     if (!covered(np)) return false;
-    if (ip.x != iq.x || ip.y != iq.y) return true;
+    if (ip != iq) return true;  // object, material, occlusion mask
     const float d = np.x * nq.x + np.y * nq.y + np.z * nq.z;
     return d < static_cast<float>(GEOMETRIC_CREASE_COS);
 }

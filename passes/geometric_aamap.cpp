@@ -74,7 +74,7 @@ graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecuto
     const graph::PassId id = graph.addPass(
         {"geometric_edges", graph::QueueKind::Compute, accesses,
          combined ? "edges: max of G-buffer discontinuities and the luminance |L|"
-                  : "edges: G-buffer discontinuities (depth, normal, object and material id)"});
+                  : "edges: G-buffer discontinuities (depth, normal, object and material id, shadow mask)"});
     executor.setRecord("geometric_edges", [this, normalDepth, ids, laplacian, output, combined](vk::PassContext& pc) {
         const vk::Image& out = pc.image(output);
         gpu::FilterPush push{};
@@ -98,7 +98,7 @@ void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const
                    GeometryBufferPass& geometry, const GeometricEdgePass& edges, AamapSource source,
                    const MapChainInputs& in) {
     if (in.camera == nullptr) throw std::invalid_argument("addAamapChain: no camera");
-    geometry.add(graph, executor, in.colour, *in.camera, in.nearPlane, in.farPlane);
+    geometry.add(graph, executor, in.colour, *in.camera, in.nearPlane, in.farPlane, in.shadows);
     graph.addResource(image(kEdges, graph::Format::R32Float, graph::Size::relative(in.colour)));
     if (source == AamapSource::Luminance) {
         chain.add(graph, executor, in.colour, in.width, in.height, in.params);

@@ -1,6 +1,7 @@
 #pragma once
 // The geometric aamap (beyond the paper): edges where the G-buffer is discontinuous -- depth,
-// normal, object and material id (glsl/shared/geometric_edges.h) -- replace the luminance
+// normal, object and material id, shadow occlusion mask (glsl/shared/geometric_edges.h; alpha
+// cut-outs are uncovered texels) -- replace the luminance
 // Laplacian (Geometric) or join it by a per-texel max (Combined); the luminance chain's blur,
 // dead zone and reduction follow unchanged. addAamapChain() assembles the Snapshot's map chain
 // for each source; GpuGeometricEdges runs the edge pass on host images (GPU-vs-CPU tests).
@@ -44,6 +45,7 @@ struct MapChainInputs {
     float nearPlane = 0.0f, farPlane = 0.0f;
     int width = 0, height = 0;  // render resolution
     FilterParams params;
+    GBufferShadows shadows;  // the G-buffer's shadow maps (none: empty resource), for the occlusion mask
 };
 
 // Declares grey, laplacian, map and aamap (gpu_aamap.h) and the passes that make the aamap from

@@ -1,63 +1,91 @@
 #include "passes/geometry_buffer.h"
 
+#include <algorithm>
 #include <cstddef>
-#include <cstring>
+#include <set>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include <aamap/spirv.h>
-#include <glm/geometric.hpp>
 
 #include "engine/vk/context.h"
 #include "glsl/shared/snapshot_interface.h"
+#include "passes/gbuffer_textures.h"
 
 namespace aamap::passes {
 
 namespace {
 
-struct Vertex {
-    glm::vec3 position;
-    glm::vec3 normal;
-    std::uint32_t objectId, materialId;
-};
+// gbuffer.cpp's rule for triangles it never draws (sampling(): alpha-tested material with constant
+// coverage below its cutoff). `sampled`: the material has an atlas entry.
+bool droppedByGBuffer(const Material& m, bool sampled, const std::pair<int, int>& key) {
+    if (!isAlphaTested(m)) return false;
+    const bool coverageTexture = sampled && key.second == m.alphaTexture && m.alphaTexture >= 0;
+    return (!coverageTexture || m.alpha <= 0.0f) && m.alpha < effectiveAlphaCutoff(m);
+}
 
-// Unindexed, so that ids travel as flat vertex attributes (as the G-buffer does with materials).
-std::vector<Vertex> flatten(const TriangleMesh& mesh) {
-    std::vector<Vertex> out;
-    out.reserve(mesh.triangles.size() * 3);
-    const bool hasNormals = mesh.normals.size() == mesh.positions.size();
+// (object, material) of each triangle the G-buffer draws, in its vertex-buffer order.
+std::vector<glm::uvec2> drawnTriangleIds(const Scene& scene, bool textured) {
+    const TriangleMesh& mesh = scene.mesh;
+    // The atlas holds an entry for every textured key of a used material (buildTextureAtlas).
+    const std::set<std::uint32_t> used(mesh.materialIds.begin(), mesh.materialIds.end());
+    std::vector<char> dropped(scene.materials.size(), 0);
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        const auto key = passes::atlasKey(scene.materials[i], scene);
+        const bool sampled =
+            textured && used.contains(static_cast<std::uint32_t>(i)) && (key.first >= 0 || key.second >= 0);
+        dropped[i] = droppedByGBuffer(scene.materials[i], sampled, key);
+    }
+    std::vector<glm::uvec2> out;
+    out.reserve(mesh.triangles.size());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-        const glm::uvec3 tri = mesh.triangles[t];
-        const glm::vec3 p[3] = {mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]};
-        const glm::vec3 cross = glm::cross(p[1] - p[0], p[2] - p[0]);
-        const float len = glm::length(cross);
-        const glm::vec3 face = len > 0.0f ? cross / len : glm::vec3(0, 0, 1);
-        const std::uint32_t object = t < mesh.objectIds.size() ? mesh.objectIds[t] : 0u;
         const std::uint32_t material = t < mesh.materialIds.size() ? mesh.materialIds[t] : 0u;
-        for (int k = 0; k < 3; ++k) {
-            glm::vec3 n = hasNormals ? mesh.normals[tri[k]] : face;
-            if (!(glm::dot(n, n) > 0.0f)) n = face;
-            out.push_back({p[k], n, object, material});
-        }
+        if (material < dropped.size() && dropped[material]) continue;
+        const std::uint32_t object = t < mesh.objectIds.size() ? mesh.objectIds[t] : 0u;
+        out.push_back({object, material});
     }
     return out;
 }
 
-vk::Pipeline makePipeline(VulkanContext& context) {
+// The G-buffer's vertex layout (passes/gbuffer.h): position and normal, and in the textured
+// layout uv and atlas entry for the alpha test.
+vk::Pipeline makePipeline(VulkanContext& context, const GBufferPass& gbuffer, bool shadowed) {
+    const bool textured = gbuffer.textured();
     vk::GraphicsDesc desc;
-    desc.vertexSpirv = spirv::geometry_buffer_vert;
-    desc.fragmentSpirv = spirv::geometry_buffer_frag;
-    desc.vertexInput.stride = sizeof(Vertex);
+    desc.vertexSpirv = textured ? spirv::geometry_buffer_textured_vert : spirv::geometry_buffer_vert;
+    if (textured)
+        desc.fragmentSpirv =
+            shadowed ? spirv::geometry_buffer_textured_shadowed_frag : spirv::geometry_buffer_textured_frag;
+    else
+        desc.fragmentSpirv = shadowed ? spirv::geometry_buffer_shadowed_frag : spirv::geometry_buffer_frag;
+    desc.vertexInput.stride = gbuffer.vertexStride();
     desc.vertexInput.attributes = {
-        {GEOMETRY_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-        {GEOMETRY_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
-        {GEOMETRY_LOCATION_IDS, 0, VK_FORMAT_R32G32_UINT, offsetof(Vertex, objectId)},
+        {GEOMETRY_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+        {GEOMETRY_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, 12},
     };
+    if (textured) {
+        desc.vertexInput.attributes.push_back(
+            {GEOMETRY_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kUvOffset});
+        desc.vertexInput.attributes.push_back(
+            {GEOMETRY_LOCATION_TEX_RECT, 0, VK_FORMAT_R16G16B16A16_UINT, GBufferPass::kTexRectOffset});
+        desc.vertexInput.attributes.push_back(
+            {GEOMETRY_LOCATION_TEX_PARAMS, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kTexParamsOffset});
+    }
     const VkFormat f = vk::toVkFormat(GeometryBufferPass::kFormat);
     desc.colorFormats = {f, f};
     desc.depthFormat = vk::toVkFormat(graph::Format::D32Float);
     desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth, as the G-buffer
+    std::vector<VkDescriptorType> bindings{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    if (shadowed) {
+        bindings.push_back(VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER);
+        bindings.push_back(VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);
+    }
+    if (textured) bindings.push_back(VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);
+    static_assert(GEOMETRY_BINDING_IDS == 0 && GEOMETRY_BINDING_LIGHTS == 1 && GEOMETRY_BINDING_SHADOW == 2 &&
+                  GEOMETRY_BINDING_ATLAS_UNSHADOWED == 1 && GEOMETRY_BINDING_ATLAS_SHADOWED == 3);
     return vk::Pipeline(context, desc,
-                        vk::LayoutDesc{{}, static_cast<std::uint32_t>(sizeof(gpu::GeometryPush)),
+                        vk::LayoutDesc{bindings, static_cast<std::uint32_t>(sizeof(gpu::GeometryPush)),
                                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT});
 }
 
@@ -81,33 +109,43 @@ VkRenderingAttachmentInfo colourAttachment(const vk::Image& image) {
 
 }  // namespace
 
-GeometryBufferPass::GeometryBufferPass(VulkanContext& context, const Scene& scene) : context_(&context) {
-    const std::vector<Vertex> vertices = flatten(scene.mesh);
-    vertexCount_ = static_cast<std::uint32_t>(vertices.size());
-    pending_.resize(vertices.size() * sizeof(Vertex));
-    if (!pending_.empty()) std::memcpy(pending_.data(), vertices.data(), pending_.size());
+GeometryBufferPass::GeometryBufferPass(VulkanContext& context, const Scene& scene, const GBufferPass& gbuffer)
+    : context_(&context), gbuffer_(&gbuffer), pendingIds_(drawnTriangleIds(scene, gbuffer.textured())) {
+    triangleCount_ = static_cast<std::uint32_t>(pendingIds_.size());
+    if (std::uint64_t{triangleCount_} * 3 != gbuffer.vertexCount())
+        throw std::logic_error("GeometryBufferPass: the G-buffer draws " + std::to_string(gbuffer.vertexCount()) +
+                               " vertices, expected 3 x " + std::to_string(triangleCount_) + " triangles");
 }
 
 GeometryBufferPass::~GeometryBufferPass() = default;
 
 void GeometryBufferPass::prepare() {
-    if (!pipeline_.handle()) pipeline_ = makePipeline(*context_);
-    if (vertexCount_ == 0 || vertices_) return;
-    vertices_ = vk::uploadBuffer(*context_, pending_, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    pending_ = {};
+    vk::Pipeline& pipeline = pipelines_[shadowed_ ? 1 : 0];
+    if (!pipeline.handle()) pipeline = makePipeline(*context_, *gbuffer_, shadowed_);
+    if (triangleCount_ == 0 || ids_) return;
+    const auto* bytes = reinterpret_cast<const std::byte*>(pendingIds_.data());
+    ids_ = vk::uploadBuffer(*context_, {bytes, pendingIds_.size() * sizeof(glm::uvec2)},
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    pendingIds_ = {};
 }
 
 void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& like,
-                             const PinholeCamera& camera, float nearPlane, float farPlane) {
+                             const PinholeCamera& camera, float nearPlane, float farPlane,
+                             const GBufferShadows& shadows) {
+    const bool shadowed = !shadows.resource.empty();
     graph.addResource(image(kGeometryNormalDepth, kFormat, like));
     graph.addResource(image(kGeometryIds, kFormat, like));
     graph.addResource(image(kGeometryDepth, graph::Format::D32Float, like));
-    graph.addPass({"geometry_buffer",
-                   graph::QueueKind::Graphics,
-                   {graph::writes(kGeometryNormalDepth, graph::Usage::ColorAttachment),
-                    graph::writes(kGeometryIds, graph::Usage::ColorAttachment),
-                    graph::writes(kGeometryDepth, graph::Usage::DepthAttachment)},
-                   "rasterise normals, view depth and object/material ids for the geometric aamap"});
+    std::vector<graph::Access> accesses{graph::writes(kGeometryNormalDepth, graph::Usage::ColorAttachment),
+                                        graph::writes(kGeometryIds, graph::Usage::ColorAttachment),
+                                        graph::writes(kGeometryDepth, graph::Usage::DepthAttachment)};
+    if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
+    graph.addPass({"geometry_buffer", graph::QueueKind::Graphics, accesses,
+                   shadowed ? "rasterise normals, view depth, object/material ids and the shadow occlusion mask "
+                              "for the geometric aamap"
+                            : "rasterise normals, view depth and object/material ids for the geometric aamap"});
+    shadowed_ = shadowed;
+    const vk::Pipeline& pipeline = pipelines_[shadowed ? 1 : 0];  // built by prepare()
     gpu::GeometryPush push{};
     glm::mat4 reverse(1.0f);  // reversed depth, as GBufferPass
     reverse[2][2] = -1.0f;
@@ -115,8 +153,12 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
     push.viewProj = reverse * camera.projectionMatrix(nearPlane, farPlane) * camera.viewMatrix();
     push.cameraPos = glm::vec4(camera.origin, 1.0f);
     push.cameraForward = glm::vec4(camera.forward, 0.0f);
-    executor.setRecord("geometry_buffer", [this, push](vk::PassContext& pc) {
-        if (!prepared() || !pipeline_.handle())
+    push.lightCount = gbuffer_->lightCount();
+    push.shadowPcf = std::max(shadows.pcf, 1u);
+    push.shadow =
+        glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias, static_cast<float>(shadows.faceSize));
+    executor.setRecord("geometry_buffer", [this, push, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
+        if (!prepared() || !pipeline.handle())
             throw std::logic_error("GeometryBufferPass::prepare() was not called before execution");
         const vk::Image& normalDepth = pc.image(kGeometryNormalDepth);
         const vk::Image& z = pc.image(kGeometryDepth);
@@ -138,13 +180,24 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
         VkCommandBuffer cmd = pc.cmd();
         vkCmdBeginRendering(cmd, &rendering);
         vk::setFullViewport(cmd, extent);
-        if (vertexCount_ > 0) {
-            pipeline_.bind(cmd);
-            pipeline_.pushConstants(cmd, push);
-            const VkBuffer vb = vertices_.handle();
+        if (triangleCount_ > 0) {
+            pipeline.bind(cmd);
+            vk::DescriptorPush descriptors;
+            descriptors.storageBuffer(GEOMETRY_BINDING_IDS, ids_.handle());
+            if (!shadow.empty())
+                descriptors.uniformBuffer(GEOMETRY_BINDING_LIGHTS, gbuffer_->lightBuffer().handle())
+                    .sampledImage(GEOMETRY_BINDING_SHADOW, pc.image(shadow).view(),
+                                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
+            if (gbuffer_->textured())
+                descriptors.sampledImage(
+                    shadow.empty() ? GEOMETRY_BINDING_ATLAS_UNSHADOWED : GEOMETRY_BINDING_ATLAS_SHADOWED,
+                    gbuffer_->atlas().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            descriptors.push(*context_, cmd, pipeline);
+            pipeline.pushConstants(cmd, push);
+            const VkBuffer vb = gbuffer_->vertexBuffer().handle();
             const VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-            vkCmdDraw(cmd, vertexCount_, 1, 0, 0);
+            vkCmdDraw(cmd, triangleCount_ * 3, 1, 0, 0);
         }
         vkCmdEndRendering(cmd);
     });

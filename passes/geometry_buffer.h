@@ -1,8 +1,12 @@
 #pragma once
 // The geometric aamap's raster: per snapshot texel the world normal (turned towards the camera),
-// the view depth and the object and material ids (layout: glsl/shared/geometric_edges.h). No
-// shading. Its own vertex buffer (the G-buffer's carries no ids), uploaded on first use, so a
-// Snapshot that only asks for the luminance map never pays for it.
+// the view depth, the object and material ids and the shadow occlusion mask (layout:
+// glsl/shared/geometric_edges.h). No shading. It draws the G-buffer's own vertex buffer, so it
+// sees exactly the G-buffer's triangles, with the G-buffer's alpha test on its texture atlas
+// (cut-outs are holes here too) and, when the Snapshot has shadow cube maps, the G-buffer's
+// shadow lookup per light. The ids of the drawn triangles (the G-buffer's vertices carry none)
+// are a small storage buffer, uploaded on first use, so a Snapshot that only asks for the
+// luminance map never pays for it.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -11,6 +15,7 @@
 #include "engine/vk/graph_executor.h"
 #include "engine/vk/pipeline.h"
 #include "engine/vk/resources.h"
+#include "passes/gbuffer.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 
@@ -24,23 +29,28 @@ class GeometryBufferPass {
 public:
     static constexpr graph::Format kFormat = graph::Format::RGBA32Float;
 
-    GeometryBufferPass(VulkanContext& context, const Scene& scene);  // flattens the mesh, no upload yet
+    // `gbuffer` was built from `scene` and must outlive this pass (its vertices, lights and atlas
+    // are drawn and bound here). Lists the drawn triangles' ids; no upload yet.
+    GeometryBufferPass(VulkanContext& context, const Scene& scene, const GBufferPass& gbuffer);
     ~GeometryBufferPass();
 
     // Declares kGeometryNormalDepth, kGeometryIds and kGeometryDepth sized like `like` and the
-    // pass "geometry_buffer". Must outlive execution; call prepare() before executing a graph
-    // that keeps the pass.
+    // pass "geometry_buffer", which also reads shadows.resource when that is not empty (the same
+    // GBufferShadows the G-buffer got). Must outlive execution; call prepare() before executing
+    // a graph that keeps the pass.
     void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& like,
-             const PinholeCamera& camera, float nearPlane, float farPlane);
-    void prepare();  // uploads the vertices once
-    bool prepared() const { return static_cast<bool>(vertices_) || vertexCount_ == 0; }
+             const PinholeCamera& camera, float nearPlane, float farPlane, const GBufferShadows& shadows = {});
+    void prepare();  // uploads the triangle ids once, builds the pipeline the last add() chose
+    bool prepared() const { return static_cast<bool>(ids_) || triangleCount_ == 0; }
 
 private:
     VulkanContext* context_;
-    vk::Pipeline pipeline_;
-    std::vector<std::byte> pending_;  // flattened vertices until prepare()
-    vk::Buffer vertices_;
-    std::uint32_t vertexCount_ = 0;
+    const GBufferPass* gbuffer_;
+    vk::Pipeline pipelines_[2];  // unshadowed, shadowed: built on first use
+    bool shadowed_ = false;      // of the last add()
+    std::vector<glm::uvec2> pendingIds_;  // (object, material) per drawn triangle until prepare()
+    vk::Buffer ids_;
+    std::uint32_t triangleCount_ = 0;
 };
 
 }  // namespace aamap::passes

@@ -87,7 +87,7 @@ struct SnapshotRenderer::Impl {
     passes::MirrorPass mirrors;  // planar mirrors: passes only when one is in view
     passes::FilterChain chain;
     passes::BlockSumPass blockSums;
-    passes::GeometryBufferPass geometry;  // uploads its vertices on first use
+    passes::GeometryBufferPass geometry;  // draws gbuffer's vertices; uploads its ids on first use
     passes::GeometricEdgePass geometricEdges;
     vk::GraphExecutor executor;
     int lightSamples = -1;  // k the light buffer was built for
@@ -103,7 +103,7 @@ struct SnapshotRenderer::Impl {
           mirrors(c, scene),
           chain(c),
           blockSums(c),
-          geometry(c, scene),
+          geometry(c, scene, gbuffer),
           geometricEdges(c),
           executor(c) {}
 
@@ -180,6 +180,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     s.mirrors.add(graph, s.executor, s.gbuffer, kSnapshot, kDepth, camera, nearPlane, farPlane,
                   glm::length(s.bounds.extent()), shadows, &mirrorWhy);
     passes::MapChainInputs mapInputs{kSnapshot, &camera, nearPlane, farPlane, width, height, settings.filter};
+    mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
     passes::addAamapChain(graph, s.executor, s.chain, s.geometry, s.geometricEdges, settings.map, mapInputs);
     // Always declared: culled (with the reason in `explain`) unless a strategy asked for it.
     s.blockSums.add(graph, s.executor, passes::kAamap, width, height,

@@ -198,7 +198,7 @@ Candidate choose(VkInstance instance, const ContextOptions& options) {
                                all[i].problem.empty() ? "" : " (unusable: " + all[i].problem + ")");
     auto usable = [&](const Candidate& c) {
         if (!c.problem.empty())
-            throw EnvironmentError(
+            throw RequestedDeviceError(
                 fmt::format("Vulkan device '{}' {}; devices:{}", c.props.deviceName, c.problem, listing));
         return c;
     };
@@ -208,12 +208,12 @@ Candidate choose(VkInstance instance, const ContextOptions& options) {
         if (numeric) {
             const std::size_t index = std::stoul(wanted);
             if (index >= all.size())
-                throw EnvironmentError(fmt::format("no Vulkan device with index {}; devices:{}", wanted, listing));
+                throw RequestedDeviceError(fmt::format("no Vulkan device with index {}; devices:{}", wanted, listing));
             return usable(all[index]);
         }
         for (const Candidate& c : all)
             if (lower(c.props.deviceName).find(lower(wanted)) != std::string::npos) return usable(c);
-        throw EnvironmentError(fmt::format("no Vulkan device matches '{}'; devices:{}", wanted, listing));
+        throw RequestedDeviceError(fmt::format("no Vulkan device matches '{}'; devices:{}", wanted, listing));
     }
     const Candidate* best = nullptr;
     for (const Candidate& c : all)

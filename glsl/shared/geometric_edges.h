@@ -4,11 +4,14 @@
 // Input, at snapshot resolution, from the geometry raster (geometry_buffer.vert/.frag):
 //   normal-depth texel: xyz = unit world normal turned towards the camera, w = view depth z > 0
 //                       (distance along the camera axis); w = 0: nothing covers the texel.
-//   ids texel:          x = object id, y = material id (as floats, exact below 2^24).
+//   ids texel:          x = object id, y = material id (as floats, exact below 2^24); z, w = low
+//                       and high 16 bits of the shadow occlusion mask (bit i mod 32: light i
+//                       would light the texel but the shadow maps block it; 0 without shadows).
 // Texel p is an edge (value GEOMETRIC_EDGE_VALUE, else 0) when, for a 4-neighbour q (clamped to
 // the image, so a border texel compares with itself on that side):
 //   1. coverage differs (exactly one of p, q is covered), or, both covered:
-//   2. the object or the material id differs, or
+//   2. the object id, the material id or the occlusion mask differs (shadow boundaries, also
+//      between surfaces of equal colour and lighting), or
 //   3. the normals differ by more than the crease angle: dot(n_p, n_q) < GEOMETRIC_CREASE_COS, or
 //   4. depth is discontinuous along q's axis: with a and b the two neighbours of p on that axis
 //      (both covered), |1/z_a + 1/z_b - 2/z_p| > GEOMETRIC_DEPTH_TOLERANCE * (1/z_p). Inverse depth

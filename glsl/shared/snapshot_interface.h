@@ -129,11 +129,20 @@ struct BlockSumPush {
 };
 
 // --- Geometric aamap (geometry_buffer.vert/.frag, geometric_edges[.combined].comp) ------------
-// Its own vertex buffer (position, normal, object and material id per vertex, unindexed) and two
-// RGBA32F colour attachments; the edge rule is glsl/shared/geometric_edges.h.
-#define GEOMETRY_LOCATION_POSITION 0  // vec3
-#define GEOMETRY_LOCATION_NORMAL 1    // vec3
-#define GEOMETRY_LOCATION_IDS 2       // uvec2: object id, material id
+// Draws the G-buffer's vertex buffer (its layout, plain or textured) with the object and material
+// id of each drawn triangle in a storage buffer, into two RGBA32F colour attachments; variants
+// as the G-buffer's: .textured (alpha test on the G-buffer's atlas), .shadowed (the occlusion
+// mask from the shadow cube maps). The edge rule is glsl/shared/geometric_edges.h.
+#define GEOMETRY_LOCATION_POSITION 0    // vec3, G-buffer vertex offset 0
+#define GEOMETRY_LOCATION_NORMAL 1      // vec3, offset 12
+#define GEOMETRY_LOCATION_UV 2          // textured: vec2 at GBufferPass::kUvOffset
+#define GEOMETRY_LOCATION_TEX_RECT 3    // textured: uvec4 (u16) at kTexRectOffset
+#define GEOMETRY_LOCATION_TEX_PARAMS 4  // textured: vec2 at kTexParamsOffset
+#define GEOMETRY_BINDING_IDS 0          // storage buffer, uvec2 (object, material) per drawn triangle
+#define GEOMETRY_BINDING_LIGHTS 1       // shadowed: uniform GpuLights, the G-buffer's light buffer
+#define GEOMETRY_BINDING_SHADOW 2       // shadowed: texture2DArray, the shadow cube maps
+#define GEOMETRY_BINDING_ATLAS_UNSHADOWED 1  // textured: texture2DArray, the G-buffer's atlas
+#define GEOMETRY_BINDING_ATLAS_SHADOWED 3
 #define GEOMETRIC_BINDING_NORMAL_DEPTH 0  // rgba32f storage image, read
 #define GEOMETRIC_BINDING_IDS 1           // rgba32f storage image, read
 #define GEOMETRIC_BINDING_OUTPUT 2        // r32f storage image, written
@@ -143,10 +152,14 @@ struct GeometryPush {
     mat4 viewProj;       // world -> Vulkan clip space (reversed depth, as the G-buffer)
     vec4 cameraPos;      // xyz
     vec4 cameraForward;  // xyz, unit: view depth = dot(p - cameraPos, forward)
+    vec4 shadow;         // shadowed: as GBufferPush::shadow
+    uint lightCount;     // shadowed
+    uint shadowPcf;      // shadowed: PCF kernel side
+    uint pad0, pad1;
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(GeometryPush) == 96);
+static_assert(sizeof(GeometryPush) == 128);  // the guaranteed push-constant size
 static_assert(sizeof(BlockSumPush) == 16);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuLight) * GBUFFER_MAX_LIGHTS <= 16384);  // maxUniformBufferRange's minimum

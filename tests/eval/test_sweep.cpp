@@ -64,6 +64,17 @@ TEST(Sweep, NameTemplatesAndUnmentionedSweptKeys) {
     EXPECT_EQ(d.renders[1].name, "u3x3");
 }
 
+TEST(Sweep, FractionalValuesMakeSafeDefaultNames) {
+    registerSpaced();
+    const ExperimentConfig c = parse("  - {strategy: spaced, rpp: 4, threshold: [0.5, 2.5e-7, 1.25e8, 1234567.5]}\n");
+    ASSERT_EQ(c.renders.size(), 4u);
+    EXPECT_EQ(c.renders[0].name, "spaced4_threshold0p5");
+    EXPECT_EQ(c.renders[1].name, "spaced4_threshold2p5e-07");
+    EXPECT_EQ(c.renders[2].name, "spaced4_threshold125000000");
+    EXPECT_EQ(c.renders[3].name, "spaced4_threshold1p23457e06");
+    EXPECT_EQ(c.renders[0].series, "spaced threshold=0.5");  // labels keep the number as written
+}
+
 TEST(Sweep, DefaultsAreFilledAndKeysIgnoreNames) {
     registerSpaced();
     const ExperimentConfig a = parse("  - {name: x, strategy: spaced, rpp: 4}\n");

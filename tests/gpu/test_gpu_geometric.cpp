@@ -1,6 +1,7 @@
 // The geometric aamap: the GPU edge pass against the CPU reference of the rule
-// (glsl/shared/geometric_edges.h), and a crease between two surfaces of equal colour that the
-// geometric map flags and the luminance map does not.
+// (glsl/shared/geometric_edges.h), a crease between two surfaces of equal colour that the
+// geometric map flags and the luminance map does not, a shadow boundary on a floor of one albedo
+// (the occlusion mask), and alpha cut-outs (the G-buffer's alpha test in the geometry raster).
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -8,11 +9,15 @@
 
 #include <glm/geometric.hpp>
 
+#include "../scene/temp_dir.h"
+#include "../scene/textured_quad_files.h"
 #include "gpu_fixture.h"
 #include "glsl/shared/geometric_edges.h"
 #include "passes/cpu_geometric.h"
 #include "passes/geometric_aamap.h"
 #include "passes/snapshot.h"
+#include "scene/camera.h"
+#include "scene/gltf_loader.h"
 
 namespace aamap::test {
 namespace {
@@ -31,7 +36,10 @@ cpu::GeometryImages patchwork(int w, int h, std::uint32_t seed) {
             const glm::vec3 n = normals[rng() % 4];
             const float a = 0.1f * static_cast<float>(1 + rng() % 4);  // jumps of >= 25 %
             const float bx = 1e-3f * static_cast<float>(rng() % 3), by = 1e-3f * static_cast<float>(rng() % 3);
-            const glm::vec4 ids(static_cast<float>(rng() % 2), static_cast<float>(rng() % 3), 0, 0);
+            // Occlusion mask halves: mostly none, else a low or a high bit (light 3 or light 20).
+            const std::uint32_t mask = rng() % 3 == 0 ? (rng() % 2 ? 1u << 3 : 1u << 20) : 0u;
+            const glm::vec4 ids(static_cast<float>(rng() % 2), static_cast<float>(rng() % 3),
+                                static_cast<float>(mask & 0xffffu), static_cast<float>(mask >> 16));
             for (int y = j * 4; y < std::min(h, j * 4 + 4); ++y)
                 for (int x = i * 5; x < std::min(w, i * 5 + 5); ++x) {
                     const float inverseDepth = a + bx * static_cast<float>(x) + by * static_cast<float>(y);
@@ -80,6 +88,8 @@ TEST_F(GeometricTest, EachRuleFiresAlone) {
         {"normal 40 deg", split([](glm::vec4& nd, glm::vec4&) { nd = glm::vec4(0.643f, 0, 0.766f, nd.w); })},
         {"depth x2", split([](glm::vec4& nd, glm::vec4&) { nd.w = 4.0f; })},
         {"coverage", split([](glm::vec4& nd, glm::vec4&) { nd = glm::vec4(0.0f); })},
+        {"occlusion mask, low half", split([](glm::vec4&, glm::vec4& id) { id.z = 1; })},
+        {"occlusion mask, high half", split([](glm::vec4&, glm::vec4& id) { id.w = 32768; })},
     };
     for (const auto& [name, g] : cases) {
         const ImageGrey e = gpu.edges(g);
@@ -163,6 +173,217 @@ TEST_F(GeometricTest, CreaseOfEqualColourIsFlaggedOnlyByTheGeometricMap) {
     }
     EXPECT_FALSE(geometric.edges.empty());
     EXPECT_TRUE(geometric.laplacian.empty());
+}
+
+// An axis-aligned box quad by quad (outward normals), or the floor: one material, so the albedo is
+// equal everywhere and only object ids and the occlusion mask tell the surfaces apart.
+void addQuad(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, std::uint32_t object) {
+    const auto base = static_cast<std::uint32_t>(s.mesh.positions.size());
+    const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+    for (const glm::vec3& p : {a, b, c, d}) {
+        s.mesh.positions.push_back(p);
+        s.mesh.normals.push_back(n);
+    }
+    s.mesh.triangles.insert(s.mesh.triangles.end(), {{base, base + 1, base + 2}, {base, base + 2, base + 3}});
+    s.mesh.materialIds.insert(s.mesh.materialIds.end(), 2, 0u);
+    s.mesh.objectIds.insert(s.mesh.objectIds.end(), 2, object);
+}
+
+constexpr glm::vec3 kBoxLo{-0.5f, 0.0f, -0.5f}, kBoxHi{0.5f, 1.0f, 0.5f};
+constexpr glm::vec3 kLight{-1.5f, 3.0f, -1.0f};
+
+Scene boxOnFloor() {
+    Scene s;
+    Material m;
+    m.name = "grey";
+    m.kd = glm::vec3(0.5f);
+    s.materials.push_back(m);
+    const float F = 6.0f;
+    addQuad(s, {-F, 0, F}, {F, 0, F}, {F, 0, -F}, {-F, 0, -F}, 0);  // floor, facing +y
+    const glm::vec3 l = kBoxLo, h = kBoxHi;
+    addQuad(s, {l.x, h.y, h.z}, {h.x, h.y, h.z}, {h.x, h.y, l.z}, {l.x, h.y, l.z}, 1);  // top
+    addQuad(s, {l.x, l.y, h.z}, {h.x, l.y, h.z}, {h.x, h.y, h.z}, {l.x, h.y, h.z}, 1);  // +z
+    addQuad(s, {h.x, l.y, l.z}, {l.x, l.y, l.z}, {l.x, h.y, l.z}, {h.x, h.y, l.z}, 1);  // -z
+    addQuad(s, {h.x, l.y, h.z}, {h.x, l.y, l.z}, {h.x, h.y, l.z}, {h.x, h.y, h.z}, 1);  // +x
+    addQuad(s, {l.x, l.y, l.z}, {l.x, l.y, h.z}, {l.x, h.y, h.z}, {l.x, h.y, l.z}, 1);  // -x
+    PointLight light;
+    light.name = "bulb";
+    light.position = kLight;
+    light.intensity = glm::vec3(20.0f);
+    s.pointLights.push_back(light);
+    View v;
+    v.position = {0.5f, 4.0f, 5.0f};
+    v.direction = glm::normalize(glm::vec3(0.8f, 0.0f, 0.8f) - v.position);
+    v.up = {0, 1, 0};
+    v.horizontalFovDeg = v.verticalFovDeg = 60;
+    s.views.push_back(v);
+    return s;
+}
+
+// Slab test: does the segment o + t d, t in (0, 1), pass through the box?
+bool segmentHitsBox(glm::vec3 o, glm::vec3 d) {
+    float t0 = 0.0f, t1 = 1.0f;
+    for (int a = 0; a < 3; ++a) {
+        if (std::fabs(d[a]) < 1e-12f) {
+            if (o[a] < kBoxLo[a] || o[a] > kBoxHi[a]) return false;
+            continue;
+        }
+        float ta = (kBoxLo[a] - o[a]) / d[a], tb = (kBoxHi[a] - o[a]) / d[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    return t0 < t1;
+}
+
+// What the camera ray through pixel (x, y) sees: -1 the box (or nothing), 0 lit floor, 1 shadowed
+// floor (the analytic shadow of the box from the point light).
+int floorClass(const PinholeCamera& camera, int x, int y, int w, int h) {
+    const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(w),
+                                         (static_cast<float>(y) + 0.5f) / static_cast<float>(h));
+    if (d.y >= 0.0f) return -1;
+    const glm::vec3 q = camera.origin - (camera.origin.y / d.y) * d;
+    if (std::max(std::fabs(q.x), std::fabs(q.z)) > 6.0f) return -1;
+    if (segmentHitsBox(camera.origin, q - camera.origin)) return -1;  // the box hides the floor
+    return segmentHitsBox(q, kLight - q) ? 1 : 0;
+}
+
+TEST_F(GeometricTest, ShadowBoundaryOnFloorOfOneAlbedoIsAnEdge) {
+    const Scene scene = boxOnFloor();
+    SnapshotRenderer renderer(context(), scene);
+    SnapshotSettings settings;
+    settings.scale = 1.0f;  // edges at render resolution, one camera ray per pixel to classify
+    settings.map = passes::AamapSource::Geometric;
+    const int W = 64, H = 64;
+    const SnapshotResult shadowed = renderer.render(scene.views[0], W, H, settings);
+    settings.shadows.enabled = false;
+    const SnapshotResult unshadowed = renderer.render(scene.views[0], W, H, settings);
+    ASSERT_EQ(shadowed.edges.width(), W);
+    EXPECT_EQ(shadowed.shadowCubeMaps, 1);
+    EXPECT_NE(shadowed.explain.find("shadow occlusion mask"), std::string::npos) << shadowed.explain;
+    EXPECT_EQ(unshadowed.explain.find("shadow occlusion mask"), std::string::npos) << unshadowed.explain;
+
+    const PinholeCamera camera = PinholeCamera::fromView(scene.views[0]);
+    Image<int> cls(W, H);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) cls.at(x, y) = floorClass(camera, x, y, W, H);
+    // Within r pixels: all floor of one class (interior), or all floor with both classes (boundary).
+    auto classes = [&](int x, int y, int r) {
+        int seen = 0;  // bit 0 lit, bit 1 shadowed, bit 2 not floor
+        for (int j = std::max(y - r, 0); j <= std::min(y + r, H - 1); ++j)
+            for (int i = std::max(x - r, 0); i <= std::min(x + r, W - 1); ++i)
+                seen |= cls.at(i, j) < 0 ? 4 : 1 << cls.at(i, j);
+        return seen;
+    };
+    int interior[2] = {0, 0}, boundary = 0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const int near = classes(x, y, 2);
+            if (near == 1 || near == 2) {  // well inside the lit or the shadowed floor
+                ++interior[near - 1];
+                EXPECT_EQ(shadowed.edges.at(x, y), 0.0f) << "interior " << near << " at " << x << "," << y;
+            } else if (near == 3 && cls.at(x, y) >= 0) {
+                const int crossing = classes(x, y, 1);
+                float flagged = 0.0f;  // anywhere within 2 pixels: the shadow map's texels and bias move it
+                for (int j = std::max(y - 2, 0); j <= std::min(y + 2, H - 1); ++j)
+                    for (int i = std::max(x - 2, 0); i <= std::min(x + 2, W - 1); ++i)
+                        flagged = std::max(flagged, shadowed.edges.at(i, j));
+                const float control = unshadowed.edges.at(x, y);
+                if (crossing == 3) {  // the analytic boundary runs through this pixel's neighbours
+                    ++boundary;
+                    EXPECT_EQ(flagged, static_cast<float>(GEOMETRIC_EDGE_VALUE)) << "boundary at " << x << "," << y;
+                }
+                EXPECT_EQ(control, 0.0f) << "without shadows, the floor near " << x << "," << y << " is one surface";
+            }
+        }
+    EXPECT_GT(interior[0], 200);
+    EXPECT_GT(interior[1], 20);
+    EXPECT_GT(boundary, 10);
+}
+
+// A floor-facing wall behind the alpha-masked quad of tests/scene/textured_quad_files.h.
+void addWall(Scene& scene, float h, float z) {
+    Material m;
+    m.name = "wall";
+    m.kd = glm::vec3(0.5f);
+    const auto material = static_cast<std::uint32_t>(scene.materials.size());
+    scene.materials.push_back(m);
+    const auto base = static_cast<std::uint32_t>(scene.mesh.positions.size());
+    scene.mesh.positions.insert(scene.mesh.positions.end(), {{-h, -h, z}, {h, -h, z}, {h, h, z}, {-h, h, z}});
+    scene.mesh.normals.insert(scene.mesh.normals.end(), 4, glm::vec3(0, 0, 1));
+    scene.mesh.uvs.insert(scene.mesh.uvs.end(), 4, glm::vec2(0.0f));
+    scene.mesh.triangles.insert(scene.mesh.triangles.end(), {{base, base + 1, base + 2}, {base, base + 2, base + 3}});
+    scene.mesh.materialIds.insert(scene.mesh.materialIds.end(), 2, material);
+    scene.mesh.objectIds.insert(scene.mesh.objectIds.end(), 2, material);
+}
+
+TEST_F(GeometricTest, AlphaCutOutsAreHolesInTheGeometricMap) {
+    View view;
+    view.position = {0, 0, 3};
+    view.direction = {0, 0, -1};
+    view.up = {0, 1, 0};
+    view.horizontalFovDeg = view.verticalFovDeg = 60;
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int w = 96, h = 96;
+    SnapshotSettings settings;
+    settings.scale = 1.0f;
+    settings.map = passes::AamapSource::Geometric;
+    // lit: a light at the eye with shadows on (the textured and shadowed variant): the cut-out
+    // casts a cut-out shadow that the eye cannot see, so the map must not change.
+    auto render = [&](const std::string& alphaMode, bool lit) {
+        TempDir dir;
+        writePng(dir, "tex.png", 16, holeTexture(16, true));
+        Scene scene = loadGltf(writeQuadGltf(dir, "tex.png", alphaMode));
+        addWall(scene, 6.0f, -1.0f);
+        if (lit) {
+            PointLight light;
+            light.name = "bulb";
+            light.position = view.position;
+            light.intensity = glm::vec3(30.0f);
+            scene.pointLights.push_back(light);
+        }
+        SnapshotRenderer renderer(context(), scene);
+        return renderer.render(view, w, h, settings);
+    };
+    const SnapshotResult masked = render("MASK", false), opaque = render("OPAQUE", false);
+    const SnapshotResult maskedLit = render("MASK", true);
+    ASSERT_EQ(masked.edges.width(), w);
+    EXPECT_NE(maskedLit.explain.find("shadow occlusion mask"), std::string::npos) << maskedLit.explain;
+    // Where the camera ray meets the quad's plane z = 0 (the quad spans [-1, 1]^2, hole [-0.5, 0.5]^2).
+    auto onQuad = [&](int x, int y) {
+        const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(w),
+                                             (static_cast<float>(y) + 0.5f) / static_cast<float>(h));
+        return camera.origin + (-camera.origin.z / d.z) * d;
+    };
+    const float pixel = 2.0f * 3.0f * std::tan(glm::radians(30.0f)) / static_cast<float>(w);  // at z = 0
+    const float edge = static_cast<float>(GEOMETRIC_EDGE_VALUE);
+    int inside = 0, border = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 q = onQuad(x, y);
+            const float r = std::max(std::fabs(q.x), std::fabs(q.y));
+            if (r < 0.5f - 3.0f * pixel) {  // through the hole: the planar wall, no edge
+                ++inside;
+                EXPECT_EQ(masked.edges.at(x, y), 0.0f) << "inside the hole at " << x << "," << y;
+                EXPECT_EQ(maskedLit.edges.at(x, y), 0.0f) << "lit, inside the hole at " << x << "," << y;
+            }
+            if (std::fabs(r - 0.5f) < 0.5f * pixel) {  // the cut-out's outline
+                ++border;
+                float m = 0.0f, mLit = 0.0f;
+                for (int j = std::max(y - 1, 0); j <= std::min(y + 1, h - 1); ++j)
+                    for (int i = std::max(x - 1, 0); i <= std::min(x + 1, w - 1); ++i) {
+                        m = std::max(m, masked.edges.at(i, j));
+                        mLit = std::max(mLit, maskedLit.edges.at(i, j));
+                    }
+                EXPECT_EQ(m, edge) << "outline at " << x << "," << y;
+                EXPECT_EQ(mLit, edge) << "lit, outline at " << x << "," << y;
+            }
+            if (r < 1.0f - 3.0f * pixel) {  // opaque: one planar quad, whatever its texels say
+                EXPECT_EQ(opaque.edges.at(x, y), 0.0f) << "opaque quad at " << x << "," << y;
+            }
+        }
+    EXPECT_GT(inside, 100);
+    EXPECT_GT(border, 40);
 }
 
 }  // namespace

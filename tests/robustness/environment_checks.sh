@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Failures of the environment, through the `aamap` command (issue 9):
 #   no-device    no Vulkan driver at all: the run succeeds with the CPU aamap, results.json says so
+#   wrong-device a device named by AAMAP_DEVICE is absent: an error listing the devices, nothing written
+#   geometric-no-device  snapshot.map: geometric without a device: an error (the CPU path is luminance only)
 #   unwritable   the output folder cannot be created: one error line, a non-zero exit, nothing written
 #   sigint       SIGINT mid-run: a message, exit 130, finished renders kept; the same command resumes
 # usage: environment_checks.sh AAMAP CONFIG WORKDIR CHECK
@@ -17,6 +19,22 @@ no-device)
   grep -q "building the aamap on the CPU" "$work/stderr" || die "no warning about the CPU fallback"
   grep -q '"vulkan_device": *"cpu-fallback' "$work/out/results.json" || die "results.json does not record the CPU path"
   [ -s "$work/out/aamap.exr" ] || die "no aamap.exr"
+  ;;
+wrong-device)
+  AAMAP_DEVICE=no-such-device-anywhere "$aamap" run "$config" -o "$work/out" "${small[@]}" 2> "$work/stderr"
+  rc=$?
+  cat "$work/stderr"
+  [ "$rc" -ne 0 ] || die "exit code 0"
+  grep -q "aamap: error: no Vulkan device matches 'no-such-device-anywhere'" "$work/stderr" || die "no error naming the device"
+  [ ! -e "$work/out" ] || die "an output folder was written"
+  ;;
+geometric-no-device)
+  VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json \
+    "$aamap" run "$config" -o "$work/out" "${small[@]}" --set snapshot.map=geometric 2> "$work/stderr"
+  rc=$?
+  cat "$work/stderr"
+  [ "$rc" -ne 0 ] || die "exit code 0"
+  grep -q "aamap: error: snapshot.map: geometric needs a Vulkan device" "$work/stderr" || die "no error naming the map"
   ;;
 unwritable)
   echo "a file, not a folder" > "$work/blocker"
