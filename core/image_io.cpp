@@ -10,6 +10,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <fmt/format.h>
@@ -39,9 +40,23 @@ void checkWritable(const std::filesystem::path& path, const Image<Pixel>& image)
     if (image.empty()) throw EnvironmentError(fmt::format("{}: refusing to write an empty image", path.string()));
 }
 
+// OpenEXR's own file stream drops errors in OutputFile's destructor (the line-offset table is
+// written there); this one checks every write, and CheckedFile::close() reports a failure that
+// OpenEXR swallowed.
+class CheckedExrStream : public Imf::OStream {
+public:
+    CheckedExrStream(CheckedFile& file, const std::filesystem::path& tmp) : Imf::OStream(tmp.c_str()), file_(file) {}
+    void write(const char c[], int n) override { file_.write(c, static_cast<std::size_t>(n)); }
+    std::uint64_t tellp() override { return file_.position(); }
+    void seekp(std::uint64_t pos) override { file_.seek(pos); }
+
+private:
+    CheckedFile& file_;
+};
+
 void writeExrChannels(const std::filesystem::path& path, int width, int height, const float* data,
                       const std::vector<const char*>& channels) {
-    writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    writeCheckedAtomically(path, [&](CheckedFile& out) {
         try {
             Imf::Header header(width, height);
             Imf::FrameBuffer frame;
@@ -52,10 +67,15 @@ void writeExrChannels(const std::filesystem::path& path, int width, int height, 
                 char* base = reinterpret_cast<char*>(const_cast<float*>(data + c));
                 frame.insert(channels[c], Imf::Slice(Imf::FLOAT, base, stride, stride * width));
             }
-            Imf::OutputFile file(tmp.c_str(), header);
+            CheckedExrStream stream(out, path);
+            Imf::OutputFile file(stream, header);
             file.setFrameBuffer(frame);
             file.writePixels(height);
+        } catch (const EnvironmentError&) {
+            throw;
         } catch (const std::exception& e) {
+            // A write error from our stream, wrapped by OpenEXR: report it as the stream saw it.
+            if (out.failed()) out.close();
             throw EnvironmentError(fmt::format("{}: cannot write EXR: {}", path.string(), e.what()));
         }
     });
@@ -99,10 +119,15 @@ std::vector<float> readExrChannels(const std::filesystem::path& path, std::vecto
 }
 
 void writePngBytes(const std::filesystem::path& path, int width, int height, int components, const void* data) {
-    writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-        if (stbi_write_png(tmp.c_str(), width, height, components, data, width * components) == 0)
-            throw EnvironmentError(fmt::format("{}: cannot write PNG", path.string()));
-    });
+    // Encoded in memory first: stbi_write_png ignores fwrite errors, and a C callback must not throw.
+    std::vector<unsigned char> png;
+    const auto append = [](void* context, void* bytes, int size) {
+        auto* out = static_cast<std::vector<unsigned char>*>(context);
+        out->insert(out->end(), static_cast<unsigned char*>(bytes), static_cast<unsigned char*>(bytes) + size);
+    };
+    if (stbi_write_png_to_func(append, &png, width, height, components, data, width * components) == 0)
+        throw EnvironmentError(fmt::format("{}: cannot encode PNG", path.string()));
+    writeCheckedAtomically(path, [&](CheckedFile& file) { file.write(png.data(), png.size()); });
 }
 
 std::uint8_t toByte(float v) {

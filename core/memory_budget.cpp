@@ -27,10 +27,12 @@ std::uint64_t memoryLimitBytes() {
 void checkMemoryBudget(std::uint64_t estimateBytes, const std::string& what, const std::string& detail) {
     const std::uint64_t limit = memoryLimitBytes();
     if (limit == 0 || estimateBytes <= limit) return;
-    constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
-    throw EnvironmentError(fmt::format("{} needs about {:.3g} GiB ({}), more than the {:.3g} GiB available{}", what,
-                                       estimateBytes / kGiB, detail, limit / kGiB,
-                                       std::getenv("AAMAP_MEMORY_LIMIT") ? " (AAMAP_MEMORY_LIMIT)" : ""));
+    const auto size = [](std::uint64_t bytes) {
+        constexpr double kMiB = 1024.0 * 1024.0;
+        return bytes >= 1024 * kMiB ? fmt::format("{:.3g} GiB", bytes / (1024 * kMiB)) : fmt::format("{:.3g} MiB", bytes / kMiB);
+    };
+    throw EnvironmentError(fmt::format("{} needs about {} ({}), more than the {} available{}", what, size(estimateBytes),
+                                       detail, size(limit), std::getenv("AAMAP_MEMORY_LIMIT") ? " (AAMAP_MEMORY_LIMIT)" : ""));
 }
 
 }  // namespace aamap

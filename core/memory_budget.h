@@ -10,7 +10,7 @@ namespace aamap {
 // MemAvailable from /proc/meminfo, else physical memory. 0 if none can be found (no check).
 std::uint64_t memoryLimitBytes();
 
-// Throws EnvironmentError "<what> needs about X GiB (<detail>), more than the Y GiB available"
+// Throws EnvironmentError "<what> needs about X GiB (<detail>), more than the Y GiB available" (MiB below 1 GiB)
 // when estimateBytes exceeds memoryLimitBytes().
 void checkMemoryBudget(std::uint64_t estimateBytes, const std::string& what, const std::string& detail);
 

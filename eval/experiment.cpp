@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "engine/vk/check.h"
 #include "engine/vk/context.h"
 #include "passes/cpu_aamap.h"
 #include "passes/snapshot.h"
@@ -140,7 +141,7 @@ public:
         SnapshotOutput out;
         out.device = context->deviceName();
         spdlog::info("snapshot on '{}' at {}x{} (scale {})", out.device, info_.width, info_.height, config_.snapshot.scale);
-        {
+        try {
             SnapshotRenderer renderer(*context, scene_);
             SnapshotResult r = renderer.render(view_, info_.width, info_.height, snapshotSettings(config_));
             out.aamap = std::move(r.aamap);
@@ -152,6 +153,17 @@ public:
             out.totalSeconds = r.totalSeconds;
             out.readbackSeconds = r.readbackSeconds;
             for (const PassTiming& p : r.passTimes) out.passesGpuMs.emplace_back(p.pass, p.gpuMilliseconds);
+        } catch (const vk::VulkanError& e) {  // GPU objects are freed by then, as on success
+            // The device failed after it was created (lost, out of memory, ...): same fallback as no device.
+            const std::string reason = fmt::format("the Vulkan device '{}' failed during the Snapshot: {}", out.device,
+                                                   vk::resultName(e.result()));
+            context.reset();
+            gpuBlockSums_.reset();
+            if (config_.snapshot.map != "luminance")
+                throw EnvironmentError(fmt::format("snapshot.map: {} needs a Vulkan device, and {} ({})",
+                                                   config_.snapshot.map, reason, e.what()));
+            spdlog::warn("{} ({}); building the aamap on the CPU instead", reason, e.what());
+            return cpuSnapshot(reason);
         }  // GPU objects freed here, so their destruction is validated too
         if (context->validationEnabled() && context->validationMessageCount() > 0)
             throw ValidationFailure(fmt::format("{} Vulkan validation message(s), logged above",

@@ -30,6 +30,9 @@ layout(location = 6) flat out vec2 texParams;
 
 layout(push_constant) uniform Push { GBufferPush pc; };
 
+// As in gbuffer.depth.vert, whose depth the shading pass tests against for equality.
+precise gl_Position;
+
 void main() {
     worldPosition = inPosition;
     worldNormal = inNormal;

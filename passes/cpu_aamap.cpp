@@ -2,19 +2,22 @@
 //
 // Scalar mode is the readable reference: one pixel at a time, every neighbour clamped to the edge.
 // Parallel mode splits rows into TBB bands and computes the same values bit for bit:
-// - Laplacian: L = (sum of the 25 window values) - 25 g(p), summed in double. The window sum of
-//   25 floats is exact in double (53 bits hold 25 floats whose exponents span up to 24 binades),
-//   so L is the exactly rounded value of the shader's difference sum, and a constant image gives
-//   exactly 0. That makes the sum separable: each row's 5-wide sums are computed once and reused
-//   by the 5 output rows that see them (row-sliding, 8 adds per pixel instead of 48). Both modes
-//   add in the same order (dx, then dy), so they agree bit for bit even where a sum is not exact.
-//   The GPU sums 24 float differences and differs by its own rounding (< 5e-6 for inputs in [0,1]).
+// - Laplacian: L = (sum of the 25 window values) - 25 g(p), which makes the sum separable: each
+//   row's 5-wide sums are computed once and reused by the 5 output rows that see them
+//   (row-sliding, 8 adds per pixel instead of 48). For grey in [0, 4] (the chain's grey is in
+//   [0, 1]) the sums are in 32-bit fixed point (units of 2^-24, 8 lanes with AVX2): exact in any
+//   order, |L| within 24 units (1.4e-6) of the shader's difference sum and correctly rounded when
+//   the values lie on the 2^-24 grid; a constant image gives exactly 0. Any other image (HDR
+//   grey above 4, negatives, NaN) takes the same scheme in double, where 25 floats spanning up to
+//   24 binades sum exactly. Both modes use the same arithmetic, so they agree bit for bit. The
+//   GPU sums 24 float differences and differs by its own rounding (< 5e-6 for inputs in [0,1]).
 // - Box blur: register-blocked vector code over interior rows (8 float lanes with AVX2 where the
 //   CPU has it, else 4 with SSE); each pixel sums its taps in the shader's order (dy, then dx)
 //   from 0, so both modes and the GPU agree bit for bit. Borders reuse the scalar code.
 #include "passes/cpu_aamap.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -257,6 +260,127 @@ AAMAP_ALWAYS_INLINE void blurRowImpl(const float* e, int w, int h, int y, int ra
     for (int i = done; i < n; ++i) out[radius + i] = blurAt(e, w, h, radius + i, y, radius);
 }
 
+// --- Row-sliding Laplacian in exact integer arithmetic --------------------------------------------
+// The same row-sliding scheme on 8 int32 lanes (AVX2) instead of 4 doubles: each grey value g in
+// [0, kFixedMax] becomes q = trunc(g * 2^24), which is exact for every float in [2^-1, kFixedMax]
+// (and 0), and below 2^-1 within one unit (2^-24). Integer sums are exact in any order, so
+// L = (sum of the 25 window q) - 25 q(p) is the exact difference sum of the q, and the result
+// |float(L)| * 2^-24 is its correctly rounded value. Each of the 24 differences q(p+o) - q(p) is
+// within one unit of the exact difference (both truncations lie in [0, 1) units), so
+// |L * 2^-24 - exact L| < 24 * 2^-24 = 1.43e-6 before the final rounding, and 0 when every window
+// value is a multiple of 2^-24 (a constant image gives exactly 0). Range: q <= 2^26, so 25 q
+// <= 1.68e9 and |L| <= 24 * 2^26 = 1.61e9 fit int32. An image with any value outside [0, kFixedMax]
+// (or a NaN) takes the exact double path above instead, in both modes.
+
+constexpr float kFixedMax = 4.0f;
+constexpr float kFixedScale = 16777216.0f;        // 2^24
+constexpr float kFixedUnit = 1.0f / kFixedScale;  // 2^-24
+
+// Clamped first so the conversion is always defined; a clamped value is reported by the caller.
+AAMAP_ALWAYS_INLINE float clampFixed(float v) {
+    v = v > 0.0f ? v : 0.0f;  // a NaN becomes 0
+    return v < kFixedMax ? v : kFixedMax;
+}
+AAMAP_ALWAYS_INLINE std::int32_t toFixed(float v) { return static_cast<std::int32_t>(clampFixed(v) * kFixedScale); }
+AAMAP_ALWAYS_INLINE float fromFixedMagnitude(std::int32_t l) { return std::fabs(static_cast<float>(l)) * kFixedUnit; }
+
+bool inFixedRange(const ImageGrey& g) {
+    for (float v : g.pixels())
+        if (!(v >= 0.0f && v <= kFixedMax)) return false;
+    return true;
+}
+
+// Scalar reference on the image converted to fixed point (q = toFixed(g), row-major).
+float laplacianFixedAt(const std::int32_t* q, int w, int h, int x, int y) {
+    std::int32_t box = 0;
+    for (int dy = -2; dy <= 2; ++dy) {
+        const std::int32_t* row = q + static_cast<std::size_t>(clampIndex(y + dy, h)) * w;
+        for (int dx = -2; dx <= 2; ++dx) box += row[clampIndex(x + dx, w)];
+    }
+    return fromFixedMagnitude(box - 25 * q[static_cast<std::size_t>(y) * w + x]);
+}
+
+struct FixedScratch {
+    std::vector<std::int32_t> rows = std::vector<std::int32_t>(3 * static_cast<std::size_t>(kRowStride));
+    std::vector<std::int32_t> rowSums = std::vector<std::int32_t>(5 * static_cast<std::size_t>(kRowStride));
+};
+
+// q[0, n+4) = row clamp(r), columns x0-2 .. x0+n+1 (clamped), as fixed point; returns whether a
+// value was outside [0, kFixedMax] (clamped here; the caller then discards the results).
+// Written with vector types: GCC does not vectorise the plain loop (the compare and clamp).
+template <int Bytes>
+AAMAP_ALWAYS_INLINE bool fixedRow(const float* g, int w, int h, int r, int x0, int n, std::int32_t* __restrict q) {
+    using V = Lanes<Bytes>;
+    using B = typename LaneTypes<Bytes>::Bits;
+    constexpr int L = Bytes / static_cast<int>(sizeof(float));
+    const float* src = g + static_cast<std::size_t>(clampIndex(r, h)) * w;
+    const int inLo = std::max(0, 2 - x0), inHi = std::min(n + 4, w - x0 + 2);
+    const float* __restrict in = src + x0 - 2;
+    B clampedLanes{};
+    int i = inLo;
+    for (; i + L <= inHi; i += L) {
+        const V v = loadLanes<V>(in + i);
+        V c = v > V{} ? v : V{};  // a NaN becomes 0
+        c = c < kFixedMax ? c : V{} + kFixedMax;
+        clampedLanes |= v != c;
+        const B fixed = __builtin_convertvector(c * kFixedScale, B);
+        std::memcpy(q + i, &fixed, sizeof fixed);
+    }
+    int clamped = 0;
+    for (int k = 0; k < L; ++k) clamped |= clampedLanes[k];
+    for (; i < inHi; ++i) {
+        clamped |= in[i] != clampFixed(in[i]);
+        q[i] = toFixed(in[i]);
+    }
+    for (int i = 0; i < inLo; ++i) q[i] = toFixed(src[0]);
+    for (int i = inHi; i < n + 4; ++i) q[i] = toFixed(src[w - 1]);
+    return clamped != 0;
+}
+
+// out[x0, x0+n) of rows [y0, y1); returns false if an input was out of range.
+template <int Bytes>
+AAMAP_ALWAYS_INLINE bool laplacianFixedTileImpl(const float* g, int w, int h, int y0, int y1, int x0, int n,
+                                                float* out, FixedScratch& scratch) {
+    // Rings: sums[k] holds the 5-wide sums of row y - 2 + k, rows[k] the fixed-point row y + k
+    // (rows[0] gives the centres) while output row y is computed.
+    std::int32_t* sums[5];
+    std::int32_t* rows[3];
+    for (int k = 0; k < 5; ++k) sums[k] = scratch.rowSums.data() + static_cast<std::size_t>(k) * kRowStride;
+    for (int k = 0; k < 3; ++k) rows[k] = scratch.rows.data() + static_cast<std::size_t>(k) * kRowStride;
+    bool clamped = false;
+    for (int k = 0; k < 4; ++k) {
+        std::int32_t* __restrict q = rows[k < 2 ? 0 : k - 2];
+        clamped |= fixedRow<Bytes>(g, w, h, y0 - 2 + k, x0, n, q);
+        std::int32_t* __restrict s = sums[k];
+        for (int i = 0; i < n; ++i) s[i] = q[i] + q[i + 1] + q[i + 2] + q[i + 3] + q[i + 4];
+    }
+    for (int y = y0; y < y1; ++y) {
+        clamped |= fixedRow<Bytes>(g, w, h, y + 2, x0, n, rows[2]);
+        const std::int32_t* __restrict q = rows[2];
+        const std::int32_t* __restrict c = rows[0] + 2;
+        const std::int32_t* __restrict s0 = sums[0];
+        const std::int32_t* __restrict s1 = sums[1];
+        const std::int32_t* __restrict s2 = sums[2];
+        const std::int32_t* __restrict s3 = sums[3];
+        std::int32_t* __restrict s4 = sums[4];
+        float* __restrict o = out + static_cast<std::size_t>(y) * w + x0;
+        for (int i = 0; i < n; ++i) {
+            const std::int32_t newest = q[i] + q[i + 1] + q[i + 2] + q[i + 3] + q[i + 4];
+            s4[i] = newest;
+            const std::int32_t box = s0[i] + s1[i] + s2[i] + s3[i] + newest;
+            o[i] = fromFixedMagnitude(box - 25 * c[i]);
+        }
+        std::int32_t* const oldestSums = sums[0];
+        for (int k = 0; k < 4; ++k) sums[k] = sums[k + 1];
+        sums[4] = oldestSums;
+        std::int32_t* const oldestRow = rows[0];
+        rows[0] = rows[1];
+        rows[1] = rows[2];
+        rows[2] = oldestRow;
+    }
+    return !clamped;
+}
+
 // Chosen at run time: AVX2 where the CPU has it (4 vectors = 32 pixels in flight), else the
 // baseline SSE build (4 vectors = 16 pixels). Streaming (non-temporal) stores for large outputs
 // were tried and measured slower here, so the stores stay plain.
@@ -264,6 +388,10 @@ AAMAP_ALWAYS_INLINE void blurRowImpl(const float* e, int w, int h, int y, int ra
     attr void laplacianTile##suffix(const float* g, int w, int h, int y0, int y1, int x0, int n, float* out, \
                                     LaplacianScratch& scratch) {                                        \
         laplacianTileImpl(g, w, h, y0, y1, x0, n, out, scratch);                                         \
+    }                                                                                                   \
+    attr bool laplacianFixedTile##suffix(const float* g, int w, int h, int y0, int y1, int x0, int n, float* out, \
+                                         FixedScratch& scratch) {                                        \
+        return laplacianFixedTileImpl<Bytes>(g, w, h, y0, y1, x0, n, out, scratch);                             \
     }                                                                                                   \
     attr void blurRow##suffix(const float* e, int w, int h, int y, int radius, float* out,              \
                               std::vector<const float*>& taps) {                                       \
@@ -276,6 +404,7 @@ const bool kHaveAvx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
 #else
 constexpr bool kHaveAvx2 = false;
 #define laplacianTileAvx2 laplacianTileBase
+#define laplacianFixedTileAvx2 laplacianFixedTileBase
 #define blurRowAvx2 blurRowBase
 #endif
 #undef AAMAP_ROW_VARIANTS
@@ -348,10 +477,29 @@ void laplacianMagnitudeInto(const ImageGrey& grey, ImageGrey& out, Mode mode) {
     const float* g = grey.data();
     float* o = out.data();
     if (mode == Mode::Scalar) {
+        if (!inFixedRange(grey)) {
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) o[static_cast<std::size_t>(y) * w + x] = laplacianAt(g, w, h, x, y);
+            return;
+        }
+        std::vector<std::int32_t> q(grey.size());
+        std::transform(grey.pixels().begin(), grey.pixels().end(), q.begin(), toFixed);
         for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) o[static_cast<std::size_t>(y) * w + x] = laplacianAt(g, w, h, x, y);
+            for (int x = 0; x < w; ++x) o[static_cast<std::size_t>(y) * w + x] = laplacianFixedAt(q.data(), w, h, x, y);
         return;
     }
+    // Integer path; every input is read by some band, so `outOfRange` is set iff the image has a
+    // value outside [0, kFixedMax], and then the whole image is recomputed in double (rare: the
+    // chain's grey is in [0, 1]).
+    std::atomic<bool> outOfRange{false};
+    const auto fixedTile = kHaveAvx2 ? laplacianFixedTileAvx2 : laplacianFixedTileBase;
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, kBandRows), [&](const tbb::blocked_range<int>& rows) {
+        thread_local FixedScratch scratch;
+        for (int x0 = 0; x0 < w; x0 += kTileColumns)
+            if (!fixedTile(g, w, h, rows.begin(), rows.end(), x0, std::min(kTileColumns, w - x0), o, scratch))
+                outOfRange.store(true, std::memory_order_relaxed);
+    });
+    if (!outOfRange.load()) return;
     const auto tile = kHaveAvx2 ? laplacianTileAvx2 : laplacianTileBase;
     tbb::parallel_for(tbb::blocked_range<int>(0, h, kBandRows), [&](const tbb::blocked_range<int>& rows) {
         thread_local LaplacianScratch scratch;

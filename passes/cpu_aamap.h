@@ -3,7 +3,7 @@
 // fallback when no Vulkan device is usable, and the CPU side of the filter benchmark.
 // Each stage exists as a scalar single-threaded version (the reference) and a TBB-parallel,
 // vectorised version that gives bit-identical results; both follow glsl/shared/aamap_filter.h
-// (the Laplacian exactly summed in double: see cpu_aamap.cpp).
+// (the Laplacian summed exactly in fixed point or double: see cpu_aamap.cpp).
 #include "core/image.h"
 #include "passes/filter_params.h"
 

@@ -1,9 +1,11 @@
 #include "passes/gbuffer.h"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
+#include <unordered_map>
 #include <vector>
 
 #include <aamap/spirv.h>
@@ -164,7 +166,51 @@ std::span<const std::byte> bytesOf(const std::vector<T>& v) {
     return std::as_bytes(std::span<const T>(v));
 }
 
-vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, bool mirrored = false) {
+// Bit-equal positions merged, in first-seen order; index[i] is vertex i's entry.
+struct SharedPositions {
+    std::vector<glm::vec3> distinct;
+    std::vector<std::uint32_t> index;
+};
+
+struct PositionBitsHash {
+    std::size_t operator()(const std::array<std::uint32_t, 3>& k) const {
+        std::uint64_t h = 0x9E3779B97F4A7C15ull;
+        for (std::uint32_t v : k) h = (h ^ v) * 0x100000001B3ull;
+        return static_cast<std::size_t>(h ^ (h >> 29));
+    }
+};
+
+SharedPositions sharePositions(std::span<const glm::vec3> positions) {
+    SharedPositions out;
+    std::unordered_map<std::array<std::uint32_t, 3>, std::uint32_t, PositionBitsHash> seen;
+    seen.reserve(positions.size() / 2);
+    out.index.reserve(positions.size());
+    for (const glm::vec3& p : positions) {
+        std::array<std::uint32_t, 3> key;
+        std::memcpy(key.data(), &p, sizeof(key));
+        const auto [it, added] = seen.try_emplace(key, static_cast<std::uint32_t>(out.distinct.size()));
+        if (added) out.distinct.push_back(p);
+        out.index.push_back(it->second);
+    }
+    return out;
+}
+
+// The pre-pass: positions in, depth out, no fragment work (the empty depth-only shader).
+vk::Pipeline makeDepthPipeline(VulkanContext& context) {
+    vk::GraphicsDesc desc;
+    desc.vertexSpirv = spirv::gbuffer_depth_vert;
+    desc.fragmentSpirv = spirv::shadow_cube_frag;
+    desc.vertexInput.stride = sizeof(glm::vec3);
+    desc.vertexInput.attributes = {{GBUFFER_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
+    desc.depthFormat = vk::toVkFormat(GBufferPass::kDepthFormat);
+    desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth
+    return vk::Pipeline(context, desc,
+                        vk::LayoutDesc{{}, static_cast<std::uint32_t>(sizeof(gpu::GBufferPush)),
+                                       VK_SHADER_STAGE_VERTEX_BIT});
+}
+
+vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, bool mirrored = false,
+                          bool afterPrepass = false) {
     vk::GraphicsDesc desc;
     if (mirrored) {
         desc.vertexSpirv = textured ? spirv::gbuffer_mirror_textured_vert : spirv::gbuffer_mirror_vert;
@@ -192,7 +238,8 @@ vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, 
     }
     desc.colorFormats = {vk::toVkFormat(GBufferPass::kColourFormat)};
     desc.depthFormat = vk::toVkFormat(GBufferPass::kDepthFormat);
-    desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth
+    // Reversed depth; after the pre-pass the nearest surface's own depth passes.
+    desc.depthCompare = afterPrepass ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_GREATER;
     std::vector<VkDescriptorType> bindings{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};  // GBUFFER_BINDING_LIGHTS
     static_assert(GBUFFER_BINDING_LIGHTS == 0 && GBUFFER_BINDING_SHADOW == 1);
     if (shadowed) bindings.push_back(VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);  // texelFetch only: no sampler
@@ -210,13 +257,23 @@ GBufferPass::GBufferPass(VulkanContext& context, const Scene& scene) : context_(
     textured_ = !atlas.empty();
     atlasEntries_ = static_cast<std::uint32_t>(atlas.entries.size());
     if (textured_) atlas_ = uploadAtlas(context, atlas);
-    pipeline_ = makePipeline(context, false, textured_);
     const std::vector<std::byte> vertices = flatten(scene, atlas, textured_, alphaMasked_, vertexCount_);
     if (!vertices.empty())
         vertices_ = vk::uploadBuffer(context, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     positions_.resize(vertexCount_);
     for (std::uint32_t i = 0; i < vertexCount_; ++i)
         std::memcpy(&positions_[i], vertices.data() + static_cast<std::size_t>(i) * vertexStride(), sizeof(glm::vec3));
+    if (!alphaMasked_ && vertexCount_ > 0) {
+        SharedPositions shared = sharePositions(positions_);
+        sharedPositions_ = vk::uploadBuffer(context, bytesOf(shared.distinct), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        positionIndices_ = vk::uploadBuffer(context, bytesOf(shared.index), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        positionIndex_ = std::move(shared.index);
+        std::vector<std::uint32_t> reversed(vertexCount_);
+        for (std::uint32_t v = 0; v < vertexCount_; ++v) reversed[v] = vertexCount_ - 3 * (v / 3 + 1) + v % 3;
+        reversedTriangles_ = vk::uploadBuffer(context, bytesOf(reversed), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        depthPipeline_ = makeDepthPipeline(context);
+    }
+    pipeline_ = makePipeline(context, false, textured_, false, sharedPositions());
 
     setLights({});
 }
@@ -254,7 +311,8 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
          std::string(shadowed ? "rasterise the scene with local illumination and shadow-map visibility per light"
                               : "rasterise the scene with local illumination") +
              (textured_ ? "; " + atlasSummary() : "")});
-    if (shadowed && !shadowedPipeline_.handle()) shadowedPipeline_ = makePipeline(*context_, true, textured_);
+    if (shadowed && !shadowedPipeline_.handle())
+        shadowedPipeline_ = makePipeline(*context_, true, textured_, false, sharedPositions());
     gpu::GBufferPush push{};
     push.viewProj = reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), camera.viewMatrix());
     push.cameraPos = glm::vec4(camera.origin, 1.0f);
@@ -264,7 +322,9 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
                             static_cast<float>(shadows.faceSize));
     const vk::Pipeline& pipeline = shadowed ? shadowedPipeline_ : pipeline_;
     executor.setRecord("gbuffer", [this, colour, depth, push, &pipeline, shadow = shadows.resource](
-                                      vk::PassContext& pc) { record(pc, colour, depth, pipeline, shadow, {&push, 1}); });
+                                      vk::PassContext& pc) {
+        record(pc, colour, depth, pipeline, shadow, {&push, 1}, sharedPositions());
+    });
     return id;
 }
 
@@ -302,14 +362,14 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
         pushes.push_back(push);
     }
     executor.setRecord(pass, [this, colour, depth, pushes, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
-        record(pc, colour, depth, pipeline, shadow, pushes);
+        record(pc, colour, depth, pipeline, shadow, pushes, false);
     });
     return id;
 }
 
 void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const std::string& depth,
                          const vk::Pipeline& pipeline, const std::string& shadow,
-                         std::span<const gpu::GBufferPush> draws) const {
+                         std::span<const gpu::GBufferPush> draws, bool prepass) const {
     const vk::Image& target = pc.image(colour);
     const vk::Image& z = pc.image(depth);
     const VkExtent2D extent{target.info().width, target.info().height};
@@ -335,6 +395,15 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
     VkCommandBuffer cmd = pc.cmd();
     vkCmdBeginRendering(cmd, &rendering);
     vk::setFullViewport(cmd, extent);
+    if (vertexCount_ > 0 && prepass) {
+        depthPipeline_.bind(cmd);
+        depthPipeline_.pushConstants(cmd, draws[0]);
+        const VkBuffer vb = sharedPositions_.handle();
+        const VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(cmd, positionIndices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, vertexCount_, 1, 0, 0, 0);
+    }
     if (vertexCount_ > 0) {
         pipeline.bind(cmd);
         vk::DescriptorPush descriptors;
@@ -349,9 +418,11 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
         const VkBuffer vb = vertices_.handle();
         const VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        if (prepass) vkCmdBindIndexBuffer(cmd, reversedTriangles_.handle(), 0, VK_INDEX_TYPE_UINT32);
         for (const gpu::GBufferPush& push : draws) {
             pipeline.pushConstants(cmd, push);
-            vkCmdDraw(cmd, vertexCount_, 1, 0, 0);
+            if (prepass) vkCmdDrawIndexed(cmd, vertexCount_, 1, 0, 0, 0);
+            else vkCmdDraw(cmd, vertexCount_, 1, 0, 0);
         }
     }
     vkCmdEndRendering(cmd);

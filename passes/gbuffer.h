@@ -3,6 +3,14 @@
 // point samples of area lights) plus emission, into linear colour and depth. Holds the scene's
 // GPU state (vertices, materials, lights, the texture atlas) so that several views reuse it.
 //
+// Depth pre-pass: unless the scene has alpha masks (cut-out texels must not write depth), the
+// main view first draws the distinct positions (12-byte vertices, indexed) into depth alone, and
+// the shading draw then tests GREATER_OR_EQUAL against it, so each pixel is shaded once however
+// many surfaces overlap it. Reflected views (mirrors discard behind their plane) draw as before.
+// Where surfaces tie in depth, all of them pass that test and the last drawn wins, so the shading
+// draw goes through the triangles in reverse order (same corners, same provoking vertex): the
+// first triangle of the mesh wins a tie, as with GREATER and no pre-pass, and the image is the same.
+//
 // Textures and alpha (passes/gbuffer_textures.h): a scene whose used materials sample a texture
 // gets the textured pipeline variants (uv and atlas entry per vertex, one atlas binding); other
 // scenes bind no texture at all. Alpha-tested materials with constant coverage need no texture:
@@ -78,6 +86,13 @@ public:
     std::span<const glm::vec3> vertexPositions() const { return positions_; }
     std::span<const glm::vec3> lightPositions() const { return lightPositions_; }
     std::uint64_t lightsVersion() const { return lightsVersion_; }
+    // The distinct positions (bit-equal corners merged) and, per vertex of vertexBuffer(), its
+    // index among them: position-only passes (depth pre-pass, shadow cube maps) draw these, so
+    // the vertex cache shades a shared corner once. Empty when alphaMasked() (those passes then
+    // need uv and atlas entry per vertex).
+    bool sharedPositions() const { return !positionIndex_.empty(); }
+    const vk::Buffer& positionBuffer() const { return sharedPositions_; }
+    std::span<const std::uint32_t> positionIndex() const { return positionIndex_; }
     // Vertex layout (passes/gbuffer.cpp): position at 0; uv, atlas entry and its parameters at
     // the offsets below only in the textured layout.
     std::uint32_t vertexStride() const { return textured_ ? kTexturedVertexStride : kVertexStride; }
@@ -87,13 +102,17 @@ public:
 
 private:
     void record(vk::PassContext& pc, const std::string& colour, const std::string& depth, const vk::Pipeline& pipeline,
-                const std::string& shadow, std::span<const gpu::GBufferPush> draws) const;
+                const std::string& shadow, std::span<const gpu::GBufferPush> draws, bool prepass) const;
 
     VulkanContext* context_;
     vk::Pipeline pipeline_;
     vk::Pipeline shadowedPipeline_;  // built on first use: scenes without lights never need it
     vk::Pipeline mirrorPipelines_[2];  // reflected views, unshadowed / shadowed: built on first use
+    vk::Pipeline depthPipeline_;       // the pre-pass (sharedPositions() only)
     vk::Buffer vertices_, lights_;
+    vk::Buffer sharedPositions_, positionIndices_;  // positionIndex_ as an index buffer
+    vk::Buffer reversedTriangles_;  // vertices_ by triangle, last triangle first (after the pre-pass)
+    std::vector<std::uint32_t> positionIndex_;
     vk::Image atlas_;
     std::vector<glm::vec3> positions_, lightPositions_;
     std::uint64_t lightsVersion_ = 0;

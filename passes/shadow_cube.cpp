@@ -26,14 +26,14 @@ ShadowCubePass::ShadowCubePass(VulkanContext& context) : context_(&context) {
 }
 
 const vk::Pipeline& ShadowCubePass::pipelineFor(const GBufferPass& geometry) const {
-    const bool masked = geometry.alphaMasked();
-    const int variant = masked ? 2 : (geometry.textured() ? 1 : 0);
-    vk::Pipeline& pipeline = pipelines_[variant];
+    const bool masked = geometry.alphaMasked();  // else sharedPositions(), or nothing to draw
+    vk::Pipeline& pipeline = pipelines_[masked ? 1 : 0];
     if (pipeline.handle()) return pipeline;
     vk::GraphicsDesc desc;
     desc.vertexSpirv = masked ? spirv::shadow_cube_masked_vert : spirv::shadow_cube_vert;
     desc.fragmentSpirv = masked ? spirv::shadow_cube_masked_frag : spirv::shadow_cube_frag;
-    desc.vertexInput.stride = geometry.vertexStride();  // the G-buffer's vertices, position at 0
+    // Masked: the G-buffer's vertices, position at 0; else the shared positions.
+    desc.vertexInput.stride = masked ? geometry.vertexStride() : static_cast<std::uint32_t>(sizeof(glm::vec3));
     desc.vertexInput.attributes = {{SHADOW_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
     std::vector<VkDescriptorType> bindings{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
     static_assert(SHADOW_BINDING_LIGHTS == 0 && SHADOW_BINDING_ATLAS == 1);
@@ -96,6 +96,10 @@ ShadowCubePass::FaceLists ShadowCubePass::cullPerFace(std::span<const glm::vec3>
 void ShadowCubePass::updateFaceLists(const GBufferPass& geometry, float nearPlane) {
     if (listsGeometry_ == &geometry && listsVersion_ == geometry.lightsVersion() && listsNear_ == nearPlane) return;
     FaceLists lists = cullPerFace(geometry.vertexPositions(), geometry.lightPositions(), nearPlane);
+    if (geometry.sharedPositions()) {
+        const std::span<const std::uint32_t> shared = geometry.positionIndex();
+        for (std::uint32_t& i : lists.indices) i = shared[i];
+    }
     faceRanges_ = std::move(lists.ranges);
     if (lists.indices.empty()) lists.indices.push_back(0);  // a buffer needs a size; no range reads it
     faceIndices_ = vk::uploadBuffer(*context_, std::as_bytes(std::span<const std::uint32_t>(lists.indices)),
@@ -168,7 +172,7 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
             descriptors.push(*context_, cmd, pipeline);
             pipeline.pushConstants(cmd, push);
-            const VkBuffer vb = geometry.vertexBuffer().handle();
+            const VkBuffer vb = geometry.sharedPositions() ? geometry.positionBuffer().handle() : geometry.vertexBuffer().handle();
             const VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
             vkCmdBindIndexBuffer(cmd, faceIndices_.handle(), 0, VK_INDEX_TYPE_UINT32);

@@ -16,6 +16,12 @@
 // its layer). A triangle lies in one or two faces of most lights, so large scenes shade about a
 // quarter of the vertices an instanced draw of every triangle to every face would (the
 // conference room: 331k triangles x 36 faces).
+// Shared positions: the G-buffer's vertices are unindexed (three per triangle, each with its
+// triangle's normal and material), but the depth raster needs only positions. Unless the scene
+// has alpha masks, the pass draws the G-buffer's distinct positions (12-byte stride,
+// GBufferPass::positionBuffer) through the face lists remapped onto them, so lavapipe's vertex
+// cache (per batch of indices) shades a shared corner once rather than once per triangle: the
+// vertex stage, single-threaded there, is what limits this pass on large scenes.
 // The pass exists only when the scene has lights and shadows are on; each face stores near/ma
 // (see glsl/shared/snapshot_interface.h). A scene with alpha-masked textures gets the masked
 // variant (shadow_cube.masked.*), which binds the G-buffer's atlas and discards cut-out texels.
@@ -67,9 +73,9 @@ private:
     void updateFaceLists(const GBufferPass& geometry, float nearPlane);
 
     VulkanContext* context_;
-    // Built on first use for the geometry's vertex layout: plain (48-byte vertices, position only),
-    // over textured vertices without masks, or masked (alpha test). Index: 0, 1, 2.
-    mutable vk::Pipeline pipelines_[3];
+    // Built on first use: shared positions (12-byte stride), or masked (alpha test, the
+    // G-buffer's textured vertices). Index: 0, 1.
+    mutable vk::Pipeline pipelines_[2];
     std::uint32_t maxLayers_ = 0;
     // Face lists for (geometry, its light set, near plane), rebuilt when any of them changes.
     vk::Buffer faceIndices_;

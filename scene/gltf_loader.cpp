@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_prescan.h"
 #include "scene/lights.h"
 #include "scene/texture_loader.h"
 
@@ -373,6 +374,7 @@ private:
 Scene loadGltf(const fs::path& file) {
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) throw InputError(file, "glTF file not found");
+    detail::checkGltfMemoryBudget(file);  // before tinygltf reads the buffers
     tinygltf::TinyGLTF loader;
     tinygltf::Model model;
     std::string err, warnText;

@@ -18,6 +18,11 @@ private:
     VkResult result_;
 };
 
+// Test hook for device failure mid-run (tests/robustness): AAMAP_TEST_VK_FAULT=<VkResult name>@<n>,
+// e.g. VK_ERROR_DEVICE_LOST@1, makes every queue wait after the first n return that result instead
+// of `result`, as a lost device does. Unset (normal use) it returns `result` unchanged.
+VkResult withTestFault(VkResult result);
+
 }  // namespace aamap::vk
 
 #define VK_CHECK(call)                                                                      \

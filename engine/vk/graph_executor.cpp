@@ -108,7 +108,7 @@ struct Submission {
         submit.commandBufferInfoCount = 1;
         submit.pCommandBufferInfos = &info;
         VK_CHECK(vkQueueSubmit2(context.queue(), 1, &submit, fence));
-        VK_CHECK(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+        VK_CHECK(withTestFault(vkWaitForFences(context.device(), 1, &fence, VK_TRUE, UINT64_MAX)));
     }
     void destroy(VulkanContext& context) {
         if (fence) vkDestroyFence(context.device(), fence, nullptr);

@@ -1,6 +1,7 @@
-// The CPU filters' output-image variants (laplacianMagnitudeInto, boxBlurInto) and the exactly
-// summed Laplacian: same results as the returning calls, the kept image reused, and |L| equal to
-// the correctly rounded difference sum of the shader's definition.
+// The CPU filters' output-image variants (laplacianMagnitudeInto, boxBlurInto) and the Laplacian's
+// accuracy: same results as the returning calls, the kept image reused, and |L| within the proven
+// bound of the shader's difference sum (integer path), correctly rounded on the fixed-point grid
+// and outside the fixed-point range (double path).
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -30,8 +31,8 @@ bool sameBits(const ImageGrey& a, const ImageGrey& b) {
 }
 
 // |sum over the 24 off-centre taps of (g(p+o) - g(p))|, clamped to the edge, in long double: exact
-// for floats in [2^-24, 1] (64-bit significand), so this is the value the CPU must round.
-float exactLaplacian(const ImageGrey& g, int x, int y) {
+// while the window's values span at most 64 bits of significance, as for every image below.
+long double exactDifferenceSum(const ImageGrey& g, int x, int y) {
     const auto at = [&](int xx, int yy) {
         return static_cast<long double>(
             g.at(std::clamp(xx, 0, g.width() - 1), std::clamp(yy, 0, g.height() - 1)));
@@ -39,14 +40,56 @@ float exactLaplacian(const ImageGrey& g, int x, int y) {
     long double sum = 0.0L;
     for (int dy = -2; dy <= 2; ++dy)
         for (int dx = -2; dx <= 2; ++dx) sum += at(x + dx, y + dy) - at(x, y);
-    return std::fabs(static_cast<float>(sum));
+    return std::fabs(sum);
+}
+float exactLaplacian(const ImageGrey& g, int x, int y) { return static_cast<float>(exactDifferenceSum(g, x, y)); }
+
+// The fixed-point unit of the integer path (passes/cpu_aamap.cpp): grey in [0, 4] becomes
+// trunc(g * 2^24).
+constexpr double kFixedUnit = 1.0 / 16777216.0;
+
+ImageGrey onFixedGrid(ImageGrey g) {
+    for (float& v : g.pixels()) v = static_cast<float>(std::floor(v / kFixedUnit) * kFixedUnit);
+    return g;
 }
 
-TEST(FilterOutputs, LaplacianIsTheCorrectlyRoundedDifferenceSum) {
+// Any grey in [0, 4]: each of the 24 differences is off by less than one unit before the final
+// rounding to float, so |L| is within 24 units plus half an ulp of the result.
+TEST(FilterOutputs, LaplacianIsWithinTwentyFourFixedUnitsOfTheExactSum) {
     const ImageGrey g = randomGrey(41, 23, 5);
-    const ImageGrey lap = laplacianMagnitude(g, Mode::Parallel);
-    for (int y = 0; y < g.height(); ++y)
-        for (int x = 0; x < g.width(); ++x) ASSERT_EQ(lap.at(x, y), exactLaplacian(g, x, y)) << x << "," << y;
+    for (Mode mode : {Mode::Scalar, Mode::Parallel}) {
+        const ImageGrey lap = laplacianMagnitude(g, mode);
+        for (int y = 0; y < g.height(); ++y)
+            for (int x = 0; x < g.width(); ++x) {
+                const float got = lap.at(x, y);
+                const double halfUlp = 0.5 * (std::nextafter(got, 1e9f) - got);
+                ASSERT_LE(std::fabs(got - exactDifferenceSum(g, x, y)), 24 * kFixedUnit + halfUlp) << x << "," << y;
+            }
+    }
+}
+
+// Grey values on the 2^-24 grid (every float in [0.5, 4], 16-bit and 8-bit sources) are converted
+// exactly, so integer sums give the correctly rounded difference sum.
+TEST(FilterOutputs, LaplacianIsCorrectlyRoundedOnTheFixedGrid) {
+    const ImageGrey g = onFixedGrid(randomGrey(41, 23, 7));
+    for (Mode mode : {Mode::Scalar, Mode::Parallel}) {
+        const ImageGrey lap = laplacianMagnitude(g, mode);
+        for (int y = 0; y < g.height(); ++y)
+            for (int x = 0; x < g.width(); ++x) ASSERT_EQ(lap.at(x, y), exactLaplacian(g, x, y)) << x << "," << y;
+    }
+}
+
+// One value outside [0, 4] sends the whole image through the double path, whose sums are exact
+// here (values in [1e-3, 8]: under 53 bits of span), so every pixel is correctly rounded.
+TEST(FilterOutputs, LaplacianOutsideTheFixedRangeIsCorrectlyRounded) {
+    ImageGrey g = randomGrey(41, 23, 9);
+    for (float& v : g.pixels()) v = 1e-3f + 7.999f * v;
+    g.at(40, 22) = 8.0f;  // at least one value above 4, far from most pixels' windows
+    for (Mode mode : {Mode::Scalar, Mode::Parallel}) {
+        const ImageGrey lap = laplacianMagnitude(g, mode);
+        for (int y = 0; y < g.height(); ++y)
+            for (int x = 0; x < g.width(); ++x) ASSERT_EQ(lap.at(x, y), exactLaplacian(g, x, y)) << x << "," << y;
+    }
 }
 
 TEST(FilterOutputs, IntoVariantsMatchAndReuseTheImage) {

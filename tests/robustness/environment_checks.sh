@@ -5,6 +5,16 @@
 #   geometric-no-device  snapshot.map: geometric without a device: an error (the CPU path is luminance only)
 #   unwritable   the output folder cannot be created: one error line, a non-zero exit, nothing written
 #   sigint       SIGINT mid-run: a message, exit 130, finished renders kept; the same command resumes
+#   disk-full    the disk fills up mid-run (test hook AAMAP_TEST_WRITE_FAULT, core/atomic_file.h): one
+#                error naming the file, a non-zero exit, no temporary or half-written file, finished
+#                renders intact; the same command then completes
+#   write-eio    an I/O error on the first file written: one error, nothing half-written
+#   disk-full-tmpfs  the same on a real full disk: OUTDIR on a small tmpfs (skipped, exit 77, where
+#                no mount namespace can be made)
+#   device-lost  the Vulkan device is lost during the Snapshot (test hook AAMAP_TEST_VK_FAULT,
+#                engine/vk/check.h): a warning, the CPU aamap, results.json records why
+#   device-oom   out of device memory at the first submission: the same fallback
+#   device-lost-geometric  a geometric map cannot fall back: an error
 # usage: environment_checks.sh AAMAP CONFIG WORKDIR CHECK
 set -u
 aamap=$1 config=$2 work=$3 check=$4
@@ -67,6 +77,75 @@ sigint)
   fi
   "$aamap" run "$config" -o "$work/out" "${more[@]}" 2> "$work/stderr2" || { cat "$work/stderr2"; die "resume failed"; }
   [ -s "$work/out/results.json" ] || die "no results.json after resuming"
+  ;;
+disk-full|write-eio|disk-full-tmpfs)
+  # A complete run first: its total output size places the fault, and its images are what every
+  # image left by the failed run must equal byte for byte (outputs are deterministic).
+  "$aamap" run "$config" -o "$work/ref" "${small[@]}" 2> "$work/stderr-ref" || { cat "$work/stderr-ref"; die "reference run failed"; }
+  total=$(find "$work/ref" -type f -printf '%s\n' | awk '{s += $1} END {print s}')
+  message="No space left on device"
+  case "$check" in
+  disk-full) env=(env "AAMAP_TEST_WRITE_FAULT=ENOSPC@$((total / 2))") ;;
+  write-eio) env=(env AAMAP_TEST_WRITE_FAULT=EIO@100) message="Input/output error" ;;
+  disk-full-tmpfs)
+    # A real full disk: OUTDIR on a tmpfs of half the output's size, in a private mount
+    # namespace (as root, or as a user where user namespaces are allowed); skipped elsewhere.
+    ns=(unshare --mount)
+    [ "$(id -u)" -eq 0 ] || ns=(unshare --user --map-root-user --mount)
+    mkdir -p "$work/out"
+    "${ns[@]}" mount -t tmpfs -o size=4k tmpfs "$work/out" 2>/dev/null || { echo "SKIP: cannot mount a tmpfs"; exit 77; }
+  esac
+  failed_run_checks() {  # the failed run's output, then the rerun
+    rc=$1
+    cat "$work/stderr"
+    [ "$rc" -ne 0 ] || die "exit code 0"
+    [ "$(grep -c 'aamap: error:' "$work/stderr")" -eq 1 ] || die "expected one error line"
+    grep -q "aamap: error: $work/out/.*: cannot write: $message" "$work/stderr" || die "the error does not name the file and the cause"
+    leftovers=$(find "$work/out" -name '*.tmp-*')
+    [ -z "$leftovers" ] || die "temporary files left: $leftovers"
+    for f in $(cd "$work/out" && find . -type f \( -name '*.exr' -o -name '*.png' \)); do
+      cmp -s "$work/out/$f" "$work/ref/$f" || die "$f differs from the complete run's (half-written?)"
+    done
+    for d in "$work/out"/cache/*/; do
+      [ -d "$d" ] || continue
+      [ -s "$d/record.json" ] || die "cache entry $d without record.json"
+      python3 -c 'import json, sys; json.load(open(sys.argv[1]))' "$d/record.json" || die "$d/record.json is not JSON"
+    done
+    echo "$(find "$work/out/cache" -name record.json 2>/dev/null | wc -l) finished render(s) kept; $total bytes in a complete run"
+  }
+  if [ "$check" = disk-full-tmpfs ]; then
+    # The tmpfs lives only in the namespace: check inside it (the rerun would find it full again).
+    export -f failed_run_checks die
+    export work message total
+    "${ns[@]}" bash -c 'mount -t tmpfs -o size=$((total / 2)) tmpfs "$work/out" || exit 1
+      "$0" run "$1" -o "$work/out" --no-plots 2> "$work/stderr"; failed_run_checks $?' "$aamap" "$config" || exit 1
+  else
+    "${env[@]}" "$aamap" run "$config" -o "$work/out" "${small[@]}" 2> "$work/stderr"
+    failed_run_checks $?
+    "$aamap" run "$config" -o "$work/out" "${small[@]}" 2> "$work/stderr2" || { cat "$work/stderr2"; die "rerun failed"; }
+    for f in $(cd "$work/ref" && find . -type f \( -name '*.exr' -o -name '*.png' \)); do
+      cmp -s "$work/out/$f" "$work/ref/$f" || die "$f differs after the rerun"
+    done
+  fi
+  ;;
+device-lost|device-oom|device-lost-geometric)
+  case "$check" in
+    device-oom) fault=VK_ERROR_OUT_OF_DEVICE_MEMORY@0 result=VK_ERROR_OUT_OF_DEVICE_MEMORY map=luminance ;;
+    device-lost) fault=VK_ERROR_DEVICE_LOST@1 result=VK_ERROR_DEVICE_LOST map=luminance ;;
+    *) fault=VK_ERROR_DEVICE_LOST@1 result=VK_ERROR_DEVICE_LOST map=geometric ;;
+  esac
+  AAMAP_TEST_VK_FAULT=$fault "$aamap" run "$config" -o "$work/out" "${small[@]}" --set snapshot.map=$map 2> "$work/stderr"
+  rc=$?
+  cat "$work/stderr"
+  if [ "$map" = geometric ]; then
+    [ "$rc" -ne 0 ] || die "exit code 0"
+    grep -q "aamap: error: snapshot.map: geometric needs a Vulkan device, and the Vulkan device .* failed during the Snapshot: $result" "$work/stderr" || die "no error naming the map and the failure"
+  else
+    [ "$rc" -eq 0 ] || die "run failed"
+    grep -q "failed during the Snapshot: $result.*building the aamap on the CPU" "$work/stderr" || die "no warning about the failure and the CPU fallback"
+    grep -q "\"vulkan_device\": *\"cpu-fallback: the Vulkan device .* failed during the Snapshot: $result\"" "$work/out/results.json" || die "results.json does not record the CPU path and why"
+    [ -s "$work/out/aamap.exr" ] || die "no aamap.exr"
+  fi
   ;;
 *) die "unknown check $check" ;;
 esac

@@ -3,7 +3,9 @@
 //           to), and no other exception;
 //   warn-*  a Scene (or texture) with at least one warning logged, e.g. skipped degenerate triangles;
 //   ok-*    success without warnings;
-//   lib-*   not run on its own: referred to by another file (an MTL, a texture).
+//   lib-*   not run on its own: referred to by another file (an MTL, a texture);
+//   mem-*   valid, but over the memory limit kMemLimit: an EnvironmentError from the estimate
+//           (core/memory_budget.h) naming the file, the estimate and the limit; loads without it.
 // Whatever loads must be usable: finite positions and normals, in-range indices, finite lights.
 #include <algorithm>
 #include <cmath>
@@ -165,12 +167,41 @@ TEST(MemoryBudget, TooLargeSceneFailsEarly) {
     } catch (const EnvironmentError& e) {
         const std::string message = e.what();
         EXPECT_NE(message.find("big.obj"), std::string::npos) << message;
-        EXPECT_NE(message.find("GiB"), std::string::npos) << message;
-        EXPECT_NE(message.find("AAMAP_MEMORY_LIMIT"), std::string::npos) << message;
+        EXPECT_NE(message.find("MiB available (AAMAP_MEMORY_LIMIT)"), std::string::npos) << message;
     }
     ::setenv("AAMAP_MEMORY_LIMIT", "100000000", 1);
     EXPECT_EQ(loadObj(obj).mesh.triangles.size(), 2u);
     ::unsetenv("AAMAP_MEMORY_LIMIT");
+}
+
+// The memory estimate of glTF/GLB scenes (scene/gltf_prescan.h) on the mem-* files.
+TEST(MemoryBudget, GltfOverTheLimitFailsEarly) {
+    constexpr const char* kMemLimit = "524288";  // 512 KiB: the mem-* files need 0.9 to 1.2 MiB
+    int files = 0;
+    for (const char* parser : {"gltf", "glb"}) {
+        for (const auto& entry : fs::directory_iterator(kCorpus / parser)) {
+            const std::string name = entry.path().filename().string();
+            if (!name.starts_with("mem-")) continue;
+            ++files;
+            ::setenv("AAMAP_MEMORY_LIMIT", kMemLimit, 1);
+            try {
+                loadGltf(entry.path());
+                ADD_FAILURE() << name << " loaded past the limit";
+            } catch (const EnvironmentError& e) {
+                const std::string message = e.what();
+                std::cout << "  error:   " << message << "\n";
+                EXPECT_NE(message.find(name), std::string::npos) << message;
+                EXPECT_NE(message.find("2048 triangles"), std::string::npos) << message;
+                EXPECT_NE(message.find(" MiB (2048 triangles"), std::string::npos) << message;  // the estimate
+                EXPECT_NE(message.find("the 0.5 MiB available (AAMAP_MEMORY_LIMIT)"), std::string::npos) << message;
+                EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+            }
+            ::setenv("AAMAP_MEMORY_LIMIT", "67108864", 1);
+            EXPECT_EQ(loadGltf(entry.path()).mesh.triangles.size(), 2048u) << name;
+            ::unsetenv("AAMAP_MEMORY_LIMIT");
+        }
+    }
+    EXPECT_GE(files, 2);
 }
 
 TEST(CorpusFolder, CoversEveryParser) {

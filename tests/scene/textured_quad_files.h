@@ -9,6 +9,7 @@
 
 #include <stb_image_write.h>
 
+#include "base64.h"
 #include "temp_dir.h"
 
 namespace aamap::test {
@@ -45,21 +46,6 @@ inline std::filesystem::path writePng(const TempDir& dir, const std::string& nam
         for (int c = 0; c < channels; ++c) data.push_back(rgba[i + static_cast<std::size_t>(c)]);
     stbi_write_png(file.string().c_str(), side, side, channels, data.data(), side * channels);
     return file;
-}
-
-inline std::string base64(const std::string& bytes) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        std::uint32_t v = static_cast<unsigned char>(bytes[i]) << 16;
-        if (i + 1 < bytes.size()) v |= static_cast<unsigned char>(bytes[i + 1]) << 8;
-        if (i + 2 < bytes.size()) v |= static_cast<unsigned char>(bytes[i + 2]);
-        out += table[(v >> 18) & 63];
-        out += table[(v >> 12) & 63];
-        out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
-        out += i + 2 < bytes.size() ? table[v & 63] : '=';
-    }
-    return out;
 }
 
 // quad.obj + quad.mtl: map_Kd and map_d both `texture`, so coverage is its alpha channel.
