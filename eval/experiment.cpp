@@ -7,6 +7,7 @@
 #include <numeric>
 #include <optional>
 #include <tuple>
+#include <vector>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -142,11 +143,35 @@ public:
         out.device = context->deviceName();
         spdlog::info("snapshot on '{}' at {}x{} (scale {})", out.device, info_.width, info_.height, config_.snapshot.scale);
         try {
+            // The graph runs several times. The first execution, with what precedes it, is setup,
+            // reported apart like scene load and BVH build: pipelines, uploads, the driver's
+            // first-use work (lavapipe compiles shader variants at the first draw and takes a few
+            // frames to reach its steady state) and the read-back of the report's debug images.
+            // Then warm-up executions, and timed ones whose median is the Snapshot's per-frame cost,
+            // the one charged to every aamap-driven render, as a GPU frame time is measured: they
+            // read back only what the strategies consume (the aamap, block sums when asked).
+            constexpr int kWarmupExecutions = 3;
+            constexpr int kTimedExecutions = 3;
+            const auto setupStart = Clock::now();
             SnapshotRenderer renderer(*context, scene_);
-            SnapshotResult r = renderer.render(view_, info_.width, info_.height, snapshotSettings(config_));
+            const SnapshotSettings settings = snapshotSettings(config_);
+            SnapshotResult withImages = renderer.render(view_, info_.width, info_.height, settings);
+            SnapshotSettings perFrame = settings;
+            perFrame.keepDebugImages = false;
+            for (int i = 0; i < kWarmupExecutions; ++i) renderer.render(view_, info_.width, info_.height, perFrame);
+            out.setupSeconds = secondsSince(setupStart);
+            std::vector<SnapshotResult> timed;
+            for (int i = 0; i < kTimedExecutions; ++i) {
+                timed.push_back(renderer.render(view_, info_.width, info_.height, perFrame));
+                if (timed.back().aamap.pixels() != withImages.aamap.pixels())  // the same graph, the same inputs
+                    spdlog::warn("the Snapshot's executions gave different aamaps; using the median-time one");
+            }
+            std::sort(timed.begin(), timed.end(),
+                      [](const SnapshotResult& a, const SnapshotResult& b) { return a.totalSeconds < b.totalSeconds; });
+            SnapshotResult& r = timed[timed.size() / 2];
             out.aamap = std::move(r.aamap);
-            out.snapshot = std::move(r.snapshot);
-            out.laplacian = std::move(r.laplacian);
+            out.snapshot = std::move(withImages.snapshot);
+            out.laplacian = std::move(withImages.laplacian);
             if (!r.blockSums.empty())
                 gpuBlockSums_ = BlockSums::fromTables(r.blockSums.width, r.blockSums.height,
                                                       std::move(r.blockSums.sums), std::move(r.blockSums.counts));
@@ -168,7 +193,8 @@ public:
         if (context->validationEnabled() && context->validationMessageCount() > 0)
             throw ValidationFailure(fmt::format("{} Vulkan validation message(s), logged above",
                                                 context->validationMessageCount()));
-        spdlog::info("snapshot: {:.1f} ms", out.totalSeconds * 1e3);
+        spdlog::info("snapshot: {:.1f} ms per frame, after {:.1f} ms of setup", out.totalSeconds * 1e3,
+                     out.setupSeconds * 1e3);
         return out;
     }
 

@@ -83,7 +83,7 @@ std::vector<Table> reportTables(const Json& results) {
     std::vector<Table> tables;
 
     Table time{"time", "Table 1/2: render time (s) per rays per pixel",
-               "time = trace + Snapshot (for aamap-driven series); scene load and BVH build, shared by all, are left out",
+               "time = trace + Snapshot per frame (for aamap-driven series); scene load, BVH build and Snapshot setup, shared by all, are left out",
                {"rpp"}, {}};
     for (const std::string& s : series) time.header.push_back(s);
     for (int rpp : rpps) {

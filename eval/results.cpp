@@ -43,6 +43,7 @@ nlohmann::ordered_json toJson(const RenderRecord& r) {
     j["max_rays_per_pixel"] = r.maxRaysPerPixel;
     j["times_s"] = {{"load", r.times.load},
                     {"bvh_build", r.times.bvhBuild},
+                    {"snapshot_setup", r.times.snapshotSetup},
                     {"snapshot_total", r.times.snapshotTotal},
                     {"snapshot_passes_gpu_ms", passes},
                     {"readback", r.times.readback},
@@ -94,6 +95,7 @@ RenderRecord recordFromJson(const nlohmann::ordered_json& j) {
     const auto& t = j.at("times_s");
     r.times.load = t.at("load").get<double>();
     r.times.bvhBuild = t.at("bvh_build").get<double>();
+    r.times.snapshotSetup = t.value("snapshot_setup", 0.0);  // absent in records written before it existed
     r.times.snapshotTotal = t.at("snapshot_total").get<double>();
     for (const auto& [pass, ms] : t.at("snapshot_passes_gpu_ms").items()) r.times.snapshotPassesGpuMs.emplace_back(pass, ms.get<double>());
     r.times.readback = t.at("readback").get<double>();

@@ -24,7 +24,8 @@ MachineInfo currentMachine();
 struct StageTimes {
     double load = 0;
     double bvhBuild = 0;
-    double snapshotTotal = 0;
+    double snapshotSetup = 0;  // once per Snapshot: pipelines, uploads, first use, debug read-back
+    double snapshotTotal = 0;  // one execution of the Snapshot for what the strategy consumes
     std::vector<std::pair<std::string, double>> snapshotPassesGpuMs;  // pass -> GPU milliseconds
     double readback = 0;
     double trace = 0;

@@ -97,6 +97,7 @@ void Runner::loadOrRenderSnapshot() {
         for (const auto& [pass, ms] : snap.passesGpuMs) passes[pass] = ms;
         const Json record = {{"key", key}, {"width", s.width}, {"height", s.height},
                              {"total_s", snap.totalSeconds}, {"readback_s", snap.readbackSeconds},
+                             {"setup_s", snap.setupSeconds},
                              {"passes_gpu_ms", passes}, {"vulkan_device", snap.device},
                              {"git_revision", options_.gitRevision}};
         const float exposure = static_cast<float>(c_.image.exposure);
@@ -172,12 +173,13 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
         r.parameters["snapshot_key"] = snapshotRecord_["key"];
         r.times.snapshotTotal = snapshotRecord_["total_s"].get<double>();
         r.times.readback = snapshotRecord_["readback_s"].get<double>();
+        r.times.snapshotSetup = snapshotRecord_.value("setup_s", 0.0);
         for (const auto& [pass, ms] : snapshotRecord_["passes_gpu_ms"].items())
             r.times.snapshotPassesGpuMs.emplace_back(pass, ms.get<double>());
         r.vulkanDevice = snapshotRecord_["vulkan_device"].get<std::string>();
     }
     // readback is part of snapshot_total, so it is not added again
-    r.times.total = r.times.load + r.times.bvhBuild + r.times.snapshotTotal + r.times.trace;
+    r.times.total = r.times.load + r.times.bvhBuild + r.times.snapshotSetup + r.times.snapshotTotal + r.times.trace;
     r.rays = out.rays;
     const double sum = std::accumulate(out.primaryRays.pixels().begin(), out.primaryRays.pixels().end(), 0.0);
     r.meanPrimaryRpp = sum / static_cast<double>(std::max<std::size_t>(1, out.primaryRays.size()));

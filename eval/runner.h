@@ -27,7 +27,10 @@ struct SnapshotOutput {
     ImageGrey aamap;      // render resolution
     ImageRGB snapshot;    // snapshot resolution; may be empty
     ImageGrey laplacian;  // may be empty
-    double totalSeconds = 0, readbackSeconds = 0;
+    // totalSeconds: one execution of the Snapshot graph for what the strategies consume (the
+    // per-frame cost, charged to every aamap-driven render), readback included. setupSeconds: what
+    // came before it once (pipelines, uploads, the driver's first-use work, debug-image read-back).
+    double totalSeconds = 0, readbackSeconds = 0, setupSeconds = 0;
     std::vector<std::pair<std::string, double>> passesGpuMs;
     std::string device;
 };

@@ -23,11 +23,23 @@ TEST(Results, RecordHasEveryField) {
                             "times_s", "rays", "mean_primary_rpp", "non_finite_samples", "git_revision",
                             "config_hash", "vulkan_device", "machine"})
         EXPECT_TRUE(j.contains(key)) << key;
-    for (const char* key : {"load", "bvh_build", "snapshot_total", "snapshot_passes_gpu_ms", "readback", "trace", "total"})
+    for (const char* key : {"load", "bvh_build", "snapshot_setup", "snapshot_total", "snapshot_passes_gpu_ms",
+                            "readback", "trace", "total"})
         EXPECT_TRUE(j["times_s"].contains(key)) << key;
     EXPECT_EQ(j["times_s"]["snapshot_passes_gpu_ms"]["laplacian"], 0.25);
     EXPECT_EQ(j["rays"]["total"], 33);
     for (const char* key : {"hostname", "cpu_model", "threads"}) EXPECT_TRUE(j["machine"].contains(key)) << key;
+}
+
+TEST(Results, SnapshotSetupRoundTripsAndOlderRecordsReadAsZero) {
+    RenderRecord r;
+    r.times.snapshotSetup = 0.125;
+    r.times.snapshotTotal = 0.03125;
+    nlohmann::ordered_json j = toJson(r);
+    EXPECT_EQ(recordFromJson(j).times.snapshotSetup, 0.125);
+    EXPECT_EQ(recordFromJson(j).times.snapshotTotal, 0.03125);
+    j["times_s"].erase("snapshot_setup");  // a cached record from before the field existed
+    EXPECT_EQ(recordFromJson(j).times.snapshotSetup, 0.0);
 }
 
 TEST(Results, WrittenPrettyAndAtomically) {
