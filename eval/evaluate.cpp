@@ -74,15 +74,17 @@ Json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageG
                  float exposure, const fs::path& outDir) {
     const float t = static_cast<float>(m.flipThreshold);
     const metrics::FlipResult f = metrics::flipDisplay(reference, oneRay, exposure, flipOptions(m));
-    const metrics::MapQuality q = metrics::mapQuality(f.errorMap, aamap, t);
+    const Image<std::uint8_t> own = metrics::ownDisplayDifference(oneRay, reference, exposure);
+    const metrics::MapQuality q = metrics::mapQuality(f.errorMap, aamap, t, &own);
     const ImageRGB8 base = toneMap(oneRay, exposure);
     ImageRGB8 img(base.width(), base.height());
     for (int y = 0; y < img.height(); ++y)
         for (int x = 0; x < img.width(); ++x) {
             const bool truth = f.errorMap.at(x, y) > t, flagged = aamap.at(x, y) > 0.0f;
             const glm::u8vec3 c = base.at(x, y);
+            // Misses whose own pixel equals the reference's (FLIP spread from a neighbour) in orange.
             img.at(x, y) = truth && flagged ? glm::u8vec3(255, 255, 255)
-                           : truth          ? glm::u8vec3(255, 0, 0)
+                           : truth          ? (own.at(x, y) ? glm::u8vec3(255, 0, 0) : glm::u8vec3(255, 160, 0))
                            : flagged        ? glm::u8vec3(40, 90, 255)
                                             : glm::u8vec3(c.r / 3, c.g / 3, c.b / 3);
         }
@@ -96,6 +98,9 @@ Json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageG
             {"precision", q.precision},
             {"flagged_fraction", q.flaggedFraction},
             {"true_fraction", q.trueFraction},
+            {"own_true_pixels", q.ownTruePixels},
+            {"own_true_positives", q.ownTruePositives},
+            {"own_recall", q.ownRecall},
             {"image", "aliasing.png"}};
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <fstream>
 #include <stdexcept>
 
@@ -11,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "tests/common/scratch_dir.h"
 
 namespace aamap {
 namespace {
@@ -20,20 +22,14 @@ namespace fs = std::filesystem;
 class ImageIo : public ::testing::Test {
 protected:
     void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) /
-               ("aamap_image_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        scratch_.emplace(fs::path(::testing::TempDir()) /
+                         ("aamap_image_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())));
+        dir_ = scratch_->path();
     }
-    void TearDown() override { fs::remove_all(dir_); }
+    void TearDown() override { scratch_.reset(); }
+    std::vector<std::string> entries() const { return scratch_->entries(); }
 
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-
+    std::optional<test::ScratchDir> scratch_;
     fs::path dir_;
 };
 

@@ -71,8 +71,46 @@ TEST(MapQuality, FromImages) {
     EXPECT_GT(mapQuality(oneRay, ref, none, hdr).truePixels, 0u);
 }
 
+TEST(MapQuality, OwnRecallCountsOnlyTruePixelsThatDifferThemselves) {
+    ImageGrey flip(4, 1, 0.5f);  // all four truly aliased by FLIP
+    ImageGrey aamap(4, 1, 0.0f);
+    aamap.at(0, 0) = aamap.at(2, 0) = 1.0f;
+    Image<std::uint8_t> own(4, 1, 0);
+    own.at(0, 0) = own.at(1, 0) = 1;  // (2,0) and (3,0) equal the reference: FLIP spread there
+    const MapQuality q = mapQuality(flip, aamap, 0.1f, &own);
+    EXPECT_EQ(q.truePixels, 4u);
+    EXPECT_EQ(q.truePositives, 2u);
+    EXPECT_DOUBLE_EQ(q.recall, 0.5);
+    EXPECT_EQ(q.ownTruePixels, 2u);
+    EXPECT_EQ(q.ownTruePositives, 1u);
+    EXPECT_DOUBLE_EQ(q.ownRecall, 0.5);
+    own.pixels().assign(4, 0);  // nothing differs: nothing own to find
+    EXPECT_DOUBLE_EQ(mapQuality(flip, aamap, 0.1f, &own).ownRecall, 1.0);
+    EXPECT_EQ(mapQuality(flip, aamap, 0.1f).ownTruePixels, 4u);  // no mask: T' = T
+}
+
+// A black-to-white step moved by one pixel: FLIP is above 0.1 on pixels beside the moved one where
+// both images are equal, and those are exactly the true pixels that are not own.
+TEST(MapQuality, ShiftedHighContrastStepSpreadsFlipBeyondTheDifferingPixels) {
+    ImageRGB ref(32, 8, glm::vec3(0.0f)), oneRay(32, 8, glm::vec3(0.0f));
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 32; ++x) {
+            if (x >= 16) ref.at(x, y) = glm::vec3(1.0f);
+            if (x >= 17) oneRay.at(x, y) = glm::vec3(1.0f);
+        }
+    const Image<std::uint8_t> own = ownDisplayDifference(oneRay, ref, 1.0f);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 32; ++x) EXPECT_EQ(own.at(x, y), x == 16 ? 1 : 0) << x;
+    const MapQuality q = mapQuality(oneRay, ref, ImageGrey(32, 8, 0.0f));
+    EXPECT_EQ(q.ownTruePixels, 8u);          // the moved column
+    EXPECT_GT(q.truePixels, q.ownTruePixels);  // and FLIP's spread beside it
+    EXPECT_DOUBLE_EQ(q.ownRecall, 0.0);
+}
+
 TEST(MapQuality, RejectsMismatchedSizes) {
     EXPECT_THROW(mapQuality(ImageGrey(4, 4), ImageGrey(4, 3)), std::invalid_argument);
+    const Image<std::uint8_t> own(4, 3, 0);
+    EXPECT_THROW(mapQuality(ImageGrey(4, 4), ImageGrey(4, 4), 0.1f, &own), std::invalid_argument);
     EXPECT_THROW(mapQuality(ImageGrey(), ImageGrey()), std::invalid_argument);
 }
 

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -17,6 +18,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/image_io.h"
+#include "tests/common/scratch_dir.h"
 
 namespace fs = std::filesystem;
 using namespace aamap;
@@ -30,18 +32,11 @@ protected:
     void SetUp() override {
         const char* env = std::getenv("AAMAP_TEST_WRITE_FAULT");
         if (!env || std::string(env) != "ENOSPC@4096") GTEST_SKIP() << "run through ctest (sets AAMAP_TEST_WRITE_FAULT)";
-        dir_ = fs::temp_directory_path() / ("aamap-write-faults-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
+        scratch_.emplace(fs::temp_directory_path() / ("aamap-write-faults-" + std::to_string(::getpid())));
+        dir_ = scratch_->path();
     }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::vector<std::string> entries() const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
+    void TearDown() override { scratch_.reset(); }
+    std::vector<std::string> entries() const { return scratch_->entries(); }
     static std::string read(const fs::path& p) {
         std::ifstream in(p, std::ios::binary);
         std::ostringstream s;
@@ -61,6 +56,7 @@ protected:
             EXPECT_EQ(what.find('\n'), std::string::npos) << what;
         }
     }
+    std::optional<test::ScratchDir> scratch_;
     fs::path dir_;
 };
 
