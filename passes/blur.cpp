@@ -2,9 +2,11 @@
 
 #include <aamap/spirv.h>
 
+#include "glsl/shared/aamap_filter.h"
+
 namespace aamap::passes {
 
-BlurPass::BlurPass(VulkanContext& context) : pass_(context, spirv::blur_comp, "blur") {}
+BlurPass::BlurPass(VulkanContext& context) : pass_(context, spirv::blur_comp, "blur", AAMAP_FILTER_ROWS) {}
 
 graph::PassId BlurPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
                             const std::string& edges, const std::string& map, int radius, float noiseFloor,

@@ -5,13 +5,15 @@
 
 namespace aamap::passes {
 
-FilterPass::FilterPass(VulkanContext& context, std::span<const std::uint32_t> spirv, std::string kind)
+FilterPass::FilterPass(VulkanContext& context, std::span<const std::uint32_t> spirv, std::string kind,
+                       std::uint32_t rowsPerInvocation)
     : context_(&context),
       pipeline_(context, spirv,
                 vk::LayoutDesc{{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
                                static_cast<std::uint32_t>(sizeof(gpu::FilterPush)),
                                VK_SHADER_STAGE_COMPUTE_BIT}),
-      kind_(std::move(kind)) {}
+      kind_(std::move(kind)),
+      rowsPerInvocation_(rowsPerInvocation) {}
 
 graph::PassId FilterPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& name,
                               const std::string& input, const std::string& output, const gpu::FilterPush& push,
@@ -33,7 +35,8 @@ graph::PassId FilterPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exec
             .storageImage(FILTER_BINDING_OUTPUT, out.view())
             .push(*context_, pc.cmd(), pipeline_);
         pipeline_.pushConstants(pc.cmd(), constants);
-        vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, AAMAP_FILTER_GROUP_X, AAMAP_FILTER_GROUP_Y);
+        const std::uint32_t strips = (out.info().height + rowsPerInvocation_ - 1) / rowsPerInvocation_;
+        vk::dispatch2D(pc.cmd(), out.info().width, strips, AAMAP_FILTER_GROUP_X, AAMAP_FILTER_GROUP_Y);
     });
     return id;
 }

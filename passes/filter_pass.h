@@ -15,7 +15,10 @@ namespace aamap::passes {
 
 class FilterPass {
 public:
-    FilterPass(VulkanContext& context, std::span<const std::uint32_t> spirv, std::string kind);
+    // rowsPerInvocation: output rows each invocation computes (the dispatch covers the output
+    // height divided by it), as the shader was written for.
+    FilterPass(VulkanContext& context, std::span<const std::uint32_t> spirv, std::string kind,
+               std::uint32_t rowsPerInvocation = 1);
 
     // Declares pass `name` (reads `input` as StorageRead, writes `output` as StorageWrite) and
     // registers its recording. inSize/outSize of `push` are filled from the live images. The
@@ -30,6 +33,7 @@ private:
     VulkanContext* context_;
     vk::Pipeline pipeline_;
     std::string kind_;
+    std::uint32_t rowsPerInvocation_;
 };
 
 }  // namespace aamap::passes

@@ -2,9 +2,12 @@
 
 #include <aamap/spirv.h>
 
+#include "glsl/shared/aamap_filter.h"
+
 namespace aamap::passes {
 
-LaplacianPass::LaplacianPass(VulkanContext& context) : pass_(context, spirv::laplacian_comp, "laplacian") {}
+LaplacianPass::LaplacianPass(VulkanContext& context)
+    : pass_(context, spirv::laplacian_comp, "laplacian", AAMAP_FILTER_ROWS) {}
 
 graph::PassId LaplacianPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
                                  const std::string& grey, const std::string& edges) const {

@@ -1,7 +1,9 @@
 #include "scene/texture_loader.h"
 
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <fstream>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -62,6 +64,29 @@ float srgbToLinear(float c) {
 // more is refused before stb_image allocates for it (a hostile or corrupt file, or a mistake).
 constexpr long long kMaxTexels = 8192LL * 8192LL;
 
+// Binary PNM (P5/P6) other than 8 bits with maxval 255 is refused: Debian 12's stb_image reads
+// 16-bit samples in the wrong byte order and, converting channels, past its buffer (found by
+// fuzz_texture; tests/corpus/texture/warn-16-bit-pnm-*), and it never scales by maxval.
+bool supportedPnm(const std::string& name, std::string* error) {
+    std::ifstream in(name, std::ios::binary);
+    char magic[2] = {};
+    if (!in.read(magic, 2) || magic[0] != 'P' || (magic[1] != '5' && magic[1] != '6')) return true;  // not PNM
+    long long fields[3] = {};
+    for (long long& field : fields) {
+        int c = in.get();
+        while (c != EOF && (std::isspace(c) || c == '#')) {
+            if (c == '#')
+                while (c != EOF && c != '\n') c = in.get();  // a comment to the end of the line
+            c = in.get();
+        }
+        if (c == EOF || !std::isdigit(c)) return true;  // malformed: stb_image reports it
+        for (; c != EOF && std::isdigit(c) && field < (1LL << 40); c = in.get()) field = 10 * field + (c - '0');
+    }
+    if (fields[2] == 255) return true;
+    if (error) *error = fmt::format("PNM with maxval {} is not supported (8-bit samples with maxval 255 only)", fields[2]);
+    return false;
+}
+
 bool withinTexelLimit(const std::string& name, std::string* error) {
     int width = 0, height = 0, channels = 0;
     if (!stbi_info(name.c_str(), &width, &height, &channels)) return true;  // stbi_load reports why
@@ -70,11 +95,40 @@ bool withinTexelLimit(const std::string& name, std::string* error) {
     return false;
 }
 
+// 8-bit texels in the file's own channel count: stb_image's channel conversion (req_comp) is not
+// used either, so a format whose conversion is as broken as 16-bit PNM's cannot overrun a buffer.
+struct Decoded8 {
+    unsigned char* pixels = nullptr;
+    int width = 0, height = 0, channels = 0;
+    ~Decoded8() { stbi_image_free(pixels); }
+    // Texel i as RGBA: grey and grey + alpha replicate the grey, a missing alpha is opaque.
+    std::array<unsigned char, 4> rgba(std::size_t i) const {
+        const unsigned char* t = pixels + i * static_cast<std::size_t>(channels);
+        switch (channels) {
+            case 1: return {t[0], t[0], t[0], 255};
+            case 2: return {t[0], t[0], t[0], t[1]};
+            case 3: return {t[0], t[1], t[2], 255};
+            default: return {t[0], t[1], t[2], t[3]};
+        }
+    }
+};
+
+bool decode8(const std::string& name, Decoded8& out, std::string* error) {
+    out.pixels = stbi_load(name.c_str(), &out.width, &out.height, &out.channels, 0);
+    if (out.pixels && out.channels >= 1 && out.channels <= 4) return true;
+    if (error) {
+        *error = out.pixels ? fmt::format("{} channels per texel", out.channels)
+                 : stbi_failure_reason() ? stbi_failure_reason()
+                                         : "unknown stb_image error";
+    }
+    return false;
+}
+
 }  // namespace
 
 std::optional<Texture> loadTexture(const fs::path& path, std::string* error) {
     const std::string name = path.string();
-    if (!withinTexelLimit(name, error)) return std::nullopt;
+    if (!supportedPnm(name, error) || !withinTexelLimit(name, error)) return std::nullopt;
     int width = 0, height = 0, channels = 0;
     Texture texture;
     texture.path = path;
@@ -87,19 +141,19 @@ std::optional<Texture> loadTexture(const fs::path& path, std::string* error) {
         texture.rgba.assign(pixels, pixels + static_cast<std::size_t>(width) * height * 4);
         stbi_image_free(pixels);
     } else {
-        unsigned char* pixels = stbi_load(name.c_str(), &width, &height, &channels, 4);
-        if (!pixels) {
-            if (error) *error = stbi_failure_reason() ? stbi_failure_reason() : "unknown stb_image error";
-            return std::nullopt;
-        }
+        Decoded8 decoded;
+        if (!decode8(name, decoded, error)) return std::nullopt;
+        width = decoded.width;
+        height = decoded.height;
         std::array<float, 256> toLinear{};
         for (int i = 0; i < 256; ++i) toLinear[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
-        const std::size_t count = static_cast<std::size_t>(width) * height * 4;
-        texture.rgba.resize(count);
-        for (std::size_t i = 0; i < count; ++i) {
-            texture.rgba[i] = (i % 4 == 3) ? static_cast<float>(pixels[i]) / 255.0f : toLinear[pixels[i]];
+        const std::size_t texels = static_cast<std::size_t>(width) * height;
+        texture.rgba.resize(4 * texels);
+        for (std::size_t i = 0; i < texels; ++i) {
+            const std::array<unsigned char, 4> t = decoded.rgba(i);
+            for (int c = 0; c < 3; ++c) texture.rgba[4 * i + c] = toLinear[t[c]];
+            texture.rgba[4 * i + 3] = static_cast<float>(t[3]) / 255.0f;
         }
-        stbi_image_free(pixels);
     }
     texture.width = width;
     texture.height = height;
@@ -108,25 +162,21 @@ std::optional<Texture> loadTexture(const fs::path& path, std::string* error) {
 
 std::optional<Texture> loadCoverageTexture(const fs::path& path, std::string* error) {
     const std::string name = path.string();
-    if (!withinTexelLimit(name, error)) return std::nullopt;
-    int width = 0, height = 0, channels = 0;
-    unsigned char* pixels = stbi_load(name.c_str(), &width, &height, &channels, 4);
-    if (!pixels) {
-        if (error) *error = stbi_failure_reason() ? stbi_failure_reason() : "unknown stb_image error";
-        return std::nullopt;
-    }
-    const bool hasAlpha = channels == 2 || channels == 4;
+    if (!supportedPnm(name, error) || !withinTexelLimit(name, error)) return std::nullopt;
+    Decoded8 decoded;
+    if (!decode8(name, decoded, error)) return std::nullopt;
+    const bool hasAlpha = decoded.channels == 2 || decoded.channels == 4;
     Texture texture;
     texture.path = path;
-    texture.width = width;
-    texture.height = height;
-    const std::size_t texels = static_cast<std::size_t>(width) * height;
+    texture.width = decoded.width;
+    texture.height = decoded.height;
+    const std::size_t texels = static_cast<std::size_t>(decoded.width) * decoded.height;
     texture.rgba.resize(4 * texels);
     for (std::size_t i = 0; i < texels; ++i) {
-        const float coverage = static_cast<float>(pixels[4 * i + (hasAlpha ? 3 : 0)]) / 255.0f;
+        const std::array<unsigned char, 4> t = decoded.rgba(i);
+        const float coverage = static_cast<float>(hasAlpha ? t[3] : t[0]) / 255.0f;
         for (int c = 0; c < 4; ++c) texture.rgba[4 * i + c] = coverage;
     }
-    stbi_image_free(pixels);
     return texture;
 }
 

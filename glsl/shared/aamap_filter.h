@@ -26,5 +26,8 @@
 // Compute workgroup size of the filter passes.
 #define AAMAP_FILTER_GROUP_X 16
 #define AAMAP_FILTER_GROUP_Y 16
+// Output rows per invocation of the Laplacian and the blur (a strip of one column;
+// glsl/laplacian.comp, glsl/blur.comp).
+#define AAMAP_FILTER_ROWS 4
 
 #endif

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <optional>
 #include <fstream>
 #include <stdexcept>
 
@@ -12,7 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_io.h"
-#include "tests/common/scratch_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace aamap {
 namespace {
@@ -21,16 +20,10 @@ namespace fs = std::filesystem;
 
 class ImageIo : public ::testing::Test {
 protected:
-    void SetUp() override {
-        scratch_.emplace(fs::path(::testing::TempDir()) /
-                         ("aamap_image_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name())));
-        dir_ = scratch_->path();
-    }
-    void TearDown() override { scratch_.reset(); }
-    std::vector<std::string> entries() const { return scratch_->entries(); }
+    std::vector<std::string> entries() const { return scratch_.entries(); }
 
-    std::optional<test::ScratchDir> scratch_;
-    fs::path dir_;
+    test::TempDir scratch_;
+    const fs::path dir_ = scratch_.path();
 };
 
 TEST_F(ImageIo, ExrRgbRoundTripIsExact) {

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "../scene/temp_dir.h"
+#include "tests/common/temp_dir.h"
 #include "../scene/textured_quad_files.h"
 #include "gpu_fixture.h"
 #include "passes/gbuffer_textures.h"

@@ -18,7 +18,7 @@
 #include "core/error.h"
 #include "core/image.h"
 #include "core/image_io.h"
-#include "tests/common/scratch_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace aamap;
@@ -32,7 +32,7 @@ protected:
     void SetUp() override {
         const char* env = std::getenv("AAMAP_TEST_WRITE_FAULT");
         if (!env || std::string(env) != "ENOSPC@4096") GTEST_SKIP() << "run through ctest (sets AAMAP_TEST_WRITE_FAULT)";
-        scratch_.emplace(fs::temp_directory_path() / ("aamap-write-faults-" + std::to_string(::getpid())));
+        scratch_.emplace();
         dir_ = scratch_->path();
     }
     void TearDown() override { scratch_.reset(); }
@@ -56,7 +56,7 @@ protected:
             EXPECT_EQ(what.find('\n'), std::string::npos) << what;
         }
     }
-    std::optional<test::ScratchDir> scratch_;
+    std::optional<test::TempDir> scratch_;  // made only when the test runs (SetUp may skip)
     fs::path dir_;
 };
 

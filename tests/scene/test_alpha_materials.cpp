@@ -5,7 +5,7 @@
 #include "core/error.h"
 #include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
-#include "temp_dir.h"
+#include "tests/common/temp_dir.h"
 #include "textured_quad_files.h"
 
 namespace aamap::test {

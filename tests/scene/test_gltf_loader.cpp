@@ -10,7 +10,7 @@
 #include "scene/lights.h"
 #include "mutate.h"
 #include "base64.h"
-#include "temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace aamap {
 namespace {

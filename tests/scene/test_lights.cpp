@@ -6,7 +6,7 @@
 
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
-#include "tests/scene/temp_dir.h"
+#include "tests/common/temp_dir.h"
 #include "scene/light_file.h"
 #include "scene/lights.h"
 

@@ -2,7 +2,7 @@
 
 #include "core/error.h"
 #include "scene/load_scene.h"
-#include "temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace aamap {
 namespace {

@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "scene/lights.h"
 #include "scene/obj_loader.h"
-#include "temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace aamap {
 namespace {

@@ -7,7 +7,7 @@
 #include "scene/obj_loader.h"
 #include "scene/view_file.h"
 #include "mutate.h"
-#include "temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace aamap {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "scene/view_file.h"
-#include "temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace aamap {
 namespace {

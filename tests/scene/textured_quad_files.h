@@ -10,7 +10,7 @@
 #include <stb_image_write.h>
 
 #include "base64.h"
-#include "temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace aamap::test {
 

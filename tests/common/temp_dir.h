@@ -1,11 +1,14 @@
 #pragma once
 // A scratch folder per test, removed afterwards, with a helper that writes files byte-exactly
-// (so CRLF test input stays CRLF).
+// (so CRLF test input stays CRLF) and one that lists what a test left in it (the output writers'
+// "nothing half-written" checks).
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -38,6 +41,13 @@ public:
         std::ofstream out(file, std::ios::binary);
         out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
         return file;
+    }
+
+    std::vector<std::string> entries() const {
+        std::vector<std::string> names;
+        for (const auto& e : std::filesystem::directory_iterator(path_)) names.push_back(e.path().filename().string());
+        std::sort(names.begin(), names.end());
+        return names;
     }
 
 private:
