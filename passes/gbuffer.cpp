@@ -80,9 +80,17 @@ MaterialSampling sampling(const Material& m, const Scene& scene, const TextureAt
     return out;
 }
 
-// Unindexed vertices in the plain or the textured layout, as bytes.
-std::vector<std::byte> flatten(const Scene& scene, const TextureAtlas& atlas, bool textured, bool& alphaMasked,
-                               std::uint32_t& vertexCount) {
+// Unindexed vertices in the plain or the textured layout, as bytes: the triangles the camera sees
+// first, then the glass ones, which only cast shadows (GBufferPass, "Glass"). `drawn` gets the
+// mesh triangle of each triangle in that order.
+struct FlatMesh {
+    std::vector<std::byte> bytes;
+    std::vector<std::uint32_t> drawn;
+    std::uint32_t cameraVertices = 0, allVertices = 0;
+    bool alphaMasked = false;
+};
+
+FlatMesh flatten(const Scene& scene, const TextureAtlas& atlas, bool textured) {
     const TriangleMesh& mesh = scene.mesh;
     const std::vector<Material>& materials = scene.materials;
     const Material fallback;  // for ids past the material list
@@ -90,13 +98,21 @@ std::vector<std::byte> flatten(const Scene& scene, const TextureAtlas& atlas, bo
     for (const Material& m : materials) perMaterial.push_back(sampling(m, scene, atlas));
     const MaterialSampling fallbackSampling;
     const std::size_t stride = textured ? sizeof(TexturedVertex) : sizeof(Vertex);
-    std::vector<std::byte> out;
+    FlatMesh flat;
+    std::vector<std::byte>& out = flat.bytes;
     out.reserve(mesh.triangles.size() * 3 * stride);
     const bool hasNormals = mesh.normals.size() == mesh.positions.size();
     const bool hasUvs = !mesh.uvs.empty() && mesh.uvs.size() == mesh.positions.size();
-    alphaMasked = false;
-    vertexCount = 0;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto isGlass = [&](std::size_t t) {
+        const std::uint32_t id = t < mesh.materialIds.size() ? mesh.materialIds[t] : 0u;
+        return id < materials.size() && materials[id].kind == MaterialKind::Glass;
+    };
+    std::vector<std::uint32_t> order;  // camera triangles, then glass, each in mesh order
+    order.reserve(mesh.triangles.size());
+    for (int glassPass = 0; glassPass < 2; ++glassPass)
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+            if (isGlass(t) == (glassPass == 1)) order.push_back(static_cast<std::uint32_t>(t));
+    for (const std::uint32_t t : order) {
         const glm::uvec3 tri = mesh.triangles[t];
         const glm::vec3 p[3] = {mesh.positions[tri.x], mesh.positions[tri.y], mesh.positions[tri.z]};
         const glm::vec3 cross = glm::cross(p[1] - p[0], p[2] - p[0]);
@@ -106,7 +122,9 @@ std::vector<std::byte> flatten(const Scene& scene, const TextureAtlas& atlas, bo
         const Material& m = id < materials.size() ? materials[id] : fallback;
         const MaterialSampling& ms = id < materials.size() ? perMaterial[id] : fallbackSampling;
         if (ms.dropped) continue;
-        alphaMasked |= ms.fields.params.y > 0.0f;
+        flat.alphaMasked |= ms.fields.params.y > 0.0f;
+        flat.drawn.push_back(t);
+        if (!isGlass(t)) flat.cameraVertices += 3;
         for (int k = 0; k < 3; ++k) {
             glm::vec3 n = hasNormals ? mesh.normals[tri[k]] : face;
             if (!(glm::dot(n, n) > 0.0f)) n = face;  // zero or NaN normals in the file
@@ -115,10 +133,10 @@ std::vector<std::byte> flatten(const Scene& scene, const TextureAtlas& atlas, bo
             v.uv = hasUvs ? mesh.uvs[tri[k]] : glm::vec2(0.0f);
             const auto* bytes = reinterpret_cast<const std::byte*>(&v);
             out.insert(out.end(), bytes, bytes + stride);
-            ++vertexCount;
+            ++flat.allVertices;
         }
     }
-    return out;
+    return flat;
 }
 
 // The atlas as a sampled RGBA8 sRGB array image, uploaded once.
@@ -257,23 +275,30 @@ GBufferPass::GBufferPass(VulkanContext& context, const Scene& scene) : context_(
     textured_ = !atlas.empty();
     atlasEntries_ = static_cast<std::uint32_t>(atlas.entries.size());
     if (textured_) atlas_ = uploadAtlas(context, atlas);
-    const std::vector<std::byte> vertices = flatten(scene, atlas, textured_, alphaMasked_, vertexCount_);
+    FlatMesh flat = flatten(scene, atlas, textured_);
+    alphaMasked_ = flat.alphaMasked;
+    vertexCount_ = flat.cameraVertices;
+    occluderVertexCount_ = flat.allVertices;
+    drawnTriangles_ = std::move(flat.drawn);
+    const std::vector<std::byte>& vertices = flat.bytes;
     if (!vertices.empty())
         vertices_ = vk::uploadBuffer(context, vertices, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    positions_.resize(vertexCount_);
-    for (std::uint32_t i = 0; i < vertexCount_; ++i)
+    positions_.resize(occluderVertexCount_);
+    for (std::uint32_t i = 0; i < occluderVertexCount_; ++i)
         std::memcpy(&positions_[i], vertices.data() + static_cast<std::size_t>(i) * vertexStride(), sizeof(glm::vec3));
-    if (!alphaMasked_ && vertexCount_ > 0) {
+    if (!alphaMasked_ && occluderVertexCount_ > 0) {
         SharedPositions shared = sharePositions(positions_);
         sharedPositions_ = vk::uploadBuffer(context, bytesOf(shared.distinct), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
         positionIndices_ = vk::uploadBuffer(context, bytesOf(shared.index), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
         positionIndex_ = std::move(shared.index);
+    }
+    if (sharedPositions() && vertexCount_ > 0) {  // the camera's depth pre-pass and tie order
         std::vector<std::uint32_t> reversed(vertexCount_);
         for (std::uint32_t v = 0; v < vertexCount_; ++v) reversed[v] = vertexCount_ - 3 * (v / 3 + 1) + v % 3;
         reversedTriangles_ = vk::uploadBuffer(context, bytesOf(reversed), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
         depthPipeline_ = makeDepthPipeline(context);
     }
-    pipeline_ = makePipeline(context, false, textured_, false, sharedPositions());
+    pipeline_ = makePipeline(context, false, textured_, false, hasDepthPrepass());
 
     setLights({});
 }
@@ -310,9 +335,13 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
         {"gbuffer", graph::QueueKind::Graphics, accesses,
          std::string(shadowed ? "rasterise the scene with local illumination and shadow-map visibility per light"
                               : "rasterise the scene with local illumination") +
-             (textured_ ? "; " + atlasSummary() : "")});
+             (textured_ ? "; " + atlasSummary() : "") +
+             (occluderVertexCount_ > vertexCount_
+                  ? fmt::format("; {} glass triangles seen through (they only cast shadows)",
+                                (occluderVertexCount_ - vertexCount_) / 3)
+                  : std::string())});
     if (shadowed && !shadowedPipeline_.handle())
-        shadowedPipeline_ = makePipeline(*context_, true, textured_, false, sharedPositions());
+        shadowedPipeline_ = makePipeline(*context_, true, textured_, false, hasDepthPrepass());
     gpu::GBufferPush push{};
     push.viewProj = reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), camera.viewMatrix());
     push.cameraPos = glm::vec4(camera.origin, 1.0f);
@@ -323,7 +352,7 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
     const vk::Pipeline& pipeline = shadowed ? shadowedPipeline_ : pipeline_;
     executor.setRecord("gbuffer", [this, colour, depth, push, &pipeline, shadow = shadows.resource](
                                       vk::PassContext& pc) {
-        record(pc, colour, depth, pipeline, shadow, {&push, 1}, sharedPositions());
+        record(pc, colour, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass());
     });
     return id;
 }

@@ -11,6 +11,13 @@
 // draw goes through the triangles in reverse order (same corners, same provoking vertex): the
 // first triangle of the mesh wins a tie, as with GREATER and no pre-pass, and the image is the same.
 //
+// Glass: the tracer ignores a dielectric's kd and shows what lies behind it (Fresnel reflection
+// and refraction; a thin pane transmits ~92 % of it, barely shifted), and its shadow rays stop at
+// glass. So the camera's draws skip glass triangles (the Snapshot sees through them, without the
+// refraction offset: curved glass is out of scope), while the shadow cube maps still draw them.
+// They come last in the vertex buffer, so the camera draws the first vertexCount() vertices and
+// the shadow pass all occluderVertexCount().
+//
 // Textures and alpha (passes/gbuffer_textures.h): a scene whose used materials sample a texture
 // gets the textured pipeline variants (uv and atlas entry per vertex, one atlas binding); other
 // scenes bind no texture at all. Alpha-tested materials with constant coverage need no texture:
@@ -72,7 +79,12 @@ public:
     // Reversed depth (z' = w - z, cleared to 0, GREATER wins) applied to projection * view.
     static glm::mat4 reversedViewProjection(const glm::mat4& projection, const glm::mat4& view);
 
+    // Vertices the camera draws (three per triangle, vertex-buffer order from 0), and those the
+    // shadow pass draws: the same followed by the glass triangles (see "Glass" above).
     std::uint32_t vertexCount() const { return vertexCount_; }
+    std::uint32_t occluderVertexCount() const { return occluderVertexCount_; }
+    // The mesh triangle of each triangle of the vertex buffer (occluderVertexCount() / 3 of them).
+    std::span<const std::uint32_t> drawnTriangles() const { return drawnTriangles_; }
     bool textured() const { return textured_; }        // the atlas is bound (scene has textures)
     bool alphaMasked() const { return alphaMasked_; }  // some texel can be cut out (shadows test it)
     const vk::Image& atlas() const { return atlas_; }  // valid only when textured()
@@ -81,7 +93,7 @@ public:
     // For the shadow pass, which draws the same vertices from the same lights.
     const vk::Buffer& vertexBuffer() const { return vertices_; }
     const vk::Buffer& lightBuffer() const { return lights_; }
-    // CPU copies for the shadow pass's per-face culling: the drawn vertices' positions (three per
+    // CPU copies for the shadow pass's per-face culling: the occluders' vertex positions (three per
     // triangle, in vertex-buffer order) and the lights' positions, with a counter of setLights.
     std::span<const glm::vec3> vertexPositions() const { return positions_; }
     std::span<const glm::vec3> lightPositions() const { return lightPositions_; }
@@ -101,6 +113,7 @@ public:
     static constexpr std::uint32_t kUvOffset = 48, kTexRectOffset = 56, kTexParamsOffset = 64;
 
 private:
+    bool hasDepthPrepass() const { return depthPipeline_.handle() != VK_NULL_HANDLE; }
     void record(vk::PassContext& pc, const std::string& colour, const std::string& depth, const vk::Pipeline& pipeline,
                 const std::string& shadow, std::span<const gpu::GBufferPush> draws, bool prepass) const;
 
@@ -118,7 +131,8 @@ private:
     std::uint64_t lightsVersion_ = 0;
     bool textured_ = false, alphaMasked_ = false;
     std::uint32_t atlasEntries_ = 0;
-    std::uint32_t vertexCount_ = 0;
+    std::uint32_t vertexCount_ = 0, occluderVertexCount_ = 0;
+    std::vector<std::uint32_t> drawnTriangles_;
     std::uint32_t lightCount_ = 0;
 };
 

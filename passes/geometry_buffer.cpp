@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -11,37 +11,19 @@
 
 #include "engine/vk/context.h"
 #include "glsl/shared/snapshot_interface.h"
-#include "passes/gbuffer_textures.h"
 
 namespace aamap::passes {
 
 namespace {
 
-// gbuffer.cpp's rule for triangles it never draws (sampling(): alpha-tested material with constant
-// coverage below its cutoff). `sampled`: the material has an atlas entry.
-bool droppedByGBuffer(const Material& m, bool sampled, const std::pair<int, int>& key) {
-    if (!isAlphaTested(m)) return false;
-    const bool coverageTexture = sampled && key.second == m.alphaTexture && m.alphaTexture >= 0;
-    return (!coverageTexture || m.alpha <= 0.0f) && m.alpha < effectiveAlphaCutoff(m);
-}
-
-// (object, material) of each triangle the G-buffer draws, in its vertex-buffer order.
-std::vector<glm::uvec2> drawnTriangleIds(const Scene& scene, bool textured) {
+// (object, material) of each triangle the G-buffer's camera draws, in its vertex-buffer order.
+std::vector<glm::uvec2> drawnTriangleIds(const Scene& scene, const GBufferPass& gbuffer) {
     const TriangleMesh& mesh = scene.mesh;
-    // The atlas holds an entry for every textured key of a used material (buildTextureAtlas).
-    const std::set<std::uint32_t> used(mesh.materialIds.begin(), mesh.materialIds.end());
-    std::vector<char> dropped(scene.materials.size(), 0);
-    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-        const auto key = passes::atlasKey(scene.materials[i], scene);
-        const bool sampled =
-            textured && used.contains(static_cast<std::uint32_t>(i)) && (key.first >= 0 || key.second >= 0);
-        dropped[i] = droppedByGBuffer(scene.materials[i], sampled, key);
-    }
+    const std::span<const std::uint32_t> drawn = gbuffer.drawnTriangles().first(gbuffer.vertexCount() / 3);
     std::vector<glm::uvec2> out;
-    out.reserve(mesh.triangles.size());
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    out.reserve(drawn.size());
+    for (const std::uint32_t t : drawn) {
         const std::uint32_t material = t < mesh.materialIds.size() ? mesh.materialIds[t] : 0u;
-        if (material < dropped.size() && dropped[material]) continue;
         const std::uint32_t object = t < mesh.objectIds.size() ? mesh.objectIds[t] : 0u;
         out.push_back({object, material});
     }
@@ -110,11 +92,8 @@ VkRenderingAttachmentInfo colourAttachment(const vk::Image& image) {
 }  // namespace
 
 GeometryBufferPass::GeometryBufferPass(VulkanContext& context, const Scene& scene, const GBufferPass& gbuffer)
-    : context_(&context), gbuffer_(&gbuffer), pendingIds_(drawnTriangleIds(scene, gbuffer.textured())) {
+    : context_(&context), gbuffer_(&gbuffer), pendingIds_(drawnTriangleIds(scene, gbuffer)) {
     triangleCount_ = static_cast<std::uint32_t>(pendingIds_.size());
-    if (std::uint64_t{triangleCount_} * 3 != gbuffer.vertexCount())
-        throw std::logic_error("GeometryBufferPass: the G-buffer draws " + std::to_string(gbuffer.vertexCount()) +
-                               " vertices, expected 3 x " + std::to_string(triangleCount_) + " triangles");
 }
 
 GeometryBufferPass::~GeometryBufferPass() = default;

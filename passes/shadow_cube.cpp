@@ -128,11 +128,12 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
     graph.addResource(desc);
 
     std::uint64_t kept = 0;
-    if (geometry.vertexCount() > 0) {
+    if (geometry.occluderVertexCount() > 0) {
         updateFaceLists(geometry, nearPlane);
         for (const auto& range : faceRanges_) kept += range.second;
     }
-    const double keptShare = geometry.vertexCount() > 0 ? static_cast<double>(kept) / (6.0 * lights * geometry.vertexCount()) : 0.0;
+    const std::uint32_t occluders = geometry.occluderVertexCount();
+    const double keptShare = occluders > 0 ? static_cast<double>(kept) / (6.0 * lights * occluders) : 0.0;
     std::string names;
     for (std::uint32_t i = 0; i < lights && i < 6; ++i) names += fmt::format("{}'{}'", i ? ", " : "", lightNames[i]);
     if (lights > 6) names += fmt::format(", ... ({} more)", lights - 6);
@@ -163,7 +164,7 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
         VkCommandBuffer cmd = pc.cmd();
         vkCmdBeginRendering(cmd, &rendering);
         vk::setFullViewport(cmd, extent);
-        if (geometry.vertexCount() > 0) {
+        if (geometry.occluderVertexCount() > 0) {
             pipeline.bind(cmd);
             vk::DescriptorPush descriptors;
             descriptors.uniformBuffer(SHADOW_BINDING_LIGHTS, geometry.lightBuffer().handle());
