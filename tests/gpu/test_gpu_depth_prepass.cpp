@@ -8,19 +8,10 @@
 #include "gpu_fixture.h"
 #include "passes/gbuffer.h"
 #include "passes/snapshot.h"
+#include "test_scenes.h"
 
 namespace aamap::test {
 namespace {
-
-// A rectangle [-h,h]^2 in the plane z, facing +z, with material `material`.
-void addSquare(Scene& scene, float h, float z, std::uint32_t material) {
-    const auto base = static_cast<std::uint32_t>(scene.mesh.positions.size());
-    scene.mesh.positions.insert(scene.mesh.positions.end(), {{-h, -h, z}, {h, -h, z}, {h, h, z}, {-h, h, z}});
-    scene.mesh.normals.insert(scene.mesh.normals.end(), 4, glm::vec3(0, 0, 1));
-    scene.mesh.triangles.insert(scene.mesh.triangles.end(), {{base, base + 1, base + 2}, {base, base + 2, base + 3}});
-    scene.mesh.materialIds.insert(scene.mesh.materialIds.end(), 2, material);
-    scene.mesh.objectIds.insert(scene.mesh.objectIds.end(), 2, material);
-}
 
 // Red (material 0) and green (material 1) squares at the given depths and in the given order.
 Scene twoSquares(std::array<std::uint32_t, 2> order, std::array<float, 2> z) {
@@ -30,7 +21,7 @@ Scene twoSquares(std::array<std::uint32_t, 2> order, std::array<float, 2> z) {
     red.kd = {0.8f, 0.0f, 0.0f};
     green.kd = {0.0f, 0.8f, 0.0f};
     scene.materials = {red, green};
-    for (int i = 0; i < 2; ++i) addSquare(scene, 1.0f, z[order[i]], order[i]);
+    for (int i = 0; i < 2; ++i) addQuadZ(scene, z[order[i]], -1.0f, 1.0f, -1.0f, 1.0f, order[i]);
     PointLight light;
     light.position = {0.2f, 0.1f, 2.0f};
     light.intensity = glm::vec3(10.0f);
@@ -38,14 +29,7 @@ Scene twoSquares(std::array<std::uint32_t, 2> order, std::array<float, 2> z) {
     return scene;
 }
 
-View frontView() {
-    View view;
-    view.position = {0.0f, 0.0f, 3.0f};
-    view.direction = {0, 0, -1};
-    view.up = {0, 1, 0};
-    view.horizontalFovDeg = view.verticalFovDeg = 30.0f;
-    return view;
-}
+View frontView() { return viewDownZ({0.0f, 0.0f, 3.0f}, 30.0f); }
 
 // Pixels where red wins and where green wins; every pixel of the snapshot sees a square.
 std::array<int, 2> winners(VulkanContext& context, const Scene& scene) {

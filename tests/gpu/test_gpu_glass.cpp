@@ -7,19 +7,10 @@
 
 #include "gpu_fixture.h"
 #include "passes/snapshot.h"
+#include "test_scenes.h"
 
 namespace aamap::test {
 namespace {
-
-// A quad z = `z` over [x0,x1] x [y0,y1], facing +z, with material `material`.
-void addQuad(Scene& scene, float z, float x0, float x1, float y0, float y1, std::uint32_t material) {
-    const auto base = static_cast<std::uint32_t>(scene.mesh.positions.size());
-    scene.mesh.positions.insert(scene.mesh.positions.end(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
-    scene.mesh.normals.insert(scene.mesh.normals.end(), 4, glm::vec3(0, 0, 1));
-    scene.mesh.triangles.insert(scene.mesh.triangles.end(), {{base, base + 1, base + 2}, {base, base + 2, base + 3}});
-    scene.mesh.materialIds.insert(scene.mesh.materialIds.end(), 2, material);
-    scene.mesh.objectIds.insert(scene.mesh.objectIds.end(), 2, material);
-}
 
 constexpr float kCameraHeight = 3.0f;
 constexpr float kFovDeg = 50.0f;
@@ -37,9 +28,9 @@ Scene paneScene(MaterialKind paneKind) {
     pane.kd = glm::vec3(1.0f);  // ignored by the tracer for glass
     pane.ks = glm::vec3(1.0f);
     scene.materials = {grey, red, pane};
-    addQuad(scene, 0.0f, -2.0f, 2.0f, -2.0f, 2.0f, 0);
-    addQuad(scene, 0.001f, -0.25f, 0.25f, -0.25f, 0.25f, 1);
-    addQuad(scene, 0.5f, -0.5f, 0.5f, -0.5f, 0.5f, 2);
+    addQuadZ(scene, 0.0f, -2.0f, 2.0f, -2.0f, 2.0f, 0);
+    addQuadZ(scene, 0.001f, -0.25f, 0.25f, -0.25f, 0.25f, 1);
+    addQuadZ(scene, 0.5f, -0.5f, 0.5f, -0.5f, 0.5f, 2);
     PointLight light;
     light.position = {3.0f, 0.0f, 2.0f};
     light.intensity = glm::vec3(20.0f);
@@ -47,14 +38,7 @@ Scene paneScene(MaterialKind paneKind) {
     return scene;
 }
 
-View topView() {
-    View view;
-    view.position = {0.0f, 0.0f, kCameraHeight};
-    view.direction = {0, 0, -1};
-    view.up = {0, 1, 0};
-    view.horizontalFovDeg = view.verticalFovDeg = kFovDeg;
-    return view;
-}
+View topView() { return viewDownZ({0.0f, 0.0f, kCameraHeight}, kFovDeg); }
 
 // The snapshot's colour where the camera sees the floor point (x, y, 0) (unless something is in
 // front of it).

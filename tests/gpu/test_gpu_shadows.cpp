@@ -9,6 +9,7 @@
 #include "passes/snapshot.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
+#include "test_scenes.h"
 
 namespace aamap::test {
 namespace {
@@ -67,14 +68,7 @@ Scene boxScene(bool withBox, bool withLight = true) {
 }
 
 // Straight down from above the shadow's far edge: the floor maps linearly onto the image.
-View topView() {
-    View view;
-    view.position = {0.5f, 0.0f, 3.0f};
-    view.direction = {0, 0, -1};
-    view.up = {0, 1, 0};
-    view.horizontalFovDeg = view.verticalFovDeg = 40.0f;
-    return view;
-}
+View topView() { return viewDownZ({0.5f, 0.0f, 3.0f}, 40.0f); }
 
 int countPass(const SnapshotResult& r, const std::string& name) {
     int n = 0;
