@@ -15,14 +15,6 @@ namespace {
 const std::string kRowSums = "block_sum_row_prefixes";
 const std::string kRowCounts = "block_count_row_prefixes";
 
-graph::ResourceDesc buffer(const std::string& name, std::uint64_t bytes) {
-    graph::ResourceDesc d;
-    d.name = name;
-    d.kind = graph::ResourceKind::Buffer;
-    d.bytes = bytes;
-    return d;
-}
-
 vk::LayoutDesc storageLayout(std::vector<VkDescriptorType> bindings) {
     return {std::move(bindings), static_cast<std::uint32_t>(sizeof(gpu::BlockSumPush)), VK_SHADER_STAGE_COMPUTE_BIT};
 }
@@ -47,10 +39,10 @@ void BlockSumPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, c
     if (width <= 0 || height <= 0) throw std::invalid_argument("BlockSumPass: non-positive map size");
     const std::uint64_t prefixes = static_cast<std::uint64_t>(width + 1) * static_cast<std::uint64_t>(height);
     const std::uint64_t table = tableSize(width, height);
-    graph.addResource(buffer(kRowSums, prefixes * 2 * sizeof(float)));
-    graph.addResource(buffer(kRowCounts, prefixes * sizeof(std::uint32_t)));
-    graph.addResource(buffer(kBlockSums, table * 2 * sizeof(float)));
-    graph.addResource(buffer(kBlockCounts, table * sizeof(std::uint32_t)));
+    graph.addResource(graph::bufferResource(kRowSums, prefixes * 2 * sizeof(float)));
+    graph.addResource(graph::bufferResource(kRowCounts, prefixes * sizeof(std::uint32_t)));
+    graph.addResource(graph::bufferResource(kBlockSums, table * 2 * sizeof(float)));
+    graph.addResource(graph::bufferResource(kBlockCounts, table * sizeof(std::uint32_t)));
     const gpu::BlockSumPush push{{width, height}, {0, 0}};
 
     graph.addPass({"block_sum_rows",
@@ -114,12 +106,9 @@ BlockSumTables GpuBlockSums::compute(const ImageGrey& map) {
     if (map.empty()) throw std::invalid_argument("GpuBlockSums: empty map");
     executor_->clear();
     graph::RenderGraph graph;
-    graph::ResourceDesc d;
-    d.name = "map";
-    d.format = graph::Format::R32Float;
-    d.size = graph::Size::absolute(static_cast<std::uint32_t>(map.width()), static_cast<std::uint32_t>(map.height()));
-    d.imported = true;
-    graph.addResource(d);
+    graph.addResource(graph::imageResource(
+        "map", graph::Format::R32Float,
+        graph::Size::absolute(static_cast<std::uint32_t>(map.width()), static_cast<std::uint32_t>(map.height())), true));
     executor_->setUpload("map", toR32(map));
     pass_.add(graph, *executor_, "map", map.width(), map.height(), "block sums of a host map");
     const std::vector<std::string> outputs{kBlockSums, kBlockCounts};

@@ -402,12 +402,7 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
     const vk::Image& target = pc.image(colour);
     const vk::Image& z = pc.image(depth);
     const VkExtent2D extent{target.info().width, target.info().height};
-    VkRenderingAttachmentInfo colourInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    colourInfo.imageView = target.view();
-    colourInfo.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    colourInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    colourInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    colourInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // background: black, as rays that miss
+    const VkRenderingAttachmentInfo colourInfo = vk::clearedColourAttachment(target.view());  // black background
     VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depthInfo.imageView = z.view();
     depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;

@@ -12,15 +12,6 @@
 namespace aamap::passes {
 namespace {
 
-graph::ResourceDesc image(const std::string& name, graph::Format format, graph::Size size, bool imported = false) {
-    graph::ResourceDesc d;
-    d.name = name;
-    d.format = format;
-    d.size = std::move(size);
-    d.imported = imported;
-    return d;
-}
-
 vk::Pipeline edgePipeline(VulkanContext& context, bool combined) {
     std::vector<VkDescriptorType> bindings(combined ? 4 : 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
     static_assert(GEOMETRIC_BINDING_NORMAL_DEPTH == 0 && GEOMETRIC_BINDING_IDS == 1 &&
@@ -99,17 +90,17 @@ void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const
                    const MapChainInputs& in) {
     if (in.camera == nullptr) throw std::invalid_argument("addAamapChain: no camera");
     geometry.add(graph, executor, in.colour, *in.camera, in.nearPlane, in.farPlane, in.shadows);
-    graph.addResource(image(kEdges, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    graph.addResource(graph::imageResource(kEdges, graph::Format::R32Float, graph::Size::relative(in.colour)));
     if (source == AamapSource::Luminance) {
         chain.add(graph, executor, in.colour, in.width, in.height, in.params);
         // Declared for the explanation only: nothing reads kEdges, so the graph culls both.
         edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds, "", kEdges);
         return;
     }
-    graph.addResource(image(kGrey, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(image(kLaplacian, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(image(kMap, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(image(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
+    graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
     chain.luminance.add(graph, executor, in.colour, kGrey, in.params.exposure);
     chain.laplacian.add(graph, executor, kGrey, kLaplacian);  // geometric: kept only as a debug output
     edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds,
@@ -129,13 +120,13 @@ ImageGrey GpuGeometricEdges::edges(const cpu::GeometryImages& g, const ImageGrey
         throw std::invalid_argument("GpuGeometricEdges: empty or mismatched images");
     executor_->clear();
     graph::RenderGraph graph;
-    graph.addResource(image(kGeometryNormalDepth, graph::Format::RGBA32Float, sizeOf(W, H), true));
-    graph.addResource(image(kGeometryIds, graph::Format::RGBA32Float, sizeOf(W, H), true));
-    graph.addResource(image(kEdges, graph::Format::R32Float, sizeOf(W, H)));
+    graph.addResource(graph::imageResource(kGeometryNormalDepth, graph::Format::RGBA32Float, sizeOf(W, H), true));
+    graph.addResource(graph::imageResource(kGeometryIds, graph::Format::RGBA32Float, sizeOf(W, H), true));
+    graph.addResource(graph::imageResource(kEdges, graph::Format::R32Float, sizeOf(W, H)));
     executor_->setUpload(kGeometryNormalDepth, toRGBA32(g.normalDepth));
     executor_->setUpload(kGeometryIds, toRGBA32(g.ids));
     if (laplacian != nullptr) {
-        graph.addResource(image(kLaplacian, graph::Format::R32Float, sizeOf(W, H), true));
+        graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, sizeOf(W, H), true));
         executor_->setUpload(kLaplacian, toR32(*laplacian));
     }
     pass_.add(graph, *executor_, kGeometryNormalDepth, kGeometryIds, laplacian != nullptr ? kLaplacian : "", kEdges);

@@ -71,24 +71,6 @@ vk::Pipeline makePipeline(VulkanContext& context, const GBufferPass& gbuffer, bo
                                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT});
 }
 
-graph::ResourceDesc image(const std::string& name, graph::Format format, const std::string& like) {
-    graph::ResourceDesc d;
-    d.name = name;
-    d.format = format;
-    d.size = graph::Size::relative(like);
-    return d;
-}
-
-VkRenderingAttachmentInfo colourAttachment(const vk::Image& image) {
-    VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    info.imageView = image.view();
-    info.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    info.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    info.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // depth 0: uncovered
-    return info;
-}
-
 }  // namespace
 
 GeometryBufferPass::GeometryBufferPass(VulkanContext& context, const Scene& scene, const GBufferPass& gbuffer)
@@ -112,9 +94,9 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
                              const PinholeCamera& camera, float nearPlane, float farPlane,
                              const GBufferShadows& shadows) {
     const bool shadowed = !shadows.resource.empty();
-    graph.addResource(image(kGeometryNormalDepth, kFormat, like));
-    graph.addResource(image(kGeometryIds, kFormat, like));
-    graph.addResource(image(kGeometryDepth, graph::Format::D32Float, like));
+    graph.addResource(graph::imageResource(kGeometryNormalDepth, kFormat, graph::Size::relative(like)));
+    graph.addResource(graph::imageResource(kGeometryIds, kFormat, graph::Size::relative(like)));
+    graph.addResource(graph::imageResource(kGeometryDepth, graph::Format::D32Float, graph::Size::relative(like)));
     std::vector<graph::Access> accesses{graph::writes(kGeometryNormalDepth, graph::Usage::ColorAttachment),
                                         graph::writes(kGeometryIds, graph::Usage::ColorAttachment),
                                         graph::writes(kGeometryDepth, graph::Usage::DepthAttachment)};
@@ -142,8 +124,9 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
         const vk::Image& normalDepth = pc.image(kGeometryNormalDepth);
         const vk::Image& z = pc.image(kGeometryDepth);
         const VkExtent2D extent{normalDepth.info().width, normalDepth.info().height};
-        const VkRenderingAttachmentInfo colours[2] = {colourAttachment(normalDepth),
-                                                      colourAttachment(pc.image(kGeometryIds))};
+        // Cleared to 0: depth 0 and id 0 mean "uncovered".
+        const VkRenderingAttachmentInfo colours[2] = {vk::clearedColourAttachment(normalDepth.view()),
+                                                      vk::clearedColourAttachment(pc.image(kGeometryIds).view())};
         VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         depthInfo.imageView = z.view();
         depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;

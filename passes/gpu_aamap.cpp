@@ -6,15 +6,6 @@
 namespace aamap::passes {
 namespace {
 
-graph::ResourceDesc image(const std::string& name, graph::Format format, graph::Size size, bool imported = false) {
-    graph::ResourceDesc d;
-    d.name = name;
-    d.format = format;
-    d.size = std::move(size);
-    d.imported = imported;
-    return d;
-}
-
 graph::Size absoluteSize(int width, int height) {
     return graph::Size::absolute(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
 }
@@ -28,10 +19,10 @@ graph::Size sizeOf(const auto& image) {
 
 void FilterChain::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour, int width,
                       int height, const FilterParams& params) const {
-    graph.addResource(image(kGrey, graph::Format::R32Float, graph::Size::relative(colour)));
-    graph.addResource(image(kLaplacian, graph::Format::R32Float, graph::Size::relative(colour)));
-    graph.addResource(image(kMap, graph::Format::R32Float, graph::Size::relative(colour)));
-    graph.addResource(image(kAamap, graph::Format::R32Float,
+    graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(colour)));
+    graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, graph::Size::relative(colour)));
+    graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, graph::Size::relative(colour)));
+    graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float,
                             absoluteSize(width, height)));
     luminance.add(graph, executor, colour, kGrey, params.exposure);
     laplacian.add(graph, executor, kGrey, kLaplacian);
@@ -53,7 +44,7 @@ vk::ExecutionResult GpuAamap::run(graph::RenderGraph& graph, const std::vector<s
 cpu::AamapImages GpuAamap::build(const ImageRGB& snapshot, int width, int height, const FilterParams& params) {
     executor_->clear();
     graph::RenderGraph graph;
-    graph.addResource(image("colour", graph::Format::RGBA32Float, sizeOf(snapshot), true));
+    graph.addResource(graph::imageResource("colour", graph::Format::RGBA32Float, sizeOf(snapshot), true));
     executor_->setUpload("colour", toRGBA32(snapshot));
     chain_.add(graph, *executor_, "colour", width, height, params);
     const vk::ExecutionResult r = run(graph, {kGrey, kLaplacian, kAamap});
@@ -63,8 +54,8 @@ cpu::AamapImages GpuAamap::build(const ImageRGB& snapshot, int width, int height
 ImageGrey GpuAamap::greyscale(const ImageRGB& rgb, float exposure) {
     executor_->clear();
     graph::RenderGraph graph;
-    graph.addResource(image("colour", graph::Format::RGBA32Float, sizeOf(rgb), true));
-    graph.addResource(image(kGrey, graph::Format::R32Float, sizeOf(rgb)));
+    graph.addResource(graph::imageResource("colour", graph::Format::RGBA32Float, sizeOf(rgb), true));
+    graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, sizeOf(rgb)));
     executor_->setUpload("colour", toRGBA32(rgb));
     chain_.luminance.add(graph, *executor_, "colour", kGrey, exposure);
     return toImageGrey(run(graph, {kGrey}).outputs.at(kGrey));
@@ -73,8 +64,8 @@ ImageGrey GpuAamap::greyscale(const ImageRGB& rgb, float exposure) {
 ImageGrey GpuAamap::laplacianMagnitude(const ImageGrey& grey) {
     executor_->clear();
     graph::RenderGraph graph;
-    graph.addResource(image(kGrey, graph::Format::R32Float, sizeOf(grey), true));
-    graph.addResource(image(kLaplacian, graph::Format::R32Float, sizeOf(grey)));
+    graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, sizeOf(grey), true));
+    graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, sizeOf(grey)));
     executor_->setUpload(kGrey, toR32(grey));
     chain_.laplacian.add(graph, *executor_, kGrey, kLaplacian);
     return toImageGrey(run(graph, {kLaplacian}).outputs.at(kLaplacian));
@@ -84,8 +75,8 @@ ImageGrey GpuAamap::blurDeadZone(const ImageGrey& edges, int radius, float noise
     if (radius < 0) throw std::invalid_argument("GpuAamap::blurDeadZone: negative radius");
     executor_->clear();
     graph::RenderGraph graph;
-    graph.addResource(image(kLaplacian, graph::Format::R32Float, sizeOf(edges), true));
-    graph.addResource(image(kMap, graph::Format::R32Float, sizeOf(edges)));
+    graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, sizeOf(edges), true));
+    graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, sizeOf(edges)));
     executor_->setUpload(kLaplacian, toR32(edges));
     chain_.blur.add(graph, *executor_, kLaplacian, kMap, radius, noiseFloor, gain);
     return toImageGrey(run(graph, {kMap}).outputs.at(kMap));
@@ -95,8 +86,8 @@ ImageGrey GpuAamap::reduceMax(const ImageGrey& map, int width, int height) {
     if (width <= 0 || height <= 0) throw std::invalid_argument("GpuAamap::reduceMax: non-positive output size");
     executor_->clear();
     graph::RenderGraph graph;
-    graph.addResource(image(kMap, graph::Format::R32Float, sizeOf(map), true));
-    graph.addResource(image(kAamap, graph::Format::R32Float,
+    graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, sizeOf(map), true));
+    graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float,
                             absoluteSize(width, height)));
     executor_->setUpload(kMap, toR32(map));
     chain_.reduce.add(graph, *executor_, kMap, kAamap);

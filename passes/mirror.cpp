@@ -257,12 +257,7 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
     executor.setRecord(kMirrorMaskPass, [this, depth, maskPush](vk::PassContext& pc) {
         const vk::Image& target = pc.image(kMirrorMask);
         const VkExtent2D extent{target.info().width, target.info().height};
-        VkRenderingAttachmentInfo colourInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        colourInfo.imageView = target.view();
-        colourInfo.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colourInfo.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        colourInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        colourInfo.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};  // layer + 1 = 0: no mirror
+        const VkRenderingAttachmentInfo colourInfo = vk::clearedColourAttachment(target.view());  // layer + 1 = 0: no mirror
         VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
         rendering.renderArea = {{0, 0}, extent};
         rendering.layerCount = 1;

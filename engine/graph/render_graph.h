@@ -17,6 +17,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace aamap::graph {
@@ -64,6 +65,23 @@ struct ResourceDesc {
     std::uint64_t bytes = 0;              // buffers
     bool imported = false;                // contents uploaded from the host before the graph runs
 };
+
+// Shorthands for the two common descriptions.
+inline ResourceDesc imageResource(std::string name, Format format, Size size, bool imported = false) {
+    ResourceDesc d;
+    d.name = std::move(name);
+    d.format = format;
+    d.size = std::move(size);
+    d.imported = imported;
+    return d;
+}
+inline ResourceDesc bufferResource(std::string name, std::uint64_t bytes) {
+    ResourceDesc d;
+    d.name = std::move(name);
+    d.kind = ResourceKind::Buffer;
+    d.bytes = bytes;
+    return d;
+}
 
 struct Access {
     std::string resource;

@@ -217,6 +217,16 @@ void setFullViewport(VkCommandBuffer cmd, VkExtent2D extent) {
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
+VkRenderingAttachmentInfo clearedColourAttachment(VkImageView view) {
+    VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    info.imageView = view;
+    info.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    info.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    info.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    return info;
+}
+
 void dispatch2D(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height, std::uint32_t groupX,
                 std::uint32_t groupY) {
     vkCmdDispatch(cmd, (width + groupX - 1) / groupX, (height + groupY - 1) / groupY, 1);

@@ -91,10 +91,15 @@ private:
     std::vector<Entry> entries_;
 };
 
-// Dispatches enough workgroups of size groupX x groupY to cover width x height.
 // Viewport and scissor covering the whole render area (both are dynamic state in our pipelines).
 void setFullViewport(VkCommandBuffer cmd, VkExtent2D extent);
 
+// A dynamic-rendering colour attachment on `view`, cleared to 0 and stored: what every raster
+// pass of the Snapshot starts from (black, as rays that miss; 0 also means "nothing here" in the
+// id and mask targets).
+VkRenderingAttachmentInfo clearedColourAttachment(VkImageView view);
+
+// Dispatches enough workgroups of size groupX x groupY to cover width x height.
 void dispatch2D(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height, std::uint32_t groupX,
                 std::uint32_t groupY);
 
