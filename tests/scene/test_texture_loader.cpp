@@ -1,7 +1,6 @@
 // Texture decoding (scene/texture_loader.h): every channel layout stb_image returns becomes the
 // same RGBA (grey replicated, a missing alpha opaque), the coverage texture reads alpha or, where
 // there is none, the first channel, and PNM that stb_image decodes wrongly is refused.
-#include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -11,8 +10,6 @@
 
 namespace aamap {
 namespace {
-
-float srgbToLinear(float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); }
 
 // Binary PNM: `magic` P5 (grey) or P6 (RGB), big-endian samples when maxval > 255.
 std::string pnm(char magic, int w, int h, int maxval, const std::string& samples) {
