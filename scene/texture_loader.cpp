@@ -100,6 +100,9 @@ bool withinTexelLimit(const std::string& name, std::string* error) {
 struct Decoded8 {
     unsigned char* pixels = nullptr;
     int width = 0, height = 0, channels = 0;
+    Decoded8() = default;
+    Decoded8(const Decoded8&) = delete;  // owns `pixels`
+    Decoded8& operator=(const Decoded8&) = delete;
     ~Decoded8() { stbi_image_free(pixels); }
     // Texel i as RGBA: grey and grey + alpha replicate the grey, a missing alpha is opaque.
     std::array<unsigned char, 4> rgba(std::size_t i) const {

@@ -9,7 +9,7 @@
 #include "scene/gltf_loader.h"
 #include "scene/lights.h"
 #include "mutate.h"
-#include "base64.h"
+#include "tests/common/base64.h"
 #include "tests/common/temp_dir.h"
 
 namespace aamap {

@@ -9,7 +9,7 @@
 
 #include <stb_image_write.h>
 
-#include "base64.h"
+#include "tests/common/base64.h"
 #include "tests/common/temp_dir.h"
 
 namespace aamap::test {
