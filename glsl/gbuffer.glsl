@@ -10,6 +10,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
 #include "snapshot_interface.h"
+#include "lights.glsl"
 #include "shadow_cube.glsl"
 
 layout(location = 0) in vec3 worldPosition;
@@ -42,18 +43,9 @@ layout(binding = GBUFFER_BINDING_SHADOW) uniform texture2DArray shadowCubes;
 #include "shadow_visibility.glsl"
 
 float visibility(uint light, vec3 r, vec3 n) {
-    return shadowVisibility(shadowCubes, light, r, n, pc.shadow, int(pc.shadowPcf));
+    return shadowVisibility(shadowCubes, light, r, n, pc.shadow, int(kShadowPcf));
 }
 #endif
-
-// scene/lights.h spotFalloff: 1 inside the inner cone, 0 outside the outer, t^2 between with t
-// linear in the cosine (glTF's recommended falloff).
-float spotFalloff(float cosAngle, float cosInner, float cosOuter) {
-    if (cosAngle >= cosInner) return 1.0;
-    if (cosAngle <= cosOuter) return 0.0;
-    const float t = (cosAngle - cosOuter) / (cosInner - cosOuter);
-    return t * t;
-}
 
 void main() {
 #ifdef GBUFFER_MIRROR
@@ -78,18 +70,13 @@ void main() {
 
     // Emitters are one-sided along their normal.
     vec3 colour = front ? ke : vec3(0.0);
-    for (uint i = 0u; i < pc.lightCount; ++i) {
+    for (uint i = 0u; i < kLightCount; ++i) {
         const vec3 toLight = lights[i].position.xyz - worldPosition;
         const float d2 = dot(toLight, toLight);
         if (d2 <= 0.0) continue;
         const vec3 wi = toLight * inversesqrt(d2);
         const float cosSurface = max(dot(n, wi), 0.0);
-        float lobe = 1.0;  // cosine lobe or spot cone, as the tracer's PointLightSource::angular
-        const vec3 axis = lights[i].normal.xyz;
-        if (dot(axis, axis) > 0.0) {
-            const vec4 cone = lights[i].cone;
-            lobe = cone.z > 0.0 ? spotFalloff(dot(axis, -wi), cone.x, cone.y) : max(dot(axis, -wi), 0.0);
-        }
+        const float lobe = angularFactor(lights[i].normal.xyz, lights[i].cone, wi);
         float weight = cosSurface * lobe / d2;
 #ifdef GBUFFER_SHADOWS
         if (weight > 0.0) weight *= visibility(i, -toLight, n);  // no lookups for unlit sides

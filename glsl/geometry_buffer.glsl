@@ -28,6 +28,7 @@ layout(location = 1) out vec4 outIds;
 layout(push_constant) uniform Push { GeometryPush pc; };
 
 #ifdef GEOMETRY_SHADOWS
+#include "lights.glsl"
 #include "shadow_cube.glsl"
 #include "shadow_visibility.glsl"
 layout(std140, binding = GEOMETRY_BINDING_LIGHTS) uniform Lights { GpuLight lights[GBUFFER_MAX_LIGHTS]; };
@@ -38,18 +39,14 @@ layout(binding = GEOMETRY_BINDING_SHADOW) uniform texture2DArray shadowCubes;
 // Unlit sides never set a bit, so a terminator on a curved surface is no edge.
 uint occlusionMask(vec3 n) {
     uint mask = 0u;
-    for (uint i = 0u; i < pc.lightCount; ++i) {
+    for (uint i = 0u; i < kLightCount; ++i) {
         const vec3 toLight = lights[i].position.xyz - worldPosition;
         const float d2 = dot(toLight, toLight);
         if (d2 <= 0.0) continue;
         const vec3 wi = toLight * inversesqrt(d2);
-        bool reaches = dot(n, wi) > 0.0;
-        const vec3 axis = lights[i].normal.xyz;
-        if (reaches && dot(axis, axis) > 0.0) {
-            const vec4 cone = lights[i].cone;  // spot: outside the outer cone; lobe: behind the emitter
-            reaches = cone.z > 0.0 ? dot(axis, -wi) > cone.y : dot(axis, -wi) > 0.0;
-        }
-        if (reaches && shadowVisibility(shadowCubes, i, -toLight, n, pc.shadow, int(pc.shadowPcf)) < 0.5)
+        // Not outside a spot's outer cone nor behind a lobe's emitter.
+        const bool reaches = dot(n, wi) > 0.0 && angularFactor(lights[i].normal.xyz, lights[i].cone, wi) > 0.0;
+        if (reaches && shadowVisibility(shadowCubes, i, -toLight, n, pc.shadow, int(kShadowPcf)) < 0.5)
             mask |= 1u << (i & 31u);
     }
     return mask;

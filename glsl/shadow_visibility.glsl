@@ -21,7 +21,7 @@ float shadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 n, v
     const float threshold = shadow.x / max(ma - bias, shadow.x);
     const vec2 st = (f.xy / ma * 0.5 + 0.5) * float(size);
     const int layer = int(light * 6u + face);
-    if (pcf == 1) {  // uniform branch: one tap without the loop
+    if (pcf == 1) {  // callers pass a specialisation constant: the other path is compiled out
         const ivec2 t = clamp(ivec2(st), ivec2(0), ivec2(size - 1));
         return texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0.0 : 1.0;
     }

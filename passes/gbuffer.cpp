@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <aamap/spirv.h>
@@ -227,9 +228,10 @@ vk::Pipeline makeDepthPipeline(VulkanContext& context) {
                                        VK_SHADER_STAGE_VERTEX_BIT});
 }
 
-vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, bool mirrored = false,
-                          bool afterPrepass = false) {
+vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, bool mirrored, bool afterPrepass,
+                          std::vector<std::uint32_t> lightingConstants) {
     vk::GraphicsDesc desc;
+    desc.fragmentConstants = std::move(lightingConstants);
     if (mirrored) {
         desc.vertexSpirv = textured ? spirv::gbuffer_mirror_textured_vert : spirv::gbuffer_mirror_vert;
         desc.fragmentSpirv = textured ? (shadowed ? spirv::gbuffer_mirror_textured_shadowed_frag
@@ -298,8 +300,6 @@ GBufferPass::GBufferPass(VulkanContext& context, const Scene& scene) : context_(
         reversedTriangles_ = vk::uploadBuffer(context, bytesOf(reversed), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
         depthPipeline_ = makeDepthPipeline(context);
     }
-    pipeline_ = makePipeline(context, false, textured_, false, hasDepthPrepass());
-
     setLights({});
 }
 
@@ -317,6 +317,11 @@ void GBufferPass::setLights(std::span<const PointLight> lights) {
                                                 "(point lights plus areaLightSamples per area light)",
                                                 GBUFFER_MAX_LIGHTS, gpuLights.size()));
     lightCount_ = static_cast<std::uint32_t>(gpuLights.size());
+    lightKinds_ = 0;
+    for (const gpu::GpuLight& l : gpuLights)
+        lightKinds_ |= l.cone.z > 0.0f           ? LIGHT_KIND_SPOT
+                       : glm::dot(l.normal, l.normal) > 0.0f ? LIGHT_KIND_LOBE
+                                                             : LIGHT_KIND_ISOTROPIC;
     lightPositions_.clear();
     for (const PointLight& l : lights) lightPositions_.push_back(l.position);
     ++lightsVersion_;
@@ -340,21 +345,34 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
                   ? fmt::format("; {} glass triangles seen through (they only cast shadows)",
                                 (occluderVertexCount_ - vertexCount_) / 3)
                   : std::string())});
-    if (shadowed && !shadowedPipeline_.handle())
-        shadowedPipeline_ = makePipeline(*context_, true, textured_, false, hasDepthPrepass());
+    const vk::Pipeline& pipeline = pipelineFor(shadowed, false, shadows.pcf);
     gpu::GBufferPush push{};
     push.viewProj = reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), camera.viewMatrix());
     push.cameraPos = glm::vec4(camera.origin, 1.0f);
-    push.lightCount = lightCount_;
-    push.shadowPcf = std::max(shadows.pcf, 1u);
     push.shadow = glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias,
                             static_cast<float>(shadows.faceSize));
-    const vk::Pipeline& pipeline = shadowed ? shadowedPipeline_ : pipeline_;
     executor.setRecord("gbuffer", [this, colour, depth, push, &pipeline, shadow = shadows.resource](
                                       vk::PassContext& pc) {
         record(pc, colour, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass());
     });
     return id;
+}
+
+std::vector<std::uint32_t> GBufferPass::lightingConstants(std::uint32_t pcf) const {
+    std::vector<std::uint32_t> constants(3);
+    constants[LIGHTING_SPEC_LIGHT_COUNT] = lightCount_;
+    constants[LIGHTING_SPEC_SHADOW_PCF] = std::max(pcf, 1u);
+    constants[LIGHTING_SPEC_LIGHT_KINDS] = lightKinds_;
+    return constants;
+}
+
+const vk::Pipeline& GBufferPass::pipelineFor(bool shadowed, bool mirrored, std::uint32_t pcf) {
+    const PipelineKey key{shadowed, mirrored, shadowed ? std::max(pcf, 1u) : 1u, lightsVersion_};
+    vk::Pipeline& pipeline = pipelines_[key];
+    if (!pipeline.handle())
+        pipeline = makePipeline(*context_, shadowed, textured_, mirrored, !mirrored && hasDepthPrepass(),
+                                lightingConstants(key.pcf));
+    return pipeline;
 }
 
 glm::mat4 GBufferPass::reversedViewProjection(const glm::mat4& projection, const glm::mat4& view) {
@@ -375,15 +393,12 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
                                         graph::writes(depth, graph::Usage::DepthAttachment)};
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
     const graph::PassId id = graph.addPass({pass, graph::QueueKind::Graphics, accesses, std::move(purpose)});
-    vk::Pipeline& pipeline = mirrorPipelines_[shadowed ? 1 : 0];
-    if (!pipeline.handle()) pipeline = makePipeline(*context_, shadowed, textured_, true);
+    const vk::Pipeline& pipeline = pipelineFor(shadowed, true, shadows.pcf);
     std::vector<gpu::GBufferPush> pushes;
     for (std::size_t i = 0; i < views.size(); ++i) {
         gpu::GBufferPush push{};
         push.viewProj = views[i].viewProj;
         push.cameraPos = glm::vec4(views[i].eye, 1.0f);
-        push.lightCount = lightCount_;
-        push.shadowPcf = std::max(shadows.pcf, 1u);
         push.mirrorLayer = static_cast<std::uint32_t>(i);
         push.shadow = glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias,
                                 static_cast<float>(shadows.faceSize));

@@ -22,6 +22,8 @@
 // gets the textured pipeline variants (uv and atlas entry per vertex, one atlas binding); other
 // scenes bind no texture at all. Alpha-tested materials with constant coverage need no texture:
 // their triangles are either dropped (alpha < cutoff) or opaque.
+#include <compare>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -90,6 +92,9 @@ public:
     const vk::Image& atlas() const { return atlas_; }  // valid only when textured()
     std::string atlasSummary() const;                  // for --explain
     std::uint32_t lightCount() const { return lightCount_; }
+    // The LIGHTING_SPEC_* specialisation constants of a lit fragment shader drawing these lights
+    // with this PCF side (glsl/lights.glsl), for the passes that share the G-buffer's lights.
+    std::vector<std::uint32_t> lightingConstants(std::uint32_t pcf) const;
     // For the shadow pass, which draws the same vertices from the same lights.
     const vk::Buffer& vertexBuffer() const { return vertices_; }
     const vk::Buffer& lightBuffer() const { return lights_; }
@@ -117,11 +122,20 @@ private:
     void record(vk::PassContext& pc, const std::string& colour, const std::string& depth, const vk::Pipeline& pipeline,
                 const std::string& shadow, std::span<const gpu::GBufferPush> draws, bool prepass) const;
 
+    // The shading pipeline of each variant, specialised for the light list of setLights call
+    // `lightsVersion`; built on first use (a scene without lights never builds a shadowed one).
+    // A std::map, so the references that recordings hold stay valid.
+    struct PipelineKey {
+        bool shadowed = false, mirrored = false;
+        std::uint32_t pcf = 1;
+        std::uint64_t lightsVersion = 0;
+        auto operator<=>(const PipelineKey&) const = default;
+    };
+    const vk::Pipeline& pipelineFor(bool shadowed, bool mirrored, std::uint32_t pcf);
+
     VulkanContext* context_;
-    vk::Pipeline pipeline_;
-    vk::Pipeline shadowedPipeline_;  // built on first use: scenes without lights never need it
-    vk::Pipeline mirrorPipelines_[2];  // reflected views, unshadowed / shadowed: built on first use
-    vk::Pipeline depthPipeline_;       // the pre-pass (sharedPositions() only)
+    std::map<PipelineKey, vk::Pipeline> pipelines_;
+    vk::Pipeline depthPipeline_;  // the pre-pass (sharedPositions() only)
     vk::Buffer vertices_, lights_;
     vk::Buffer sharedPositions_, positionIndices_;  // positionIndex_ as an index buffer
     vk::Buffer reversedTriangles_;  // vertices_ by triangle, last triangle first (after the pre-pass)
@@ -133,7 +147,7 @@ private:
     std::uint32_t atlasEntries_ = 0;
     std::uint32_t vertexCount_ = 0, occluderVertexCount_ = 0;
     std::vector<std::uint32_t> drawnTriangles_;
-    std::uint32_t lightCount_ = 0;
+    std::uint32_t lightCount_ = 0, lightKinds_ = 0;  // LIGHT_KIND_* bits
 };
 
 }  // namespace aamap::passes

@@ -32,9 +32,11 @@ std::vector<glm::uvec2> drawnTriangleIds(const Scene& scene, const GBufferPass& 
 
 // The G-buffer's vertex layout (passes/gbuffer.h): position and normal, and in the textured
 // layout uv and atlas entry for the alpha test.
-vk::Pipeline makePipeline(VulkanContext& context, const GBufferPass& gbuffer, bool shadowed) {
+vk::Pipeline makePipeline(VulkanContext& context, const GBufferPass& gbuffer, bool shadowed,
+                          std::vector<std::uint32_t> lightingConstants) {
     const bool textured = gbuffer.textured();
     vk::GraphicsDesc desc;
+    desc.fragmentConstants = std::move(lightingConstants);
     desc.vertexSpirv = textured ? spirv::geometry_buffer_textured_vert : spirv::geometry_buffer_vert;
     if (textured)
         desc.fragmentSpirv =
@@ -81,8 +83,11 @@ GeometryBufferPass::GeometryBufferPass(VulkanContext& context, const Scene& scen
 GeometryBufferPass::~GeometryBufferPass() = default;
 
 void GeometryBufferPass::prepare() {
-    vk::Pipeline& pipeline = pipelines_[shadowed_ ? 1 : 0];
-    if (!pipeline.handle()) pipeline = makePipeline(*context_, *gbuffer_, shadowed_);
+    const int slot = shadowed_ ? 1 : 0;
+    if (!pipelines_[slot].handle() || builtConstants_[slot] != constants_) {
+        pipelines_[slot] = makePipeline(*context_, *gbuffer_, shadowed_, constants_);
+        builtConstants_[slot] = constants_;
+    }
     if (triangleCount_ == 0 || ids_) return;
     const auto* bytes = reinterpret_cast<const std::byte*>(pendingIds_.data());
     ids_ = vk::uploadBuffer(*context_, {bytes, pendingIds_.size() * sizeof(glm::uvec2)},
@@ -106,6 +111,7 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
                               "for the geometric aamap"
                             : "rasterise normals, view depth and object/material ids for the geometric aamap"});
     shadowed_ = shadowed;
+    constants_ = gbuffer_->lightingConstants(shadows.pcf);
     const vk::Pipeline& pipeline = pipelines_[shadowed ? 1 : 0];  // built by prepare()
     gpu::GeometryPush push{};
     glm::mat4 reverse(1.0f);  // reversed depth, as GBufferPass
@@ -114,8 +120,6 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
     push.viewProj = reverse * camera.projectionMatrix(nearPlane, farPlane) * camera.viewMatrix();
     push.cameraPos = glm::vec4(camera.origin, 1.0f);
     push.cameraForward = glm::vec4(camera.forward, 0.0f);
-    push.lightCount = gbuffer_->lightCount();
-    push.shadowPcf = std::max(shadows.pcf, 1u);
     push.shadow =
         glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias, static_cast<float>(shadows.faceSize));
     executor.setRecord("geometry_buffer", [this, push, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {

@@ -41,13 +41,16 @@ public:
     void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& like,
              const PinholeCamera& camera, float nearPlane, float farPlane, const GBufferShadows& shadows = {});
     void prepare();  // uploads the triangle ids once, builds the pipeline the last add() chose
+                     // (variant and lighting constants)
     bool prepared() const { return static_cast<bool>(ids_) || triangleCount_ == 0; }
 
 private:
     VulkanContext* context_;
     const GBufferPass* gbuffer_;
     vk::Pipeline pipelines_[2];  // unshadowed, shadowed: built on first use
-    bool shadowed_ = false;      // of the last add()
+    std::vector<std::uint32_t> builtConstants_[2];  // the lighting constants each was built with
+    bool shadowed_ = false;                         // of the last add()
+    std::vector<std::uint32_t> constants_;          // of the last add(): GBufferPass::lightingConstants
     std::vector<glm::uvec2> pendingIds_;  // (object, material) per drawn triangle until prepare()
     vk::Buffer ids_;
     std::uint32_t triangleCount_ = 0;

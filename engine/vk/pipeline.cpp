@@ -77,8 +77,17 @@ Pipeline::Pipeline(VulkanContext& context, const GraphicsDesc& desc, const Layou
         createLayout(layout);
         ShaderModule vs(device_, desc.vertexSpirv);
         ShaderModule fs(device_, desc.fragmentSpirv);
-        const VkPipelineShaderStageCreateInfo stages[] = {stage(VK_SHADER_STAGE_VERTEX_BIT, vs.handle()),
-                                                          stage(VK_SHADER_STAGE_FRAGMENT_BIT, fs.handle())};
+        VkPipelineShaderStageCreateInfo stages[] = {stage(VK_SHADER_STAGE_VERTEX_BIT, vs.handle()),
+                                                    stage(VK_SHADER_STAGE_FRAGMENT_BIT, fs.handle())};
+        std::vector<VkSpecializationMapEntry> constantEntries;
+        for (std::uint32_t i = 0; i < desc.fragmentConstants.size(); ++i)
+            constantEntries.push_back({i, static_cast<std::uint32_t>(i * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
+        VkSpecializationInfo specialization{};
+        specialization.mapEntryCount = static_cast<std::uint32_t>(constantEntries.size());
+        specialization.pMapEntries = constantEntries.data();
+        specialization.dataSize = desc.fragmentConstants.size() * sizeof(std::uint32_t);
+        specialization.pData = desc.fragmentConstants.data();
+        if (!constantEntries.empty()) stages[1].pSpecializationInfo = &specialization;
 
         const VkVertexInputBindingDescription binding{0, desc.vertexInput.stride, VK_VERTEX_INPUT_RATE_VERTEX};
         VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};

@@ -32,6 +32,9 @@ struct GraphicsDesc {
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // none
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
     VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
+    // Specialisation constants of the fragment stage: constant_id i takes fragmentConstants[i]
+    // (32 bits each). Values a pipeline never changes, so the driver compiles them in.
+    std::vector<std::uint32_t> fragmentConstants;
 };
 
 // Move-only owner of a pipeline, its layout and its push-descriptor set layout.

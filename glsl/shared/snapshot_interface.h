@@ -45,13 +45,23 @@ struct GpuLight {
     vec4 cone;       // x: cos inner, y: cos outer half-angle; z: 1 for a spot (axis in normal), else 0
 };
 
+// Specialisation constants of the lit fragment shaders (gbuffer*.frag, geometry_buffer.shadowed*
+// .frag; glsl/lights.glsl): the light list's length and kinds and the PCF side are fixed per
+// pipeline, so the light loop unrolls with constant uniform offsets and the code of absent light
+// kinds and of the other PCF path is dropped. lavapipe's SIMD lanes run both sides of every
+// branch, and these made its G-buffer 1.6x faster (docs/results.md). Values in this order.
+#define LIGHTING_SPEC_LIGHT_COUNT 0  // uint: lights[0 .. count)
+#define LIGHTING_SPEC_SHADOW_PCF 1   // uint: PCF kernel side in texels (1: one tap)
+#define LIGHTING_SPEC_LIGHT_KINDS 2  // uint: the LIGHT_KIND_* bits of the kinds in the list
+#define LIGHT_KIND_ISOTROPIC 1u      // GpuLight::normal is 0
+#define LIGHT_KIND_LOBE 2u           // cosine lobe about GpuLight::normal (area-light samples)
+#define LIGHT_KIND_SPOT 4u           // spot cone about GpuLight::normal (GpuLight::cone.z = 1)
+
 struct GBufferPush {
     mat4 viewProj;   // world -> Vulkan clip space
     vec4 cameraPos;  // xyz
-    uint lightCount;
-    uint shadowPcf;  // PCF kernel side in texels (1: one tap)
     uint mirrorLayer;  // mirror variants (GBUFFER_MIRROR): the layer of mirror.colour to draw into
-    uint pad2;
+    uint pad0, pad1, pad2;
     vec4 shadow;     // x: cube-map near plane, y: depth bias, z: slope bias (texels), w: face size
     vec4 clipPlane;  // mirror variants: keep dot(xyz, p) >= w, the mirror's side of its plane
 };
@@ -152,14 +162,11 @@ struct GeometryPush {
     mat4 viewProj;       // world -> Vulkan clip space (reversed depth, as the G-buffer)
     vec4 cameraPos;      // xyz
     vec4 cameraForward;  // xyz, unit: view depth = dot(p - cameraPos, forward)
-    vec4 shadow;         // shadowed: as GBufferPush::shadow
-    uint lightCount;     // shadowed
-    uint shadowPcf;      // shadowed: PCF kernel side
-    uint pad0, pad1;
+    vec4 shadow;         // shadowed: as GBufferPush::shadow (light count and PCF: LIGHTING_SPEC_*)
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(GeometryPush) == 128);  // the guaranteed push-constant size
+static_assert(sizeof(GeometryPush) == 112);
 static_assert(sizeof(BlockSumPush) == 16);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuLight) * GBUFFER_MAX_LIGHTS <= 16384);  // maxUniformBufferRange's minimum

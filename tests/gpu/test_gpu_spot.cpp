@@ -1,5 +1,6 @@
 // A spot light in the Snapshot agrees with the tracer's direct light: the same cone, the same
-// falloff, on a plane with nothing to shadow it.
+// falloff, on a plane with nothing to shadow it; alone and beside an isotropic and a lobed point
+// light, since the G-buffer's shader is specialised for the kinds in the list (glsl/lights.glsl).
 #include <algorithm>
 #include <cmath>
 
@@ -16,8 +17,9 @@
 namespace aamap::test {
 namespace {
 
-// A grey plane z = 0 (facing +z) under a tilted spot (inner 15, outer 35 degrees), seen from above.
-Scene spotOnPlane() {
+// A grey plane z = 0 (facing +z) under a tilted spot (inner 15, outer 35 degrees), seen from above;
+// `otherKinds`: also an isotropic light and a lobed one (the point sample of an area light).
+Scene spotOnPlane(bool otherKinds) {
     Scene scene;
     scene.name = "spot";
     Material grey;
@@ -37,6 +39,19 @@ Scene spotOnPlane() {
     spot.cosInner = std::cos(glm::radians(15.0f));
     spot.cosOuter = std::cos(glm::radians(35.0f));
     scene.pointLights.push_back(spot);
+    if (otherKinds) {
+        PointLight isotropic;
+        isotropic.name = "isotropic";
+        isotropic.position = {-1.5f, 1.0f, 1.2f};
+        isotropic.intensity = {1.5f, 2.0f, 2.5f};
+        PointLight lobe;
+        lobe.name = "lobe";
+        lobe.position = {1.4f, 1.6f, 0.8f};
+        lobe.intensity = {3.0f, 2.0f, 1.0f};
+        lobe.normal = glm::normalize(glm::vec3(-0.5f, 0.0f, -1.0f));
+        scene.pointLights.push_back(isotropic);
+        scene.pointLights.push_back(lobe);
+    }
     View view;
     view.position = {0.4f, 0.1f, 3.0f};
     view.direction = {0, 0, -1};
@@ -46,8 +61,10 @@ Scene spotOnPlane() {
     return scene;
 }
 
-TEST_F(GpuTest, SpotShadingAgreesWithTheTracersDirectLight) {
-    const Scene scene = spotOnPlane();
+class SpotShading : public GpuTest, public ::testing::WithParamInterface<bool> {};
+
+TEST_P(SpotShading, AgreesWithTheTracersDirectLight) {
+    const Scene scene = spotOnPlane(GetParam());
     const View& view = scene.views[0];
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;
@@ -96,6 +113,11 @@ TEST_F(GpuTest, SpotShadingAgreesWithTheTracersDirectLight) {
     EXPECT_GT(band, 100);
     EXPECT_GT(full, 100);
 }
+
+INSTANTIATE_TEST_SUITE_P(Lights, SpotShading, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) {
+                             return info.param ? "SpotIsotropicAndLobe" : "SpotAlone";
+                         });
 
 }  // namespace
 }  // namespace aamap::test
