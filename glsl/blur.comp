@@ -11,12 +11,13 @@ layout(binding = FILTER_BINDING_INPUT, r32f) uniform readonly image2D edges;
 layout(binding = FILTER_BINDING_OUTPUT, r32f) uniform writeonly image2D map;
 
 const int ROWS = AAMAP_FILTER_ROWS;
+layout(constant_id = FILTER_SPEC_BLUR_RADIUS) const int kRadius = AAMAP_DEFAULT_BLUR_RADIUS;
 
 void main() {
     const int x = int(gl_GlobalInvocationID.x);
     const int y0 = int(gl_GlobalInvocationID.y) * ROWS;
     if (x >= pc.inSize.x || y0 >= pc.inSize.y) return;
-    const int r = pc.radius;
+    const int r = kRadius;
     precise float sums[ROWS];
     for (int k = 0; k < ROWS; ++k) sums[k] = 0.0;
     for (int j = -r; j < ROWS + r; ++j) {

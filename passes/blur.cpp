@@ -1,5 +1,8 @@
 #include "passes/blur.h"
 
+#include <cstdint>
+#include <vector>
+
 #include <aamap/spirv.h>
 
 #include "glsl/shared/aamap_filter.h"
@@ -12,11 +15,12 @@ graph::PassId BlurPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execut
                             const std::string& edges, const std::string& map, int radius, float noiseFloor,
                             float gain) const {
     gpu::FilterPush push{};
-    push.radius = radius;
     push.noiseFloor = noiseFloor;
     push.gain = gain;
+    std::vector<std::uint32_t> constants(1);
+    constants[FILTER_SPEC_BLUR_RADIUS] = static_cast<std::uint32_t>(radius);
     return pass_.add(graph, executor, "blur", edges, map, push,
-                     "blur (the edges of the edge map alias too) and dead zone");
+                     "blur (the edges of the edge map alias too) and dead zone", constants);
 }
 
 }  // namespace aamap::passes

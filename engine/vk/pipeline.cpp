@@ -1,6 +1,7 @@
 #include "engine/vk/pipeline.h"
 
 #include <utility>
+#include <vector>
 
 #include "engine/vk/check.h"
 #include "engine/vk/context.h"
@@ -35,6 +36,27 @@ VkPipelineShaderStageCreateInfo stage(VkShaderStageFlagBits which, VkShaderModul
     return info;
 }
 
+// Specialisation constant_id i = constants[i], 32 bits each. Points into itself and `constants`:
+// keep both alive and unmoved until the pipeline is created.
+class Specialization {
+public:
+    explicit Specialization(std::span<const std::uint32_t> constants) {
+        for (std::uint32_t i = 0; i < constants.size(); ++i)
+            entries_.push_back({i, static_cast<std::uint32_t>(i * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
+        info_.mapEntryCount = static_cast<std::uint32_t>(entries_.size());
+        info_.pMapEntries = entries_.data();
+        info_.dataSize = constants.size_bytes();
+        info_.pData = constants.data();
+    }
+    Specialization(const Specialization&) = delete;
+    Specialization& operator=(const Specialization&) = delete;
+    const VkSpecializationInfo* info() const { return entries_.empty() ? nullptr : &info_; }
+
+private:
+    std::vector<VkSpecializationMapEntry> entries_;
+    VkSpecializationInfo info_{};
+};
+
 }  // namespace
 
 void Pipeline::createLayout(const LayoutDesc& desc) {
@@ -56,13 +78,16 @@ void Pipeline::createLayout(const LayoutDesc& desc) {
     VK_CHECK(vkCreatePipelineLayout(device_, &info, nullptr, &layout_));
 }
 
-Pipeline::Pipeline(VulkanContext& context, std::span<const std::uint32_t> computeSpirv, const LayoutDesc& layout)
+Pipeline::Pipeline(VulkanContext& context, std::span<const std::uint32_t> computeSpirv, const LayoutDesc& layout,
+                   std::span<const std::uint32_t> constants)
     : device_(context.device()), bindPoint_(VK_PIPELINE_BIND_POINT_COMPUTE) {
     try {
         createLayout(layout);
         ShaderModule module(device_, computeSpirv);
+        const Specialization specialization(constants);
         VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
         info.stage = stage(VK_SHADER_STAGE_COMPUTE_BIT, module.handle());
+        info.stage.pSpecializationInfo = specialization.info();
         info.layout = layout_;
         VK_CHECK(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline_));
     } catch (...) {
@@ -79,15 +104,8 @@ Pipeline::Pipeline(VulkanContext& context, const GraphicsDesc& desc, const Layou
         ShaderModule fs(device_, desc.fragmentSpirv);
         VkPipelineShaderStageCreateInfo stages[] = {stage(VK_SHADER_STAGE_VERTEX_BIT, vs.handle()),
                                                     stage(VK_SHADER_STAGE_FRAGMENT_BIT, fs.handle())};
-        std::vector<VkSpecializationMapEntry> constantEntries;
-        for (std::uint32_t i = 0; i < desc.fragmentConstants.size(); ++i)
-            constantEntries.push_back({i, static_cast<std::uint32_t>(i * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
-        VkSpecializationInfo specialization{};
-        specialization.mapEntryCount = static_cast<std::uint32_t>(constantEntries.size());
-        specialization.pMapEntries = constantEntries.data();
-        specialization.dataSize = desc.fragmentConstants.size() * sizeof(std::uint32_t);
-        specialization.pData = desc.fragmentConstants.data();
-        if (!constantEntries.empty()) stages[1].pSpecializationInfo = &specialization;
+        const Specialization specialization(desc.fragmentConstants);
+        stages[1].pSpecializationInfo = specialization.info();
 
         const VkVertexInputBindingDescription binding{0, desc.vertexInput.stride, VK_VERTEX_INPUT_RATE_VERTEX};
         VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};

@@ -41,7 +41,9 @@ struct GraphicsDesc {
 class Pipeline {
 public:
     Pipeline() = default;
-    Pipeline(VulkanContext& context, std::span<const std::uint32_t> computeSpirv, const LayoutDesc& layout);
+    // constants: the compute stage's specialisation constants, as GraphicsDesc::fragmentConstants.
+    Pipeline(VulkanContext& context, std::span<const std::uint32_t> computeSpirv, const LayoutDesc& layout,
+             std::span<const std::uint32_t> constants = {});
     Pipeline(VulkanContext& context, const GraphicsDesc& desc, const LayoutDesc& layout);
     ~Pipeline() { reset(); }
     Pipeline(Pipeline&& other) noexcept { *this = std::move(other); }
