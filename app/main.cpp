@@ -18,6 +18,7 @@
 #include "app/snapshot_command.h"
 #include "app/view_command.h"
 #include "core/error.h"
+#include "core/heap.h"
 #include "core/log.h"
 #include "engine/vk/context.h"
 #include "eval/config.h"
@@ -114,6 +115,7 @@ void stopCleanlyOnInterrupt(const std::filesystem::path& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    aamap::keepFreedMemoryForReuse();
     CLI::App app{"aamap: analytic antialiasing maps for selective high-fidelity rendering.\n"
                  "A Vulkan snapshot of the scene finds the edges that need antialiasing; an Embree\n"
                  "tracer spends its rays there.",

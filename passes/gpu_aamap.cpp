@@ -124,9 +124,13 @@ ImageRGB toImageRGB(const vk::HostData& data) {
 }
 
 ImageGrey toImageGrey(const vk::HostData& data) {
+    ImageGrey out(static_cast<int>(data.width), static_cast<int>(data.height));
+    if (data.format == graph::Format::R32Float && data.bytes.size() == out.size() * sizeof(float)) {
+        std::memcpy(out.data(), data.bytes.data(), data.bytes.size());  // the per-frame aamap: one copy
+        return out;
+    }
     const std::vector<float> f = data.floats();
     const std::uint32_t c = data.channels();
-    ImageGrey out(static_cast<int>(data.width), static_cast<int>(data.height));
     for (std::size_t i = 0; i < out.size(); ++i) out.data()[i] = f[c * i];
     return out;
 }

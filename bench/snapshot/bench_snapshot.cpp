@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "core/heap.h"
 #include "engine/vk/context.h"
 #include "eval/light_list.h"
 #include "scene/light_file.h"
@@ -14,6 +15,7 @@
 #include "snapshot_bench.h"
 
 int main(int argc, char** argv) {
+    aamap::keepFreedMemoryForReuse();  // as the aamap executable
     CLI::App app{"Snapshot + aamap benchmark (GPU)"};
     std::string sceneSpec = "builtin:cornell";
     aamap::bench::SnapshotBenchOptions options;

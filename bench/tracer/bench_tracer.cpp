@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <tbb/info.h>
 
+#include "core/heap.h"
 #include "core/image_io.h"
 #include "eval/light_list.h"
 #include "scene/light_file.h"
@@ -22,6 +23,7 @@
 #include "tracer/tracer.h"
 
 int main(int argc, char** argv) {
+    aamap::keepFreedMemoryForReuse();  // as the aamap executable
     CLI::App app{"Tracer throughput benchmark (uniform n x n sampling)"};
     std::string sceneSpec = "builtin:cornell";
     int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3, maxDepth = 5;

@@ -343,8 +343,8 @@ ExecutionResult GraphExecutor::execute(const graph::CompiledGraph& g) {
             data.format = r.resolved.desc.format;
             data.width = r.resolved.width;
             data.height = r.resolved.height;
-            data.bytes.resize(hostBytes(r.resolved));
-            std::memcpy(data.bytes.data(), s.staging.at(name).mapped(), data.bytes.size());
+            const auto* mapped = static_cast<const std::byte*>(s.staging.at(name).mapped());
+            data.bytes.assign(mapped, mapped + hostBytes(r.resolved));  // no zero-fill before the copy
             result.outputs[name] = std::move(data);
         }
     }
