@@ -1,8 +1,10 @@
 // The Snapshot's shading, included by gbuffer.frag (no shadows) and gbuffer.shadowed.frag
 // (GBUFFER_SHADOWS: per-light visibility from the shadow cube maps), and by their textured
 // variants gbuffer.textured*.frag (GBUFFER_TEXTURED: atlas lookup and alpha test), and the mirror
-// variants gbuffer.mirror*.frag (GBUFFER_MIRROR: the clip plane of a reflected view). Variants rather
-// than branches, so that a scene without lights or textures has no binding to fill for them.
+// variants gbuffer.mirror*.frag (GBUFFER_MIRROR: the clip plane of a reflected view), and the
+// variants *.grey.frag (GBUFFER_GREY: also the greyscale of step 1 of the aamap, a second
+// attachment, so that the luminance pass is not needed). Variants rather than branches, so that
+// a scene without lights or textures has no binding to fill for them.
 //
 // Local illumination as the paper's snapshot: Lambert from point lights (cosine lobes for the
 // point samples of area lights) plus the emission of emissive surfaces, in linear radiance.
@@ -31,6 +33,11 @@ layout(binding = GBUFFER_BINDING_ATLAS_UNSHADOWED) uniform texture2DArray atlas;
 #endif
 
 layout(location = 0) out vec4 outColour;
+#ifdef GBUFFER_GREY
+#include "aamap_filter.h"
+#include "display_luma.glsl"
+layout(location = 1) out float outGrey;
+#endif
 
 layout(push_constant) uniform Push { GBufferPush pc; };
 layout(std140, binding = GBUFFER_BINDING_LIGHTS) uniform Lights { GpuLight lights[GBUFFER_MAX_LIGHTS]; };
@@ -84,4 +91,7 @@ void main() {
         colour += kd * kInvPi * lights[i].intensity.rgb * weight;
     }
     outColour = vec4(colour, 1.0);
+#ifdef GBUFFER_GREY
+    outGrey = displayLuma(colour, pc.exposure);
+#endif
 }

@@ -1,33 +1,14 @@
 #version 460
-// Step 1 of aamap_filter.h: g = dot(LUMA, srgbEncode(clamp(exposure * rgb, 0, 1))).
+// Step 1 of aamap_filter.h (display_luma.glsl) over the snapshot colour, for Snapshots whose
+// G-buffer does not write the grey itself (a mirror composite follows it; passes/gbuffer.h).
 #include "filter_common.glsl"
+#include "display_luma.glsl"
 
 layout(binding = FILTER_BINDING_INPUT, rgba32f) uniform readonly image2D colour;
 layout(binding = FILTER_BINDING_OUTPUT, r32f) uniform writeonly image2D grey;
 
-// c^(1/2.4) to about an ulp: GPU pow (exp2(log2)) is a few ulps off, and the Laplacian
-// multiplies that by up to 48. One Newton step on y^12 = c^5 (1/2.4 = 5/12) fixes it.
-float powFiveTwelfths(float c) {
-    const float y = pow(c, 5.0 / 12.0);
-    const float y2 = y * y, y4 = y2 * y2, y12 = y4 * y4 * y4;
-    const float c2 = c * c, c5 = c2 * c2 * c;
-    precise float refined = y - y * (1.0 - c5 / y12) * (1.0 / 12.0);
-    return refined;
-}
-
-// Same curve and constants as the CPU reference; `precise` keeps the arithmetic unfused.
-float srgbEncode(float c) {
-    precise float r = c <= 0.0031308 ? 12.92 * c : 1.055 * powFiveTwelfths(c) - 0.055;
-    return r;
-}
-
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.inSize))) return;
-    const vec3 rgb = imageLoad(colour, p).rgb;
-    const float r = srgbEncode(clamp(pc.exposure * rgb.r, 0.0, 1.0));
-    const float g = srgbEncode(clamp(pc.exposure * rgb.g, 0.0, 1.0));
-    const float b = srgbEncode(clamp(pc.exposure * rgb.b, 0.0, 1.0));
-    precise float y = float(AAMAP_LUMA_R) * r + float(AAMAP_LUMA_G) * g + float(AAMAP_LUMA_B) * b;
-    imageStore(grey, p, vec4(y));
+    imageStore(grey, p, vec4(displayLuma(imageLoad(colour, p).rgb, pc.exposure)));
 }

@@ -228,11 +228,16 @@ vk::Pipeline makeDepthPipeline(VulkanContext& context) {
                                        VK_SHADER_STAGE_VERTEX_BIT});
 }
 
-vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, bool mirrored, bool afterPrepass,
-                          std::vector<std::uint32_t> lightingConstants) {
+vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, bool mirrored, bool grey,
+                          bool afterPrepass, std::vector<std::uint32_t> lightingConstants) {
     vk::GraphicsDesc desc;
     desc.fragmentConstants = std::move(lightingConstants);
-    if (mirrored) {
+    if (grey) {  // the camera's view only (passes/gbuffer.h, GBufferGrey)
+        desc.vertexSpirv = textured ? spirv::gbuffer_textured_vert : spirv::gbuffer_vert;
+        desc.fragmentSpirv = textured ? (shadowed ? spirv::gbuffer_textured_shadowed_grey_frag
+                                                  : spirv::gbuffer_textured_grey_frag)
+                                      : (shadowed ? spirv::gbuffer_shadowed_grey_frag : spirv::gbuffer_grey_frag);
+    } else if (mirrored) {
         desc.vertexSpirv = textured ? spirv::gbuffer_mirror_textured_vert : spirv::gbuffer_mirror_vert;
         desc.fragmentSpirv = textured ? (shadowed ? spirv::gbuffer_mirror_textured_shadowed_frag
                                                   : spirv::gbuffer_mirror_textured_frag)
@@ -257,6 +262,7 @@ vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, 
             {GBUFFER_LOCATION_TEX_PARAMS, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kTexParamsOffset});
     }
     desc.colorFormats = {vk::toVkFormat(GBufferPass::kColourFormat)};
+    if (grey) desc.colorFormats.push_back(vk::toVkFormat(GBufferPass::kGreyFormat));
     desc.depthFormat = vk::toVkFormat(GBufferPass::kDepthFormat);
     // Reversed depth; after the pre-pass the nearest surface's own depth passes.
     desc.depthCompare = afterPrepass ? VK_COMPARE_OP_GREATER_OR_EQUAL : VK_COMPARE_OP_GREATER;
@@ -331,29 +337,32 @@ void GBufferPass::setLights(std::span<const PointLight> lights) {
 
 graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour,
                                const std::string& depth, const PinholeCamera& camera, float nearPlane,
-                               float farPlane, const GBufferShadows& shadows) {
+                               float farPlane, const GBufferShadows& shadows, const GBufferGrey& grey) {
     const bool shadowed = !shadows.resource.empty();
     std::vector<graph::Access> accesses{graph::writes(colour, graph::Usage::ColorAttachment),
                                         graph::writes(depth, graph::Usage::DepthAttachment)};
+    if (!grey.resource.empty()) accesses.push_back(graph::writes(grey.resource, graph::Usage::ColorAttachment));
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
     const graph::PassId id = graph.addPass(
         {"gbuffer", graph::QueueKind::Graphics, accesses,
          std::string(shadowed ? "rasterise the scene with local illumination and shadow-map visibility per light"
                               : "rasterise the scene with local illumination") +
              (textured_ ? "; " + atlasSummary() : "") +
+             (grey.resource.empty() ? std::string() : "; and the greyscale of the aamap's step 1") +
              (occluderVertexCount_ > vertexCount_
                   ? fmt::format("; {} glass triangles seen through (they only cast shadows)",
                                 (occluderVertexCount_ - vertexCount_) / 3)
                   : std::string())});
-    const vk::Pipeline& pipeline = pipelineFor(shadowed, false, shadows.pcf);
+    const vk::Pipeline& pipeline = pipelineFor(shadowed, false, !grey.resource.empty(), shadows.pcf);
     gpu::GBufferPush push{};
+    push.exposure = grey.exposure;
     push.viewProj = reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), camera.viewMatrix());
     push.cameraPos = glm::vec4(camera.origin, 1.0f);
     push.shadow = glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias,
                             static_cast<float>(shadows.faceSize));
-    executor.setRecord("gbuffer", [this, colour, depth, push, &pipeline, shadow = shadows.resource](
-                                      vk::PassContext& pc) {
-        record(pc, colour, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass());
+    executor.setRecord("gbuffer", [this, colour, depth, push, &pipeline, shadow = shadows.resource,
+                                   grey = grey.resource](vk::PassContext& pc) {
+        record(pc, colour, grey, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass());
     });
     return id;
 }
@@ -366,11 +375,11 @@ std::vector<std::uint32_t> GBufferPass::lightingConstants(std::uint32_t pcf) con
     return constants;
 }
 
-const vk::Pipeline& GBufferPass::pipelineFor(bool shadowed, bool mirrored, std::uint32_t pcf) {
-    const PipelineKey key{shadowed, mirrored, shadowed ? std::max(pcf, 1u) : 1u, lightsVersion_};
+const vk::Pipeline& GBufferPass::pipelineFor(bool shadowed, bool mirrored, bool grey, std::uint32_t pcf) {
+    const PipelineKey key{shadowed, mirrored, grey, shadowed ? std::max(pcf, 1u) : 1u, lightsVersion_};
     vk::Pipeline& pipeline = pipelines_[key];
     if (!pipeline.handle())
-        pipeline = makePipeline(*context_, shadowed, textured_, mirrored, !mirrored && hasDepthPrepass(),
+        pipeline = makePipeline(*context_, shadowed, textured_, mirrored, grey, !mirrored && hasDepthPrepass(),
                                 lightingConstants(key.pcf));
     return pipeline;
 }
@@ -393,7 +402,7 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
                                         graph::writes(depth, graph::Usage::DepthAttachment)};
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
     const graph::PassId id = graph.addPass({pass, graph::QueueKind::Graphics, accesses, std::move(purpose)});
-    const vk::Pipeline& pipeline = pipelineFor(shadowed, true, shadows.pcf);
+    const vk::Pipeline& pipeline = pipelineFor(shadowed, true, false, shadows.pcf);
     std::vector<gpu::GBufferPush> pushes;
     for (std::size_t i = 0; i < views.size(); ++i) {
         gpu::GBufferPush push{};
@@ -406,18 +415,20 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
         pushes.push_back(push);
     }
     executor.setRecord(pass, [this, colour, depth, pushes, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
-        record(pc, colour, depth, pipeline, shadow, pushes, false);
+        record(pc, colour, "", depth, pipeline, shadow, pushes, false);
     });
     return id;
 }
 
-void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const std::string& depth,
-                         const vk::Pipeline& pipeline, const std::string& shadow,
+void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const std::string& grey,
+                         const std::string& depth, const vk::Pipeline& pipeline, const std::string& shadow,
                          std::span<const gpu::GBufferPush> draws, bool prepass) const {
     const vk::Image& target = pc.image(colour);
     const vk::Image& z = pc.image(depth);
     const VkExtent2D extent{target.info().width, target.info().height};
-    const VkRenderingAttachmentInfo colourInfo = vk::clearedColourAttachment(target.view());  // black background
+    // Black background, whose grey is 0.
+    std::vector<VkRenderingAttachmentInfo> colourInfos{vk::clearedColourAttachment(target.view())};
+    if (!grey.empty()) colourInfos.push_back(vk::clearedColourAttachment(pc.image(grey).view()));
     VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depthInfo.imageView = z.view();
     depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
@@ -427,8 +438,8 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
     VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
     rendering.renderArea = {{0, 0}, extent};
     rendering.layerCount = target.info().layers;  // mirror.colour: one layer per mirror (gl_Layer)
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachments = &colourInfo;
+    rendering.colorAttachmentCount = static_cast<std::uint32_t>(colourInfos.size());
+    rendering.pColorAttachments = colourInfos.data();
     rendering.pDepthAttachment = &depthInfo;
 
     VkCommandBuffer cmd = pc.cmd();

@@ -47,6 +47,14 @@ struct GBufferShadows {
     std::uint32_t pcf = 1;
 };
 
+// The grey of step 1 of the aamap (glsl/display_luma.glsl), written by the G-buffer as a second
+// attachment when nothing changes the snapshot after it (no mirror composite): the luminance
+// pass then has nothing left to do. Empty resource: not written.
+struct GBufferGrey {
+    std::string resource;  // R32F, the snapshot's size
+    float exposure = 1.0f;
+};
+
 // One planar mirror's reflected view (passes/mirror.h): the camera's reversed view-projection
 // times the reflection in the mirror plane, the reflected eye (for two-sided shading), and the
 // plane, xyz . p >= w on the side that is seen in the mirror.
@@ -60,17 +68,18 @@ class GBufferPass {
 public:
     static constexpr graph::Format kColourFormat = graph::Format::RGBA32Float;
     static constexpr graph::Format kDepthFormat = graph::Format::D32Float;
+    static constexpr graph::Format kGreyFormat = graph::Format::R32Float;  // GBufferGrey
 
     GBufferPass(VulkanContext& context, const Scene& scene);  // uploads the mesh with its materials
     // Uploads the light list; throws std::invalid_argument past GBUFFER_MAX_LIGHTS (256).
     void setLights(std::span<const PointLight> lights);
 
-    // Declares the pass "gbuffer" (writes `colour` and `depth`, reads the shadow maps if any) and
-    // registers its recording for the camera with the given clip planes. This object must outlive
-    // execution.
+    // Declares the pass "gbuffer" (writes `colour` and `depth`, and grey.resource if not empty;
+    // reads the shadow maps if any) and registers its recording for the camera with the given
+    // clip planes. This object must outlive execution.
     graph::PassId add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour,
                       const std::string& depth, const PinholeCamera& camera, float nearPlane, float farPlane,
-                      const GBufferShadows& shadows = {});
+                      const GBufferShadows& shadows = {}, const GBufferGrey& grey = {});
 
     // Declares pass `pass`, which renders the scene once per view into layer i of the layered
     // `colour` and `depth` (the G-buffer's shading, clipped to each view's plane).
@@ -119,19 +128,20 @@ public:
 
 private:
     bool hasDepthPrepass() const { return depthPipeline_.handle() != VK_NULL_HANDLE; }
-    void record(vk::PassContext& pc, const std::string& colour, const std::string& depth, const vk::Pipeline& pipeline,
-                const std::string& shadow, std::span<const gpu::GBufferPush> draws, bool prepass) const;
+    void record(vk::PassContext& pc, const std::string& colour, const std::string& grey, const std::string& depth,
+                const vk::Pipeline& pipeline, const std::string& shadow, std::span<const gpu::GBufferPush> draws,
+                bool prepass) const;
 
     // The shading pipeline of each variant, specialised for the light list of setLights call
     // `lightsVersion`; built on first use (a scene without lights never builds a shadowed one).
     // A std::map, so the references that recordings hold stay valid.
     struct PipelineKey {
-        bool shadowed = false, mirrored = false;
+        bool shadowed = false, mirrored = false, grey = false;
         std::uint32_t pcf = 1;
         std::uint64_t lightsVersion = 0;
         auto operator<=>(const PipelineKey&) const = default;
     };
-    const vk::Pipeline& pipelineFor(bool shadowed, bool mirrored, std::uint32_t pcf);
+    const vk::Pipeline& pipelineFor(bool shadowed, bool mirrored, bool grey, std::uint32_t pcf);
 
     VulkanContext* context_;
     std::map<PipelineKey, vk::Pipeline> pipelines_;

@@ -92,16 +92,17 @@ void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const
     geometry.add(graph, executor, in.colour, *in.camera, in.nearPlane, in.farPlane, in.shadows);
     graph.addResource(graph::imageResource(kEdges, graph::Format::R32Float, graph::Size::relative(in.colour)));
     if (source == AamapSource::Luminance) {
-        chain.add(graph, executor, in.colour, in.width, in.height, in.params);
+        chain.add(graph, executor, in.colour, in.width, in.height, in.params, in.greyFromGBuffer);
         // Declared for the explanation only: nothing reads kEdges, so the graph culls both.
         edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds, "", kEdges);
         return;
     }
-    graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(in.colour)));
+    if (!in.greyFromGBuffer)
+        graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(in.colour)));
     graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, graph::Size::relative(in.colour)));
     graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, graph::Size::relative(in.colour)));
     graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
-    chain.luminance.add(graph, executor, in.colour, kGrey, in.params.exposure);
+    if (!in.greyFromGBuffer) chain.luminance.add(graph, executor, in.colour, kGrey, in.params.exposure);
     chain.laplacian.add(graph, executor, kGrey, kLaplacian);  // geometric: kept only as a debug output
     edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds,
               source == AamapSource::Combined ? kLaplacian : "", kEdges);

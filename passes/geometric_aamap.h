@@ -46,6 +46,7 @@ struct MapChainInputs {
     int width = 0, height = 0;  // render resolution
     FilterParams params;
     GBufferShadows shadows;  // the G-buffer's shadow maps (none: empty resource), for the occlusion mask
+    bool greyFromGBuffer = false;  // kGrey is declared and the G-buffer writes it (GBufferGrey)
 };
 
 // Declares grey, laplacian, map and aamap (gpu_aamap.h) and the passes that make the aamap from

@@ -18,13 +18,14 @@ graph::Size sizeOf(const auto& image) {
 }  // namespace
 
 void FilterChain::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour, int width,
-                      int height, const FilterParams& params) const {
-    graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(colour)));
+                      int height, const FilterParams& params, bool greyFromGBuffer) const {
+    if (!greyFromGBuffer)
+        graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(colour)));
     graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, graph::Size::relative(colour)));
     graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, graph::Size::relative(colour)));
     graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float,
                             absoluteSize(width, height)));
-    luminance.add(graph, executor, colour, kGrey, params.exposure);
+    if (!greyFromGBuffer) luminance.add(graph, executor, colour, kGrey, params.exposure);
     laplacian.add(graph, executor, kGrey, kLaplacian);
     blur.add(graph, executor, kLaplacian, kMap, params.blurRadius, params.noiseFloor, params.gain);
     reduce.add(graph, executor, kMap, kAamap);

@@ -32,9 +32,10 @@ struct FilterChain {
     ReducePass reduce;
 
     // Declares grey, laplacian, map (sized like `colour`) and aamap (width x height), and the
-    // four passes from the RGBA32F image `colour` to the aamap.
+    // four passes from the RGBA32F image `colour` to the aamap. greyFromGBuffer: grey is already
+    // declared and written (passes/gbuffer.h, GBufferGrey), so there is no luminance pass.
     void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour, int width, int height,
-             const FilterParams& params) const;
+             const FilterParams& params, bool greyFromGBuffer = false) const;
 };
 
 // Runs the chain, or one stage of it, on host images.

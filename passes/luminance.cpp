@@ -11,7 +11,8 @@ graph::PassId LuminancePass::add(graph::RenderGraph& graph, vk::GraphExecutor& e
     gpu::FilterPush push{};
     push.exposure = exposure;
     return pass_.add(graph, executor, "luminance", colour, grey, push,
-                     "greyscale of the snapshot for the edge filter");
+                     "greyscale of the snapshot for the edge filter (in a Snapshot only after a mirror "
+                     "composite: otherwise the G-buffer writes it)");
 }
 
 }  // namespace aamap::passes

@@ -137,36 +137,17 @@ MirrorPass::MirrorPass(VulkanContext& context, const Scene& scene)
                        static_cast<std::uint32_t>(sizeof(gpu::MirrorCompositePush)), VK_SHADER_STAGE_COMPUTE_BIT});
 }
 
-void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBufferPass& geometry,
-                     const std::string& snapshot, const std::string& depth, const PinholeCamera& camera,
-                     float nearPlane, float farPlane, float sceneSize, const GBufferShadows& shadows,
-                     std::string* why) {
-    const auto explain = [&](std::string text) {
-        if (why) *why = std::move(text);
-    };
-    if (!unsupported_.empty()) {
-        explain("no mirror pass: " + unsupported_);
-        return;
-    }
-    if (mirrors_.planar.empty()) {
-        explain(mirrors_.curved.empty() ? "no mirror pass: the scene has no mirror"
-                                        : fmt::format("no mirror pass: {} mirror group(s) are curved (not coplanar), "
-                                                      "and the Snapshot reflects planar mirrors only",
-                                                      mirrors_.curved.size()));
-        return;
-    }
-    const glm::mat4 projection = camera.projectionMatrix(nearPlane, farPlane);
-    const glm::mat4 view = camera.viewMatrix();
-    const glm::mat4 viewProj = GBufferPass::reversedViewProjection(projection, view);
+bool MirrorPass::anyInView(const PinholeCamera& camera, float nearPlane, float farPlane, float sceneSize) const {
+    return unsupported_.empty() && !visibleMirrors(camera, nearPlane, farPlane, sceneSize).empty();
+}
 
-    // Visible mirrors: the eye off the plane and some part of a triangle inside the frustum
-    // (conservative: no vertex set entirely beyond one side plane of the frustum).
-    struct Visible {
-        const PlanarMirror* mirror;
-        float sign;
-        float distance;
-    };
-    std::vector<Visible> visible;
+// Visible mirrors, nearest first: the eye off the plane and some part of a triangle inside the
+// frustum (conservative: no vertex set entirely beyond one side plane of the frustum).
+std::vector<MirrorPass::VisibleMirror> MirrorPass::visibleMirrors(const PinholeCamera& camera, float nearPlane,
+                                                                  float farPlane, float sceneSize) const {
+    const glm::mat4 viewProj =
+        GBufferPass::reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), camera.viewMatrix());
+    std::vector<VisibleMirror> visible;
     for (const PlanarMirror& m : mirrors_.planar) {
         const float side = glm::dot(m.normal, camera.origin) - m.offset;
         if (std::fabs(side) <= 1e-6f * sceneSize) continue;
@@ -188,12 +169,38 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
         }
         if (inView) visible.push_back({&m, side > 0.0f ? 1.0f : -1.0f, nearest});
     }
+    std::sort(visible.begin(), visible.end(),
+              [](const VisibleMirror& a, const VisibleMirror& b) { return a.distance < b.distance; });
+    return visible;
+}
+
+void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBufferPass& geometry,
+                     const std::string& snapshot, const std::string& depth, const PinholeCamera& camera,
+                     float nearPlane, float farPlane, float sceneSize, const GBufferShadows& shadows,
+                     std::string* why) {
+    const auto explain = [&](std::string text) {
+        if (why) *why = std::move(text);
+    };
+    if (!unsupported_.empty()) {
+        explain("no mirror pass: " + unsupported_);
+        return;
+    }
+    if (mirrors_.planar.empty()) {
+        explain(mirrors_.curved.empty() ? "no mirror pass: the scene has no mirror"
+                                        : fmt::format("no mirror pass: {} mirror group(s) are curved (not coplanar), "
+                                                      "and the Snapshot reflects planar mirrors only",
+                                                      mirrors_.curved.size()));
+        return;
+    }
+    std::vector<VisibleMirror> visible = visibleMirrors(camera, nearPlane, farPlane, sceneSize);
     if (visible.empty()) {
         explain(fmt::format("no mirror pass: none of the {} planar mirror(s) is in view", mirrors_.planar.size()));
         return;
     }
-    std::sort(visible.begin(), visible.end(), [](const Visible& a, const Visible& b) { return a.distance < b.distance; });
     if (visible.size() > kMaxMirrors) visible.resize(kMaxMirrors);
+    const glm::mat4 view = camera.viewMatrix();
+    const glm::mat4 viewProj =
+        GBufferPass::reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), view);
 
     // One reflected view per mirror; the clip plane keeps the eye's side, a hair off the mirror
     // itself so that the mirror does not reflect its own surface.

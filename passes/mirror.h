@@ -64,6 +64,8 @@ public:
     MirrorPass(VulkanContext& context, const Scene& scene);
 
     bool hasPlanarMirrors() const { return !mirrors_.planar.empty(); }
+    // Whether add() would declare the mirror passes for this camera (a planar mirror in view).
+    bool anyInView(const PinholeCamera& camera, float nearPlane, float farPlane, float sceneSize) const;
 
     // Declares the three passes for the mirrors `camera` sees (none: nothing is declared and the
     // reason is returned in `why`). `snapshot` and `depth` are the G-buffer's outputs.
@@ -73,6 +75,14 @@ public:
              float farPlane, float sceneSize, const GBufferShadows& shadows, std::string* why = nullptr);
 
 private:
+    struct VisibleMirror {
+        const PlanarMirror* mirror;
+        float sign;      // of the eye's side of the plane
+        float distance;  // of the nearest corner to the eye
+    };
+    std::vector<VisibleMirror> visibleMirrors(const PinholeCamera& camera, float nearPlane, float farPlane,
+                                              float sceneSize) const;
+
     VulkanContext* context_;
     MirrorGroups mirrors_;
     std::string unsupported_;  // why the device cannot render mirrors, if it cannot

@@ -175,12 +175,23 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         s.shadows->add(graph, s.executor, shadows.resource, s.gbuffer, s.lightNames, shadows.faceSize,
                        shadows.nearPlane);
     }
-    s.gbuffer.add(graph, s.executor, kSnapshot, kDepth, camera, nearPlane, farPlane, shadows);
+    // The G-buffer writes the aamap's grey itself unless a mirror composite changes the snapshot
+    // after it or the map does not read the grey: one compute pass fewer.
+    const float sceneSize = glm::length(s.bounds.extent());
+    passes::GBufferGrey grey;
+    if (!s.mirrors.anyInView(camera, nearPlane, farPlane, sceneSize) &&
+        settings.map != passes::AamapSource::Geometric) {
+        graph.addResource(
+            graph::imageResource(passes::kGrey, passes::GBufferPass::kGreyFormat, graph::Size::relative(kSnapshot)));
+        grey = {passes::kGrey, settings.filter.exposure};
+    }
+    s.gbuffer.add(graph, s.executor, kSnapshot, kDepth, camera, nearPlane, farPlane, shadows, grey);
     std::string mirrorWhy;
     s.mirrors.add(graph, s.executor, s.gbuffer, kSnapshot, kDepth, camera, nearPlane, farPlane,
-                  glm::length(s.bounds.extent()), shadows, &mirrorWhy);
+                  sceneSize, shadows, &mirrorWhy);
     passes::MapChainInputs mapInputs{kSnapshot, &camera, nearPlane, farPlane, width, height, settings.filter};
     mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
+    mapInputs.greyFromGBuffer = !grey.resource.empty();
     passes::addAamapChain(graph, s.executor, s.chain, s.geometry, s.geometricEdges, settings.map, mapInputs);
     // Always declared: culled (with the reason in `explain`) unless a strategy asked for it.
     s.blockSums.add(graph, s.executor, passes::kAamap, width, height,

@@ -61,7 +61,8 @@ struct GBufferPush {
     mat4 viewProj;   // world -> Vulkan clip space
     vec4 cameraPos;  // xyz
     uint mirrorLayer;  // mirror variants (GBUFFER_MIRROR): the layer of mirror.colour to draw into
-    uint pad0, pad1, pad2;
+    float exposure;    // grey variants (GBUFFER_GREY): as FilterPush::exposure
+    uint pad1, pad2;
     vec4 shadow;     // x: cube-map near plane, y: depth bias, z: slope bias (texels), w: face size
     vec4 clipPlane;  // mirror variants: keep dot(xyz, p) >= w, the mirror's side of its plane
 };

@@ -1,11 +1,14 @@
 // The Snapshot end to end on a scene built in code: the raster puts geometry exactly where the
 // tracer's camera rays would find it, shading has its analytic value, and the aamap flags edges.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
 #include "gpu_fixture.h"
+#include "passes/cpu_aamap.h"
 #include "passes/snapshot.h"
+#include "scene/builtin_scenes.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
 
@@ -72,9 +75,11 @@ TEST_F(GpuTest, RasterAgreesWithCameraRays) {
     ASSERT_EQ(r.aamap.height(), 48);
     EXPECT_FALSE(r.deviceName.empty());
     EXPECT_FALSE(r.explain.empty());
-    ASSERT_EQ(r.passTimes.size(), 6u);  // shadow cube maps for the light, then the raster
+    // Shadow cube maps for the light, the raster (which writes the grey too: no mirror), the chain.
+    ASSERT_EQ(r.passTimes.size(), 5u);
     EXPECT_EQ(r.passTimes.front().pass, "shadow");
     EXPECT_EQ(r.passTimes[1].pass, "gbuffer");
+    EXPECT_EQ(r.passTimes[2].pass, "laplacian");
     EXPECT_EQ(r.passTimes.back().pass, "reduce");
 
     // Every snapshot pixel: the tracer's ray through the pixel centre hits the quad iff the raster
@@ -180,6 +185,33 @@ TEST_F(GpuTest, AreaLightBecomesLobesAndEmitterShowsItsRadiance) {
     const SnapshotResult up = renderer.render(below, 16, 16, settings);
     const glm::vec3 centre = up.snapshot.at(up.snapshot.width() / 2, up.snapshot.height() / 2);
     EXPECT_EQ(centre, glm::vec3(4.0f, 3.0f, 2.0f));
+}
+
+// The G-buffer writes the grey of step 1 itself when no mirror composite follows it; the aamap
+// built on it must be the CPU chain's on the snapshot colour the same run read back (the Cornell
+// box: shadows from the area light's samples, emitter, coloured walls).
+TEST_F(GpuTest, ChainOnTheGBuffersGreyMatchesTheCpuChainOnItsColour) {
+    const Scene scene = builtinScene("cornell");
+    SnapshotRenderer renderer(context(), scene);
+    SnapshotSettings settings;
+    settings.scale = 1.5f;
+    const SnapshotResult r = renderer.render(scene.views.at(0), 80, 64, settings);
+    for (const PassTiming& t : r.passTimes) EXPECT_NE(t.pass, "luminance");
+    ASSERT_EQ(r.snapshot.width(), 120);
+    const cpu::AamapImages expected = cpu::buildAamap(r.snapshot, 80, 64, settings.filter, cpu::Mode::Scalar);
+    // The filter tests' tolerance (tests/gpu/test_gpu_filters.cpp): the GPU Laplacian rounds its
+    // 24 differences in float.
+    constexpr float kTolerance = 1e-5f;
+    float laplacianDiff = 0.0f, aamapDiff = 0.0f;
+    for (std::size_t i = 0; i < r.laplacian.size(); ++i)
+        laplacianDiff = std::max(laplacianDiff, std::fabs(r.laplacian.data()[i] - expected.laplacian.data()[i]));
+    for (std::size_t i = 0; i < r.aamap.size(); ++i)
+        aamapDiff = std::max(aamapDiff, std::fabs(r.aamap.data()[i] - expected.aamap.data()[i]));
+    EXPECT_LE(laplacianDiff, kTolerance);
+    EXPECT_LE(aamapDiff, kTolerance);
+    int flagged = 0;
+    for (float v : r.aamap.pixels()) flagged += v > 0.0f;
+    EXPECT_GT(flagged, 100);  // the box's edges and shadows are there to compare
 }
 
 }  // namespace

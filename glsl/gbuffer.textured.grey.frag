@@ -1,0 +1,7 @@
+#version 460
+// The Snapshot raster's shading with textures,
+// and the greyscale of step 1 of the aamap: see gbuffer.glsl.
+#extension GL_GOOGLE_include_directive : require
+#define GBUFFER_TEXTURED 1
+#define GBUFFER_GREY 1
+#include "gbuffer.glsl"
