@@ -49,10 +49,29 @@ layout(binding = GBUFFER_BINDING_SHADOW) uniform texture2DArray shadowCubes;
 
 #include "shadow_visibility.glsl"
 
+// pc.shadow, read once at the top of main: lavapipe gathers each uniform load lane by lane, and
+// re-reads it after every shadow-map fetch otherwise.
+vec4 shadowParams;
+
 float visibility(uint light, vec3 r, vec3 n) {
-    return shadowVisibility(shadowCubes, light, r, n, pc.shadow, int(kShadowPcf));
+    return shadowVisibility(shadowCubes, light, r, n, shadowParams, int(kShadowPcf));
 }
 #endif
+
+// Lambert from light i (its shadow-map layers are 6i..6i+5), emission excluded.
+vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
+    const vec3 toLight = light.position.xyz - worldPosition;
+    const float d2 = dot(toLight, toLight);
+    if (d2 <= 0.0) return vec3(0.0);
+    const vec3 wi = toLight * inversesqrt(d2);
+    const float cosSurface = max(dot(n, wi), 0.0);
+    const float lobe = angularFactor(light.normal.xyz, light.cone, wi);
+    float weight = cosSurface * lobe / d2;
+#ifdef GBUFFER_SHADOWS
+    if (weight > 0.0) weight *= visibility(i, -toLight, n);  // no lookups for unlit sides
+#endif
+    return kd * kInvPi * light.intensity.rgb * weight;
+}
 
 void main() {
 #ifdef GBUFFER_MIRROR
@@ -71,25 +90,19 @@ void main() {
     const vec3 kd = vertexKd;
 #endif
     vec3 n = normalize(worldNormal);
+#ifdef GBUFFER_SHADOWS
+    shadowParams = pc.shadow;
+#endif
     const vec3 toCamera = pc.cameraPos.xyz - worldPosition;
     const bool front = dot(n, toCamera) >= 0.0;
     if (!front) n = -n;
 
     // Emitters are one-sided along their normal.
     vec3 colour = front ? ke : vec3(0.0);
-    for (uint i = 0u; i < kLightCount; ++i) {
-        const vec3 toLight = lights[i].position.xyz - worldPosition;
-        const float d2 = dot(toLight, toLight);
-        if (d2 <= 0.0) continue;
-        const vec3 wi = toLight * inversesqrt(d2);
-        const float cosSurface = max(dot(n, wi), 0.0);
-        const float lobe = angularFactor(lights[i].normal.xyz, lights[i].cone, wi);
-        float weight = cosSurface * lobe / d2;
-#ifdef GBUFFER_SHADOWS
-        if (weight > 0.0) weight *= visibility(i, -toLight, n);  // no lookups for unlit sides
-#endif
-        colour += kd * kInvPi * lights[i].intensity.rgb * weight;
-    }
+#define ADD_INLINE_LIGHT(k) \
+    if (uint(k) < kLightCount) colour += lightContribution(INLINE_LIGHT(k), uint(k), n, kd);
+    FOR_EACH_INLINE_LIGHT(ADD_INLINE_LIGHT)
+    for (uint i = LIGHTING_INLINE_LIGHTS; i < kLightCount; ++i) colour += lightContribution(lights[i], i, n, kd);
     outColour = vec4(colour, 1.0);
 #ifdef GBUFFER_GREY
     outGrey = displayLuma(colour, pc.exposure);

@@ -37,18 +37,24 @@ layout(binding = GEOMETRY_BINDING_SHADOW) uniform texture2DArray shadowCubes;
 // Bit (i mod 32) set when light i would light the texel (it faces the light, inside its lobe or
 // cone: the G-buffer's weight > 0) but the shadow maps block at least half of its PCF kernel.
 // Unlit sides never set a bit, so a terminator on a curved surface is no edge.
+bool occludes(GpuLight light, uint i, vec3 n, vec4 shadow) {
+    const vec3 toLight = light.position.xyz - worldPosition;
+    const float d2 = dot(toLight, toLight);
+    if (d2 <= 0.0) return false;
+    const vec3 wi = toLight * inversesqrt(d2);
+    // Not outside a spot's outer cone nor behind a lobe's emitter.
+    const bool reaches = dot(n, wi) > 0.0 && angularFactor(light.normal.xyz, light.cone, wi) > 0.0;
+    return reaches && shadowVisibility(shadowCubes, i, -toLight, n, shadow, int(kShadowPcf)) < 0.5;
+}
+
 uint occlusionMask(vec3 n) {
+    const vec4 shadow = pc.shadow;  // read once, as the G-buffer does (gbuffer.glsl)
     uint mask = 0u;
-    for (uint i = 0u; i < kLightCount; ++i) {
-        const vec3 toLight = lights[i].position.xyz - worldPosition;
-        const float d2 = dot(toLight, toLight);
-        if (d2 <= 0.0) continue;
-        const vec3 wi = toLight * inversesqrt(d2);
-        // Not outside a spot's outer cone nor behind a lobe's emitter.
-        const bool reaches = dot(n, wi) > 0.0 && angularFactor(lights[i].normal.xyz, lights[i].cone, wi) > 0.0;
-        if (reaches && shadowVisibility(shadowCubes, i, -toLight, n, pc.shadow, int(kShadowPcf)) < 0.5)
-            mask |= 1u << (i & 31u);
-    }
+#define MASK_INLINE_LIGHT(k) \
+    if (uint(k) < kLightCount && occludes(INLINE_LIGHT(k), uint(k), n, shadow)) mask |= 1u << uint(k);
+    FOR_EACH_INLINE_LIGHT(MASK_INLINE_LIGHT)
+    for (uint i = LIGHTING_INLINE_LIGHTS; i < kLightCount; ++i)
+        if (occludes(lights[i], i, n, shadow)) mask |= 1u << (i & 31u);
     return mask;
 }
 #endif

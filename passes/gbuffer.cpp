@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
@@ -323,6 +324,7 @@ void GBufferPass::setLights(std::span<const PointLight> lights) {
                                                 "(point lights plus areaLightSamples per area light)",
                                                 GBUFFER_MAX_LIGHTS, gpuLights.size()));
     lightCount_ = static_cast<std::uint32_t>(gpuLights.size());
+    inlineLights_.assign(gpuLights.begin(), gpuLights.begin() + std::min<std::size_t>(gpuLights.size(), LIGHTING_INLINE_LIGHTS));
     lightKinds_ = 0;
     for (const gpu::GpuLight& l : gpuLights)
         lightKinds_ |= l.cone.z > 0.0f           ? LIGHT_KIND_SPOT
@@ -368,10 +370,19 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
 }
 
 std::vector<std::uint32_t> GBufferPass::lightingConstants(std::uint32_t pcf) const {
-    std::vector<std::uint32_t> constants(3);
+    std::vector<std::uint32_t> constants(LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * LIGHTING_INLINE_LIGHTS);
     constants[LIGHTING_SPEC_LIGHT_COUNT] = lightCount_;
     constants[LIGHTING_SPEC_SHADOW_PCF] = std::max(pcf, 1u);
     constants[LIGHTING_SPEC_LIGHT_KINDS] = lightKinds_;
+    static_assert(sizeof(gpu::GpuLight) == 4 * sizeof(glm::vec4) && LIGHTING_SPEC_FLOATS_PER_LIGHT == 12);
+    for (std::size_t k = 0; k < inlineLights_.size(); ++k) {
+        const gpu::GpuLight& l = inlineLights_[k];
+        const glm::vec4 fields[4] = {l.position, l.intensity, l.normal, l.cone};
+        for (int f = 0; f < 4; ++f)  // xyz of each field, w dropped
+            for (int c = 0; c < 3; ++c)
+                constants[LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * k + 3 * f + c] =
+                    std::bit_cast<std::uint32_t>(fields[f][c]);
+    }
     return constants;
 }
 

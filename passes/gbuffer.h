@@ -158,6 +158,7 @@ private:
     std::uint32_t vertexCount_ = 0, occluderVertexCount_ = 0;
     std::vector<std::uint32_t> drawnTriangles_;
     std::uint32_t lightCount_ = 0, lightKinds_ = 0;  // LIGHT_KIND_* bits
+    std::vector<gpu::GpuLight> inlineLights_;        // the first LIGHTING_INLINE_LIGHTS, for the constants
 };
 
 }  // namespace aamap::passes

@@ -24,7 +24,7 @@ struct Bounds {
 // A spot light's angular falloff for a direction at cosine `cosAngle` from its axis: 1 inside the
 // inner cone, 0 outside the outer one, and between them t^2 with t linear in the cosine,
 // t = (cosAngle - cosOuter) / (cosInner - cosOuter): the falloff glTF's KHR_lights_punctual
-// recommends. Equal cones give a hard edge. Mirrored in glsl/gbuffer.glsl (spotFalloff).
+// recommends. Equal cones give a hard edge. Mirrored in glsl/lights.glsl (spotFalloff).
 inline float spotFalloff(float cosAngle, float cosInner, float cosOuter) {
     if (cosAngle >= cosInner) return 1.0f;
     if (cosAngle <= cosOuter) return 0.0f;

@@ -46,13 +46,22 @@ struct GpuLight {
 };
 
 // Specialisation constants of the lit fragment shaders (gbuffer*.frag, geometry_buffer.shadowed*
-// .frag; glsl/lights.glsl): the light list's length and kinds and the PCF side are fixed per
-// pipeline, so the light loop unrolls with constant uniform offsets and the code of absent light
-// kinds and of the other PCF path is dropped. lavapipe's SIMD lanes run both sides of every
-// branch, and these made its G-buffer 1.6x faster (docs/results.md). Values in this order.
+// .frag; glsl/lights.glsl): the light list's length and kinds, the PCF side and the first
+// LIGHTING_INLINE_LIGHTS lights themselves are fixed per pipeline. So the code of absent light
+// kinds and of the other PCF path is dropped (lavapipe's SIMD lanes run both sides of every
+// branch), and those lights cost no uniform loads (lavapipe gathers every uniform load lane by
+// lane, constant offset or not). lavapipe's Cornell G-buffer at 768^2 with 5 light samples took
+// 22 ms without these, 15 ms with the first three, 10 ms with the lights inline too
+// (docs/results.md). Values in this order.
 #define LIGHTING_SPEC_LIGHT_COUNT 0  // uint: lights[0 .. count)
 #define LIGHTING_SPEC_SHADOW_PCF 1   // uint: PCF kernel side in texels (1: one tap)
 #define LIGHTING_SPEC_LIGHT_KINDS 2  // uint: the LIGHT_KIND_* bits of the kinds in the list
+// Then light k < LIGHTING_INLINE_LIGHTS as floats from LIGHTING_SPEC_LIGHT_DATA + 12 k: position
+// xyz, intensity rgb, normal xyz, cone xyz (GpuLight's fields in order, w dropped); zeros past
+// the list. Lights from LIGHTING_INLINE_LIGHTS on are read from the uniform buffer.
+#define LIGHTING_SPEC_LIGHT_DATA 3
+#define LIGHTING_SPEC_FLOATS_PER_LIGHT 12
+#define LIGHTING_INLINE_LIGHTS 8  // = the APPLY list of FOR_EACH_INLINE_LIGHT (glsl/lights.glsl)
 #define LIGHT_KIND_ISOTROPIC 1u      // GpuLight::normal is 0
 #define LIGHT_KIND_LOBE 2u           // cosine lobe about GpuLight::normal (area-light samples)
 #define LIGHT_KIND_SPOT 4u           // spot cone about GpuLight::normal (GpuLight::cone.z = 1)

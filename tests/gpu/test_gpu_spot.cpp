@@ -1,8 +1,11 @@
 // A spot light in the Snapshot agrees with the tracer's direct light: the same cone, the same
-// falloff, on a plane with nothing to shadow it; alone and beside an isotropic and a lobed point
-// light, since the G-buffer's shader is specialised for the kinds in the list (glsl/lights.glsl).
+// falloff, on a plane with nothing to shadow it; alone, beside an isotropic and a lobed point
+// light, and after eight others: the G-buffer's shader is specialised for the kinds in the list
+// and holds the first LIGHTING_INLINE_LIGHTS lights as constants, reading the rest from its
+// uniform buffer (glsl/lights.glsl), and each way must shade alike.
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -10,6 +13,7 @@
 #include "gpu_fixture.h"
 #include "passes/snapshot.h"
 #include "scene/camera.h"
+#include "scene/lights.h"
 #include "tracer/embree_scene.h"
 #include "tracer/integrator.h"
 #include "tracer/lights.h"
@@ -17,9 +21,14 @@
 namespace aamap::test {
 namespace {
 
+constexpr float kPi = 3.14159265358979f;
+
+enum class Lights { SpotAlone, SpotIsotropicAndLobe, AfterEightOthers };
+
 // A grey plane z = 0 (facing +z) under a tilted spot (inner 15, outer 35 degrees), seen from above;
-// `otherKinds`: also an isotropic light and a lobed one (the point sample of an area light).
-Scene spotOnPlane(bool otherKinds) {
+// then an isotropic light and a lobed one (the point sample of an area light), and for
+// AfterEightOthers, eight dim isotropic lights before all three.
+Scene spotOnPlane(Lights which) {
     Scene scene;
     scene.name = "spot";
     Material grey;
@@ -38,8 +47,16 @@ Scene spotOnPlane(bool otherKinds) {
     spot.spotDirection = glm::normalize(glm::vec3(0.3f, 0.15f, -1.0f));
     spot.cosInner = std::cos(glm::radians(15.0f));
     spot.cosOuter = std::cos(glm::radians(35.0f));
+    if (which == Lights::AfterEightOthers)
+        for (int k = 0; k < 8; ++k) {
+            PointLight dim;
+            dim.name = "dim" + std::to_string(k);
+            dim.position = {-2.0f + 0.5f * static_cast<float>(k), 2.0f - 0.3f * static_cast<float>(k), 2.5f};
+            dim.intensity = glm::vec3(0.05f + 0.01f * static_cast<float>(k));
+            scene.pointLights.push_back(dim);
+        }
     scene.pointLights.push_back(spot);
-    if (otherKinds) {
+    if (which != Lights::SpotAlone) {
         PointLight isotropic;
         isotropic.name = "isotropic";
         isotropic.position = {-1.5f, 1.0f, 1.2f};
@@ -61,9 +78,9 @@ Scene spotOnPlane(bool otherKinds) {
     return scene;
 }
 
-class SpotShading : public GpuTest, public ::testing::WithParamInterface<bool> {};
+class SpotShading : public GpuTest, public ::testing::WithParamInterface<Lights> {};
 
-TEST_P(SpotShading, AgreesWithTheTracersDirectLight) {
+TEST_P(SpotShading, AgreesWithTheDirectLight) {
     const Scene scene = spotOnPlane(GetParam());
     const View& view = scene.views[0];
     SnapshotRenderer renderer(context(), scene);
@@ -76,6 +93,20 @@ TEST_P(SpotShading, AgreesWithTheTracersDirectLight) {
     const LightSet lights = buildLights(scene, geometry);
     const Integrator integrator(geometry, lights, ShadingSettings{});
     const PinholeCamera camera = PinholeCamera::fromView(view);
+    // Past LightSet::kFewLights the tracer samples lights instead of summing them, so there the
+    // reference is the sum itself: kd / pi * I * emissionFactor * cos / d^2 over the lights.
+    const bool tracerSumsLights = !lights.many();
+    ASSERT_EQ(tracerSumsLights, GetParam() != Lights::AfterEightOthers);
+    const auto analytic = [&](const glm::vec3& hit) {
+        glm::vec3 sum(0.0f);
+        for (const PointLight& l : scene.pointLights) {
+            const glm::vec3 toLight = l.position - hit;
+            const float d2 = glm::dot(toLight, toLight);
+            const glm::vec3 wi = toLight / std::sqrt(d2);
+            sum += scene.materials[0].kd / kPi * l.intensity * emissionFactor(l, -wi) * std::max(wi.z, 0.0f) / d2;
+        }
+        return sum;
+    };
 
     // Both sides evaluate kd / pi * I * falloff * cos / d^2 in float at the same point (the ray
     // through the pixel centre meets the plane where the raster's interpolated position is, to
@@ -89,12 +120,15 @@ TEST_P(SpotShading, AgreesWithTheTracersDirectLight) {
             const glm::vec3 d = camera.direction((x + 0.5f) / 64.0f, (y + 0.5f) / 64.0f);
             RayCounts rays;
             const Sampler sampler(static_cast<std::uint64_t>(y * 64 + x), 0, 1);
-            traced[static_cast<std::size_t>(y * 64 + x)] = integrator.primary(camera.origin, d, sampler, rays);
+            traced[static_cast<std::size_t>(y * 64 + x)] =
+                tracerSumsLights ? integrator.primary(camera.origin, d, sampler, rays)
+                                 : analytic(camera.origin + (-camera.origin.z / d.z) * d);
             peak = std::max(peak, traced[static_cast<std::size_t>(y * 64 + x)].r);
         }
     ASSERT_GT(peak, 0.0f);
     int dark = 0, band = 0, full = 0;
-    const PointLight& spot = scene.pointLights[0];
+    const PointLight& spot = scene.pointLights[GetParam() == Lights::AfterEightOthers ? 8 : 0];
+    ASSERT_EQ(spot.name, "spot");
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) {
             const glm::vec3 want = traced[static_cast<std::size_t>(y * 64 + x)];
@@ -114,9 +148,14 @@ TEST_P(SpotShading, AgreesWithTheTracersDirectLight) {
     EXPECT_GT(full, 100);
 }
 
-INSTANTIATE_TEST_SUITE_P(Lights, SpotShading, ::testing::Values(false, true),
-                         [](const ::testing::TestParamInfo<bool>& info) {
-                             return info.param ? "SpotIsotropicAndLobe" : "SpotAlone";
+INSTANTIATE_TEST_SUITE_P(Lights, SpotShading,
+                         ::testing::Values(Lights::SpotAlone, Lights::SpotIsotropicAndLobe, Lights::AfterEightOthers),
+                         [](const ::testing::TestParamInfo<Lights>& info) {
+                             switch (info.param) {
+                                 case Lights::SpotAlone: return "SpotAlone";
+                                 case Lights::SpotIsotropicAndLobe: return "SpotIsotropicAndLobe";
+                                 default: return "AfterEightOthers";
+                             }
                          });
 
 }  // namespace
