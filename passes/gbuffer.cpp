@@ -324,15 +324,20 @@ void GBufferPass::setLights(std::span<const PointLight> lights) {
                                                 "(point lights plus areaLightSamples per area light)",
                                                 GBUFFER_MAX_LIGHTS, gpuLights.size()));
     lightCount_ = static_cast<std::uint32_t>(gpuLights.size());
-    inlineLights_.assign(gpuLights.begin(), gpuLights.begin() + std::min<std::size_t>(gpuLights.size(), LIGHTING_INLINE_LIGHTS));
+    const std::size_t inlined = std::min<std::size_t>(gpuLights.size(), LIGHTING_INLINE_LIGHTS);
+    inlineLights_.assign(gpuLights.begin(), gpuLights.begin() + static_cast<std::ptrdiff_t>(inlined));
     lightKinds_ = 0;
-    for (const gpu::GpuLight& l : gpuLights)
-        lightKinds_ |= l.cone.z > 0.0f           ? LIGHT_KIND_SPOT
-                       : glm::dot(l.normal, l.normal) > 0.0f ? LIGHT_KIND_LOBE
-                                                             : LIGHT_KIND_ISOTROPIC;
+    for (const gpu::GpuLight& l : gpuLights) {
+        if (l.cone.z > 0.0f) lightKinds_ |= LIGHT_KIND_SPOT;
+        else if (glm::dot(l.normal, l.normal) > 0.0f) lightKinds_ |= LIGHT_KIND_LOBE;
+        else lightKinds_ |= LIGHT_KIND_ISOTROPIC;
+    }
     lightPositions_.clear();
     for (const PointLight& l : lights) lightPositions_.push_back(l.position);
     ++lightsVersion_;
+    // Pipelines specialised for the old list: only recordings made before this call use them, and
+    // those must be declared again anyway (the light buffer is replaced below).
+    std::erase_if(pipelines_, [&](const auto& entry) { return entry.first.lightsVersion != lightsVersion_; });
     gpuLights.resize(GBUFFER_MAX_LIGHTS);  // the shader declares the whole array
     lights_ = vk::uploadBuffer(*context_, bytesOf(gpuLights), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 }
@@ -370,7 +375,8 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
 }
 
 std::vector<std::uint32_t> GBufferPass::lightingConstants(std::uint32_t pcf) const {
-    std::vector<std::uint32_t> constants(LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * LIGHTING_INLINE_LIGHTS);
+    std::vector<std::uint32_t> constants(LIGHTING_SPEC_LIGHT_DATA +
+                                         LIGHTING_SPEC_FLOATS_PER_LIGHT * LIGHTING_INLINE_LIGHTS);
     constants[LIGHTING_SPEC_LIGHT_COUNT] = lightCount_;
     constants[LIGHTING_SPEC_SHADOW_PCF] = std::max(pcf, 1u);
     constants[LIGHTING_SPEC_LIGHT_KINDS] = lightKinds_;

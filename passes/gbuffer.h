@@ -71,7 +71,8 @@ public:
     static constexpr graph::Format kGreyFormat = graph::Format::R32Float;  // GBufferGrey
 
     GBufferPass(VulkanContext& context, const Scene& scene);  // uploads the mesh with its materials
-    // Uploads the light list; throws std::invalid_argument past GBUFFER_MAX_LIGHTS (256).
+    // Uploads the light list; throws std::invalid_argument past GBUFFER_MAX_LIGHTS (256). Passes
+    // declared before must be declared again (add, addReflected) before they execute.
     void setLights(std::span<const PointLight> lights);
 
     // Declares the pass "gbuffer" (writes `colour` and `depth`, and grey.resource if not empty;
@@ -133,8 +134,8 @@ private:
                 bool prepass) const;
 
     // The shading pipeline of each variant, specialised for the light list of setLights call
-    // `lightsVersion`; built on first use (a scene without lights never builds a shadowed one).
-    // A std::map, so the references that recordings hold stay valid.
+    // `lightsVersion` (setLights drops the others); built on first use (a scene without lights
+    // never builds a shadowed one). A std::map, so the references that recordings hold stay valid.
     struct PipelineKey {
         bool shadowed = false, mirrored = false, grey = false;
         std::uint32_t pcf = 1;

@@ -161,6 +161,39 @@ TEST_F(GpuTest, AreaLightSamplesEachGetACubeMap) {
     }
 }
 
+// The shading pipelines are specialised for the light list (glsl/lights.glsl) and rebuilt when it
+// changes: a renderer that went through other sample counts draws what a fresh one draws.
+TEST_F(GpuTest, ChangingTheLightSamplesAndBackGivesTheFreshSnapshot) {
+    Scene scene = boxScene(true, false);
+    Material lamp;
+    lamp.name = "lamp";
+    lamp.ke = glm::vec3(5.0f);
+    scene.materials.push_back(lamp);
+    addQuad(scene, 2, 1.5f, -0.2f, 0.2f, -0.2f, 0.2f, false);  // facing down
+    scene.mesh.materialIds.back() = scene.mesh.materialIds[scene.mesh.materialIds.size() - 2] = 1;
+    scene.mesh.objectIds.back() = scene.mesh.objectIds[scene.mesh.objectIds.size() - 2] = 1;
+    scene.areaLights = buildAreaLights(scene);
+    SnapshotSettings settings;
+    settings.scale = 1.0f;
+    SnapshotRenderer reused(context(), scene);
+    std::vector<float> firstAamap;
+    SnapshotResult last;
+    for (int k : {5, 12, 2, 5}) {  // 12: past the lights held as constants
+        settings.areaLightSamples = k;
+        last = reused.render(topView(), 48, 48, settings);
+        if (firstAamap.empty()) firstAamap = last.aamap.pixels();
+    }
+    SnapshotRenderer fresh(context(), scene);
+    settings.areaLightSamples = 5;
+    const SnapshotResult want = fresh.render(topView(), 48, 48, settings);
+    EXPECT_EQ(last.snapshot, want.snapshot);
+    EXPECT_EQ(last.aamap, want.aamap);
+    EXPECT_EQ(firstAamap, want.aamap.pixels());
+    int lit = 0;
+    for (const glm::vec3& c : want.snapshot.pixels()) lit += c.r > 0.0f;
+    EXPECT_GT(lit, 48 * 48 / 2);
+}
+
 TEST_F(GpuTest, OccluderDarkensTheSurface) {
     SnapshotSettings settings;
     settings.scale = 1.0f;
