@@ -70,6 +70,20 @@ Scene boxScene(bool withBox, bool withLight = true) {
 // Straight down from above the shadow's far edge: the floor maps linearly onto the image.
 View topView() { return viewDownZ({0.5f, 0.0f, 3.0f}, 40.0f); }
 
+// The box scene lit by a 0.4 x 0.4 emissive quad at z = 1.5 facing down, its only light.
+Scene boxUnderLamp() {
+    Scene scene = boxScene(true, false);
+    Material lamp;
+    lamp.name = "lamp";
+    lamp.ke = glm::vec3(5.0f);
+    scene.materials.push_back(lamp);
+    addQuad(scene, 2, 1.5f, -0.2f, 0.2f, -0.2f, 0.2f, false);  // facing down
+    scene.mesh.materialIds.back() = scene.mesh.materialIds[scene.mesh.materialIds.size() - 2] = 1;
+    scene.mesh.objectIds.back() = scene.mesh.objectIds[scene.mesh.objectIds.size() - 2] = 1;
+    scene.areaLights = buildAreaLights(scene);
+    return scene;
+}
+
 int countPass(const SnapshotResult& r, const std::string& name) {
     int n = 0;
     for (const PassTiming& t : r.passTimes) n += t.pass == name;
@@ -140,15 +154,7 @@ TEST_F(GpuTest, ShadowPassesOnlyForLights) {
 }
 
 TEST_F(GpuTest, AreaLightSamplesEachGetACubeMap) {
-    Scene scene = boxScene(true, false);
-    Material lamp;
-    lamp.name = "lamp";
-    lamp.ke = glm::vec3(5.0f);
-    scene.materials.push_back(lamp);
-    addQuad(scene, 2, 1.5f, -0.2f, 0.2f, -0.2f, 0.2f, false);  // facing down
-    scene.mesh.materialIds.back() = scene.mesh.materialIds[scene.mesh.materialIds.size() - 2] = 1;
-    scene.mesh.objectIds.back() = scene.mesh.objectIds[scene.mesh.objectIds.size() - 2] = 1;
-    scene.areaLights = buildAreaLights(scene);
+    const Scene scene = boxUnderLamp();
     ASSERT_EQ(scene.areaLights.size(), 1u);
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;
@@ -164,15 +170,7 @@ TEST_F(GpuTest, AreaLightSamplesEachGetACubeMap) {
 // The shading pipelines are specialised for the light list (glsl/lights.glsl) and rebuilt when it
 // changes: a renderer that went through other sample counts draws what a fresh one draws.
 TEST_F(GpuTest, ChangingTheLightSamplesAndBackGivesTheFreshSnapshot) {
-    Scene scene = boxScene(true, false);
-    Material lamp;
-    lamp.name = "lamp";
-    lamp.ke = glm::vec3(5.0f);
-    scene.materials.push_back(lamp);
-    addQuad(scene, 2, 1.5f, -0.2f, 0.2f, -0.2f, 0.2f, false);  // facing down
-    scene.mesh.materialIds.back() = scene.mesh.materialIds[scene.mesh.materialIds.size() - 2] = 1;
-    scene.mesh.objectIds.back() = scene.mesh.objectIds[scene.mesh.objectIds.size() - 2] = 1;
-    scene.areaLights = buildAreaLights(scene);
+    const Scene scene = boxUnderLamp();
     SnapshotSettings settings;
     settings.scale = 1.0f;
     SnapshotRenderer reused(context(), scene);
