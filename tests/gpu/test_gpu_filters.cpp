@@ -6,6 +6,7 @@
 #include "gpu_fixture.h"
 #include "passes/cpu_aamap.h"
 #include "passes/gpu_aamap.h"
+#include "tests/common/image_compare.h"
 
 namespace aamap::test {
 namespace {
@@ -32,18 +33,6 @@ ImageRGB randomColour(int w, int h, std::uint32_t seed) {
             image.at(x, y) = flat ? glm::vec3(0.25f, 0.5f, 0.125f) : glm::vec3(u(rng), u(rng), u(rng));
         }
     return image;
-}
-
-float maxAbsDiff(const ImageGrey& a, const ImageGrey& b) {
-    EXPECT_EQ(a.width(), b.width());
-    EXPECT_EQ(a.height(), b.height());
-    if (a.size() != b.size()) return INFINITY;
-    float worst = 0.0f;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        const float d = std::fabs(a.data()[i] - b.data()[i]);
-        if (!(d <= worst)) worst = d;  // NaN sticks
-    }
-    return worst;
 }
 
 class FilterTest : public GpuTest {};
