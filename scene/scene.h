@@ -6,9 +6,11 @@
 // own scale). Radiance is in W/(sr m^2) per RGB channel, point-light intensity in W/sr.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -81,6 +83,28 @@ struct AreaLight {
     float area = 0.0f;                     // total area in scene units^2
 };
 
+// Light from infinitely far away in one direction (a sun; Mitsuba's `directional`).
+struct DirectionalLight {
+    std::string name;
+    glm::vec3 direction{0, -1, 0};  // unit, the direction the light travels (from the light)
+    glm::vec3 irradiance{0.0f};     // W/m^2 per channel on a surface facing the light
+};
+
+// Radiance arriving from infinitely far away in every direction: a constant sky, or an
+// equirectangular (latitude-longitude) map. Radiance from world direction d (pointing away from
+// the scene, towards the sky) is scale * map(toLocal * d), or scale alone without a map.
+// The map's convention is Mitsuba's `envmap`, so imported scenes need no conversion: in the
+// light's local frame (+Y up), column u = 0.5 + atan2(x, -z) / (2 pi) (wrapping) and row
+// v = acos(y) / pi, row 0 at the top (+Y).
+struct EnvironmentLight {
+    std::string name;
+    glm::vec3 scale{1.0f};               // multiplies the map; the radiance itself without one
+    std::optional<std::filesystem::path> mapPath;  // EXR or Radiance HDR, linear RGB
+    int mapWidth = 0, mapHeight = 0;
+    std::vector<glm::vec3> map;          // linear radiance, row 0 at the top; empty: constant
+    glm::mat3 toLocal{1.0f};             // world direction -> the map's frame (inverse rotation)
+};
+
 // A Radiance view (rview/rpict -v options). Only perspective (-vtv) views for now.
 struct View {
     std::string name;             // "" or the name given in the view file / config
@@ -106,6 +130,8 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<PointLight> pointLights;
     std::vector<AreaLight> areaLights;
+    std::vector<DirectionalLight> directionalLights;
+    std::optional<EnvironmentLight> environment;  // at most one sky
     std::vector<View> views;  // views that came with the scene (glTF cameras, built-in default view)
 
     bool hasTextures() const { return !textures.empty(); }
