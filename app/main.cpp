@@ -15,6 +15,7 @@
 #include <spdlog/spdlog.h>
 
 #include "aamap/git_revision.h"
+#include "app/diff_command.h"
 #include "app/snapshot_command.h"
 #include "app/view_command.h"
 #include "core/error.h"
@@ -135,6 +136,8 @@ int main(int argc, char** argv) {
     aamap::app::SnapshotOptions snapshotOptions;
     CLI::App* snapshot = aamap::app::addSnapshotCommand(app, snapshotOptions);
     const std::unique_ptr<aamap::ViewCommand> view = aamap::addViewCommand(app);
+    aamap::app::DiffOptions diffOptions;
+    CLI::App* diff = aamap::app::addDiffCommand(app, diffOptions);
     std::string configPath, outDir, device = envString("AAMAP_DEVICE");
     std::vector<std::string> overrides;
     bool validation = envFlag("AAMAP_VALIDATION"), listDevices = false, noPlots = false;
@@ -174,6 +177,10 @@ int main(int argc, char** argv) {
                 return fail(kExitInput, fmt::format("{}: {}", json.string(), e.what()));
             }
             aamap::writeReport(reportDir, results, true);
+            return 0;
+        }
+        if (diff->parsed()) {
+            aamap::app::runDiffCommand(diffOptions);
             return 0;
         }
         if (view->command->parsed()) {

@@ -1,17 +1,31 @@
 #pragma once
 // Logging goes to stderr (results go to files). Progress is a \r-updated bar on a terminal and
-// plain periodic log lines otherwise, so CI logs stay readable.
+// plain periodic log lines otherwise, so CI logs stay readable. On a terminal, a log line that
+// arrives while a bar is showing clears the bar, prints on its own line and redraws the bar
+// below it, so messages never land in the middle of a bar.
 #include <chrono>
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include <spdlog/spdlog.h>
 
 namespace aamap {
 
-// Installs a stderr logger as spdlog's default. Call once at start-up.
-void initLogging(spdlog::level::level_enum level = spdlog::level::info);
+// Installs a logger on `out` (stderr by default) as spdlog's default. Call once at start-up;
+// calling again replaces it (tests).
+void initLogging(spdlog::level::level_enum level = spdlog::level::info, std::FILE* out = stderr);
+
+// Seconds left for `done` of `total` items after `elapsed` seconds at the rate so far; nullopt
+// while nothing is done yet (no rate to go by).
+std::optional<double> secondsLeft(int done, int total, double elapsed);
+
+// "12 s", "3 min 05 s", "2 h 04 min": a duration as a person reads it.
+std::string formatDuration(double seconds);
+
+// One progress line, without the bar: "label 42% (21/50), 3.1 s, about 4.3 s left".
+std::string progressText(const std::string& label, int done, int total, double elapsed);
 
 class Progress {
 public:

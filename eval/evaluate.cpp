@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "eval/metrics/flip.h"
+#include "eval/metrics/image_comparison.h"
 #include "eval/metrics/magma.h"
 #include "eval/metrics/map_quality.h"
 #include "eval/metrics/pixel_error.h"
@@ -18,6 +19,17 @@ metrics::FlipOptions flipOptions(const MetricsConfig& m) {
     metrics::FlipOptions o;
     o.ppd = static_cast<float>(m.ppd);
     o.threshold = static_cast<float>(m.flipThreshold);
+    return o;
+}
+
+metrics::ComparisonOptions comparisonOptions(const MetricsConfig& m, float exposure) {
+    metrics::ComparisonOptions o;
+    o.exposure = exposure;
+    o.ppd = static_cast<float>(m.ppd);
+    o.flipThreshold = static_cast<float>(m.flipThreshold);
+    o.mseThreshold = m.mseThreshold;
+    o.flip = m.flip;
+    o.flipHdr = m.flipHdr;
     return o;
 }
 
@@ -41,30 +53,25 @@ ImageRGB8 errorOverlay(const ImageRGB8& base, const ImageGrey& error, float thre
 
 Json evaluateRender(const ImageRGB& reference, const ImageRGB& test, const MetricsConfig& m, float exposure,
                     const fs::path& outDir, const std::string& name, std::vector<std::string>& outputs) {
-    metrics::PixelErrorOptions po;
-    po.exposure = exposure;
-    po.errorThreshold = m.mseThreshold;
-    const metrics::PixelError pe = metrics::pixelError(reference, test, po);
+    const metrics::Comparison c = metrics::compareImages(reference, test, comparisonOptions(m, exposure));
     Json j;
-    j["mse"] = pe.mse;
-    j["rmse"] = pe.rmse;
-    j["psnr"] = finiteOrNull(pe.psnr);
-    j["pct_error_mse"] = 100.0 * pe.fractionInError;
-    if (m.flip) {
-        const metrics::FlipResult f = metrics::flipDisplay(reference, test, exposure, flipOptions(m));
-        j["flip_mean"] = f.mean;
-        j["pct_error_flip"] = 100.0 * f.fractionAbove;
-        writePng(outDir / (name + ".flip.png"), toneMap(metrics::flipMagma(f), 1.0f));
+    j["mse"] = c.display.mse;
+    j["rmse"] = c.display.rmse;
+    j["psnr"] = finiteOrNull(c.display.psnr);
+    j["pct_error_mse"] = 100.0 * c.display.fractionInError;
+    if (c.flip) {
+        j["flip_mean"] = c.flip->mean;
+        j["pct_error_flip"] = 100.0 * c.flip->fractionAbove;
+        writePng(outDir / (name + ".flip.png"), toneMap(metrics::flipMagma(*c.flip), 1.0f));
         writePng(outDir / (name + ".overlay.png"),
-                 errorOverlay(toneMap(test, exposure), f.errorMap, static_cast<float>(m.flipThreshold)));
+                 errorOverlay(toneMap(test, exposure), c.flip->errorMap, static_cast<float>(m.flipThreshold)));
         outputs.push_back(name + ".flip.png");
         outputs.push_back(name + ".overlay.png");
     }
-    if (m.flipHdr) {
-        const metrics::FlipResult f = metrics::flipHdr(reference, test, flipOptions(m));
-        j["flip_hdr_mean"] = f.mean;
-        j["pct_error_flip_hdr"] = 100.0 * f.fractionAbove;
-        writePng(outDir / (name + ".flip_hdr.png"), toneMap(metrics::flipMagma(f), 1.0f));
+    if (c.flipHdr) {
+        j["flip_hdr_mean"] = c.flipHdr->mean;
+        j["pct_error_flip_hdr"] = 100.0 * c.flipHdr->fractionAbove;
+        writePng(outDir / (name + ".flip_hdr.png"), toneMap(metrics::flipMagma(*c.flipHdr), 1.0f));
         outputs.push_back(name + ".flip_hdr.png");
     }
     return j;

@@ -117,6 +117,11 @@ public:
         spdlog::info("scene '{}': {} triangles, {} area + {} point lights; view {} at {}x{} ({:.2f} s)", scene_.name,
                      scene_.mesh.triangles.size(), scene_.areaLights.size(), scene_.pointLights.size(),
                      info.viewLabel, info.width, info.height, info.loadSeconds);
+        if (scene_.areaLights.empty() && scene_.pointLights.empty() && scene_.directionalLights.empty() &&
+            !scene_.environment)
+            info.warnings.push_back(fmt::format("scene '{}' has no lights: the renders show emitters only and the "
+                                                "aamap has nothing to find",
+                                                scene_.name));
         spdlog::info("building BVH");
         tracer_ = std::make_unique<Tracer>(scene_);
         info.bvhSeconds = tracer_->bvhBuildSeconds();

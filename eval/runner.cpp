@@ -64,13 +64,23 @@ public:
     Results run();
 
 private:
+    // The scene is loaded on first need only: a run whose work is all cached never loads it.
     const SceneInfo& scene() {
-        if (!scene_) scene_ = backend_.prepare();
+        if (!scene_) {
+            scene_ = backend_.prepare();
+            for (const std::string& w : scene_->warnings) warn(w);
+        }
         return *scene_;
+    }
+    void warn(const std::string& message) {
+        spdlog::warn("{}", message);
+        warnings_.push_back(message);
     }
     void loadOrRenderSnapshot();
     const Traced& loadOrTrace(const Job& job, int index, int count);
     RenderRecord recordFor(const Job& job, const Traced& t, bool cached) const;
+    ImageRGB loadFileReference(const std::vector<Job>& jobs);
+    void checkReference(const ImageRGB& reference);
     void writeNamedOutputs(const std::string& name, const Traced& t, int rpp, std::vector<std::string>& outputs) const;
 
     const ExperimentConfig& c_;
@@ -85,6 +95,7 @@ private:
     std::map<std::string, Traced> traced_;  // by key
     std::map<std::string, bool> reused_;    // by key: came from the cache
     int tracedNow_ = 0;
+    std::vector<std::string> warnings_;  // for the top of the report
 };
 
 void Runner::loadOrRenderSnapshot() {
@@ -205,6 +216,44 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     return traced_.emplace(job.key, std::move(t)).first->second;
 }
 
+// reference.type file: read and checked against the render size before anything is traced.
+ImageRGB Runner::loadFileReference(const std::vector<Job>& jobs) {
+    const fs::path path = *c_.reference.resolvedPath(c_.file);
+    const SourceLocation& at = c_.reference.pathLocation;
+    ImageRGB reference;
+    try {
+        reference = readExr(path);
+    } catch (const InputError& e) {
+        throw InputError(at.file, at.line, at.column, fmt::format("reference '{}': {}", c_.reference.path, e.what()));
+    }
+    // The render size needs the scene's view, unless every image is cached already (then the
+    // cached image says it and the scene stays unloaded).
+    const bool allCached = std::all_of(jobs.begin(), jobs.end(), [&](const Job& j) { return cache_.has(j.key); }) &&
+                           (!c_.usesAamap() || cache_.has(snapshotKey(c_)));
+    int width = 0, height = 0;
+    if (allCached) {
+        const ImageRGB& first = loadOrTrace(jobs.front(), 1, static_cast<int>(jobs.size())).image;
+        width = first.width();
+        height = first.height();
+    } else {
+        width = scene().width;
+        height = scene().height;
+    }
+    if (reference.width() != width || reference.height() != height)
+        throw InputError(at.file, at.line, at.column,
+                         fmt::format("reference '{}' is {}x{}, the renders are {}x{}", c_.reference.path,
+                                     reference.width(), reference.height(), width, height));
+    return reference;
+}
+
+// A reference that shows nothing makes every error figure meaningless: say so at the top.
+void Runner::checkReference(const ImageRGB& reference) {
+    const bool black = std::all_of(reference.pixels().begin(), reference.pixels().end(), [](const glm::vec3& p) {
+        return !(p.r > 0.0f) && !(p.g > 0.0f) && !(p.b > 0.0f);
+    });
+    if (black) warn("the reference image is black everywhere: the error figures compare black images");
+}
+
 RenderRecord Runner::recordFor(const Job& job, const Traced& t, bool cached) const {
     RenderRecord r = t.record;
     r.name = job.render.name;  // a cached entry may have been made under another name
@@ -251,6 +300,18 @@ Results Runner::run() {
         jobs.push_back(*oneRayJob);
     }
 
+    // Every input file is read before any work, so a bad one leaves the output folder as it was.
+    std::optional<ImageRGB> fileReference;
+    if (c_.reference.type == "file") fileReference = loadFileReference(jobs);
+    if (refJob)
+        for (const Job& job : jobs)
+            if (job.render.rpp > c_.reference.rpp) {
+                warn(fmt::format("the reference traces {} rays per pixel, fewer than render '{}' ({}): its error is "
+                                 "measured against a noisier image",
+                                 c_.reference.rpp, job.render.name, job.render.rpp));
+                break;
+            }
+
     if (c_.usesAamap()) loadOrRenderSnapshot();
     else spdlog::info("no render uses the aamap: snapshot skipped");
     if (!snapshotRecord_.is_null()) results.snapshot = snapshotRecord_;
@@ -267,8 +328,10 @@ Results Runner::run() {
         else results.oneRay = std::move(rec);
         writeResults(out_ / "results.json", results);
     }
-    spdlog::info("{} render(s) traced, {} reused from {}", tracedNow_, traced_.size() - static_cast<std::size_t>(tracedNow_),
-                 cache_.dir().string());
+    // Jobs with equal keys (the reference is also a listed render, say) are traced once.
+    const std::size_t reused = traced_.size() - static_cast<std::size_t>(tracedNow_);
+    spdlog::info("{} job(s): {} traced, {} reused from {}, {} shared with an identical job", jobs.size(), tracedNow_,
+                 reused, cache_.dir().string(), jobs.size() - traced_.size());
 
     // The reference every render is measured against.
     std::optional<ImageRGB> reference;
@@ -277,21 +340,11 @@ Results Runner::run() {
         reference = traced_.at(refJob->key).image;
         results.referenceInfo["rpp"] = c_.reference.rpp;
         results.referenceInfo["mode"] = c_.reference.mode.empty() ? c_.shading.mode : c_.reference.mode;
-    } else if (c_.reference.type == "file") {
-        const fs::path path = *c_.reference.resolvedPath(c_.file);
-        const SourceLocation& at = c_.reference.pathLocation;
-        try {
-            reference = readExr(path);
-        } catch (const InputError& e) {
-            throw InputError(at.file, at.line, at.column, fmt::format("reference '{}': {}", c_.reference.path, e.what()));
-        }
-        const ImageRGB& first = traced_.at(jobs[0].key).image;
-        if (reference->width() != first.width() || reference->height() != first.height())
-            throw InputError(at.file, at.line, at.column,
-                             fmt::format("reference '{}' is {}x{}, the renders are {}x{}", c_.reference.path,
-                                         reference->width(), reference->height(), first.width(), first.height()));
-        results.referenceInfo["path"] = path.string();
+    } else if (fileReference) {
+        reference = std::move(fileReference);
+        results.referenceInfo["path"] = c_.reference.resolvedPath(c_.file)->string();
     }
+    if (reference) checkReference(*reference);
     if (reference) {
         const float exposure = static_cast<float>(c_.image.exposure);
         for (std::size_t i = 0; i < listed; ++i) {
@@ -309,6 +362,7 @@ Results Runner::run() {
     } else {
         results.warnings.push_back("reference.type is 'none': no error metrics, Table 3 is empty");
     }
+    results.warnings.insert(results.warnings.begin(), warnings_.begin(), warnings_.end());
     writeResults(out_ / "results.json", results);
     writeReport(out_, toJson(results), options_.plots && c_.report.plots);
     return results;

@@ -21,6 +21,7 @@ struct SceneInfo {
     std::string scene;          // the spec loaded
     std::string viewLabel;
     double loadSeconds = 0, bvhSeconds = 0;
+    std::vector<std::string> warnings;  // what the scene lacks for a meaningful run (no lights, ...)
 };
 
 struct SnapshotOutput {

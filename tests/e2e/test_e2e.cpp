@@ -333,5 +333,79 @@ TEST_F(CliErrors, UsageErrorsAndHelp) {
         EXPECT_NE(help.find(word), std::string::npos) << word;
 }
 
+// `aamap diff`: the experiment's metrics for two image files, with exit code 2 for bad input.
+class DiffCommand : public CliErrors {
+protected:
+    // Runs `aamap diff ARGS --json` and parses its stdout.
+    nlohmann::json diffJson(const std::string& args, int& exitCode) {
+        const std::string command = fmt::format("'{}' diff {} --json 2>/dev/null", env("AAMAP_EXE"), args);
+        FILE* pipe = ::popen(command.c_str(), "r");
+        EXPECT_NE(pipe, nullptr);
+        std::string out;
+        char buffer[4096];
+        for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) out.append(buffer, n);
+        const int status = ::pclose(pipe);
+        exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        return exitCode == 0 ? nlohmann::json::parse(out) : nlohmann::json();
+    }
+    std::string quoted(const fs::path& p) const { return "'" + p.string() + "'"; }
+};
+
+TEST_F(DiffCommand, IdenticalImagesHaveNoError) {
+    const fs::path a = dir_ / "a.exr";
+    writeExr(a, ImageRGB(64, 32, glm::vec3(0.25f, 0.5f, 0.75f)));
+    int code = -1;
+    const nlohmann::json j = diffJson(quoted(a) + " " + quoted(a), code);
+    ASSERT_EQ(code, 0);
+    EXPECT_EQ(j["width"], 64);
+    EXPECT_EQ(j["height"], 32);
+    EXPECT_EQ(j["flip_mean"].get<double>(), 0.0);
+    EXPECT_EQ(j["flip_hdr_mean"].get<double>(), 0.0);
+    EXPECT_EQ(j["mse"].get<double>(), 0.0);
+    EXPECT_TRUE(j["psnr"].is_null());  // infinite: identical
+}
+
+TEST_F(DiffCommand, OneWrongPixelGivesTheDefinedFigures) {
+    constexpr int kW = 64, kH = 64;
+    ImageRGB ref(kW, kH, glm::vec3(0.5f)), test = ref;
+    test.at(10, 20) = glm::vec3(1.0f);
+    writeExr(dir_ / "ref.exr", ref);
+    writeExr(dir_ / "test.exr", test);
+    int code = -1;
+    const nlohmann::json j = diffJson(quoted(dir_ / "ref.exr") + " " + quoted(dir_ / "test.exr") + " --heatmap " +
+                                          quoted(dir_ / "heat.png"),
+                                      code);
+    ASSERT_EQ(code, 0);
+    // Display space: one pixel's channels differ by 1 - srgb(0.5), every other pixel is exact.
+    const double d = 1.0 - srgbEncode(0.5f);
+    EXPECT_NEAR(j["mse"].get<double>(), d * d / (kW * kH), 1e-9);
+    EXPECT_NEAR(j["pct_error_mse"].get<double>(), 100.0 / (kW * kH), 1e-9);
+    EXPECT_GT(j["flip_mean"].get<double>(), 0.0);
+    EXPECT_GT(j["pct_error_flip"].get<double>(), 0.0);
+    const ImageRGB8 heat = readPng(dir_ / "heat.png");
+    EXPECT_EQ(heat.width(), kW);
+    EXPECT_EQ(heat.height(), kH);
+    // A stricter FLIP threshold counts no fewer pixels; 1.0 counts none (FLIP is in [0, 1]).
+    const nlohmann::json strict = diffJson(quoted(dir_ / "ref.exr") + " " + quoted(dir_ / "test.exr") + " --threshold 0.01", code);
+    const nlohmann::json none = diffJson(quoted(dir_ / "ref.exr") + " " + quoted(dir_ / "test.exr") + " --threshold 1", code);
+    EXPECT_GE(strict["pct_error_flip"].get<double>(), j["pct_error_flip"].get<double>());
+    EXPECT_EQ(none["pct_error_flip"].get<double>(), 0.0);
+}
+
+TEST_F(DiffCommand, UnreadableOrMismatchedImagesAreBadInput) {
+    writeExr(dir_ / "a.exr", ImageRGB(16, 16, glm::vec3(0.5f)));
+    writeExr(dir_ / "b.exr", ImageRGB(16, 8, glm::vec3(0.5f)));
+    const CommandResult mismatch =
+        aamap("diff " + quoted(dir_ / "a.exr") + " " + quoted(dir_ / "b.exr") + " --heatmap " + quoted(dir_ / "h.png"));
+    EXPECT_EQ(mismatch.exitCode, 2) << mismatch.stderrText;
+    EXPECT_NE(mismatch.stderrText.find("16x8"), std::string::npos) << mismatch.stderrText;
+    EXPECT_FALSE(fs::exists(dir_ / "h.png"));
+    const CommandResult missing = aamap("diff " + quoted(dir_ / "a.exr") + " " + quoted(dir_ / "nope.exr"));
+    EXPECT_EQ(missing.exitCode, 2) << missing.stderrText;
+    EXPECT_NE(missing.stderrText.find("nope.exr"), std::string::npos) << missing.stderrText;
+    std::ofstream(dir_ / "junk.exr") << "not an image";
+    EXPECT_EQ(aamap("diff " + quoted(dir_ / "junk.exr") + " " + quoted(dir_ / "a.exr")).exitCode, 2);
+}
+
 }  // namespace
 }  // namespace aamap

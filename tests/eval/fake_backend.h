@@ -1,0 +1,64 @@
+#pragma once
+// A RenderBackend without GPU or tracer, for the runner's tests.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "eval/runner.h"
+
+namespace aamap {
+
+// Images with a hard vertical edge whose pixels get closer to the truth with more rays; the
+// aamap flags the edge column.
+class FakeBackend : public RenderBackend {
+public:
+    static constexpr int kW = 48, kH = 32, kBand = 4;
+    SceneInfo prepare() override {
+        ++prepares;
+        if (failPrepare) throw InputError("fake.obj", 3, 7, "not a number");
+        SceneInfo info{kW, kH, "fake:scene", "fake view", 0.01, 0.02};
+        info.warnings = sceneWarnings;
+        return info;
+    }
+    SnapshotOutput snapshot() override {
+        ++snapshots;
+        SnapshotOutput s;
+        s.aamap = ImageGrey(kW, kH, 0.0f);
+        for (int y = 0; y < kH; ++y)  // FLIP spreads an edge error over a few pixels
+            for (int x = kW / 2 - kBand; x <= kW / 2 + kBand; ++x) s.aamap.at(x, y) = 1.0f;
+        s.snapshot = ImageRGB(kW * 3 / 2, kH * 3 / 2, glm::vec3(0.5f));
+        s.totalSeconds = 0.005;
+        s.passesGpuMs = {{"gbuffer", 0.1}};
+        s.device = "fake GPU";
+        return s;
+    }
+    TraceOutput trace(const RenderConfig& r, const ImageGrey* aamap, const std::function<void(int, int)>& progress) override {
+        ++traces[r.strategy + std::to_string(r.rpp)];
+        TraceOutput t;
+        t.image = ImageRGB(kW, kH);
+        t.primaryRays = Image<std::uint16_t>(kW, kH, 1);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const int rays = aamap && aamap->at(x, y) == 0.0f ? 1 : r.rpp;
+                const float v = x < kW / 2 ? 0.05f : x > kW / 2 ? 0.8f : 0.8f * (1.0f - 1.0f / (1.0f + rays));
+                t.image.at(x, y) = glm::vec3(v);
+                t.primaryRays.at(x, y) = static_cast<std::uint16_t>(rays);
+            }
+        t.rays = {static_cast<std::uint64_t>(kW * kH * r.rpp), 0, 0};
+        t.seconds = 0.001 * r.rpp;
+        progress(1, 1);
+        return t;
+    }
+    int prepares = 0, snapshots = 0;
+    bool failPrepare = false;  // like a scene that does not load
+    std::vector<std::string> sceneWarnings;  // what prepare() reports about the scene
+    std::map<std::string, int> traces;
+    int totalTraces() const {
+        int n = 0;
+        for (const auto& [k, v] : traces) n += v;
+        return n;
+    }
+};
+
+}  // namespace aamap

@@ -1,0 +1,99 @@
+// The runner's checks before and around the work: a file reference is read and sized before
+// anything is traced (a bad one leaves no output folder), and what makes figures meaningless is a
+// warning at the top of the results (a reference with fewer rays, a black reference, a scene that
+// the backend found lacking).
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/image_io.h"
+#include "eval/config.h"
+#include "eval/runner.h"
+#include "tests/eval/fake_backend.h"
+
+namespace aamap {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RunnerChecks : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::path(::testing::TempDir()) /
+               ("runner_checks_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        out_ = dir_ / "out";
+    }
+    Results run(FakeBackend& backend, const std::string& extra) {
+        const std::string yaml = "scene: builtin:cornell\nimage: {width: 48, height: 32}\n"
+                                 "renders:\n  - {strategy: uniform, rpp: [1, 16]}\n  - {strategy: aamap, rpp: 16}\n"
+                                 "report: {plots: false}\n" + extra;
+        const ExperimentConfig c = parseConfig(yaml, (dir_ / "exp.yaml").string(), {});
+        return runExperimentWith(c, out_, backend, RunnerOptions{"test-rev", false});
+    }
+    static bool hasWarning(const Results& r, const std::string& part) {
+        return std::any_of(r.warnings.begin(), r.warnings.end(),
+                           [&](const std::string& w) { return w.find(part) != std::string::npos; });
+    }
+    fs::path dir_, out_;
+};
+
+TEST_F(RunnerChecks, MissingReferenceFileFailsBeforeAnyWorkAndLeavesNoFolder) {
+    FakeBackend backend;
+    try {
+        run(backend, "reference: {type: file, path: missing.exr}\n");
+        FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("missing.exr"), std::string::npos) << e.what();
+        EXPECT_GT(e.line(), 0);  // points at the config's reference.path
+    }
+    EXPECT_EQ(backend.snapshots, 0);
+    EXPECT_EQ(backend.totalTraces(), 0);
+    EXPECT_FALSE(fs::exists(out_));
+}
+
+TEST_F(RunnerChecks, ReferenceOfTheWrongSizeFailsBeforeAnyWork) {
+    writeExr(dir_ / "small.exr", ImageRGB(16, 16, glm::vec3(0.5f)));
+    FakeBackend backend;
+    try {
+        run(backend, "reference: {type: file, path: small.exr}\n");
+        FAIL() << "expected an InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("16x16"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("48x32"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(backend.snapshots, 0);
+    EXPECT_EQ(backend.totalTraces(), 0);
+    EXPECT_FALSE(fs::exists(out_));
+}
+
+TEST_F(RunnerChecks, BlackReferenceIsAWarning) {
+    writeExr(dir_ / "black.exr", ImageRGB(FakeBackend::kW, FakeBackend::kH, glm::vec3(0.0f)));
+    FakeBackend backend;
+    const Results r = run(backend, "reference: {type: file, path: black.exr}\n");
+    EXPECT_TRUE(hasWarning(r, "black everywhere"));
+}
+
+TEST_F(RunnerChecks, ReferenceWithFewerRaysThanARenderIsAWarning) {
+    FakeBackend backend;
+    const Results fewer = run(backend, "reference: {rpp: 4}\n");
+    EXPECT_TRUE(hasWarning(fewer, "fewer than render"));
+    fs::remove_all(out_);
+    const Results enough = run(backend, "");  // the default: the largest rpp of the renders
+    EXPECT_FALSE(hasWarning(enough, "fewer than render"));
+}
+
+TEST_F(RunnerChecks, SceneWarningsReachTheResults) {
+    FakeBackend backend;
+    backend.sceneWarnings = {"scene 'fake' has no lights: ..."};
+    const Results r = run(backend, "");
+    ASSERT_FALSE(r.warnings.empty());
+    EXPECT_EQ(r.warnings.front(), backend.sceneWarnings.front());  // first: it explains the rest
+}
+
+}  // namespace
+}  // namespace aamap
