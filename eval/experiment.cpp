@@ -122,6 +122,8 @@ public:
             info.warnings.push_back(fmt::format("scene '{}' has no lights: the renders show emitters only and the "
                                                 "aamap has nothing to find",
                                                 scene_.name));
+        if (config_.usesAamap())
+            for (std::string& note : snapshotLimitations(scene_)) info.warnings.push_back(std::move(note));
         spdlog::info("building BVH");
         tracer_ = std::make_unique<Tracer>(scene_);
         info.bvhSeconds = tracer_->bvhBuildSeconds();

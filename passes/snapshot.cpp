@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "engine/vk/context.h"
@@ -234,6 +235,24 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     result.shadowCubeMaps = shadowed ? static_cast<int>(s.gbuffer.lightCount()) : 0;
     result.totalSeconds = secondsSince(start);
     return result;
+}
+
+std::vector<std::string> snapshotLimitations(const Scene& scene) {
+    std::vector<std::string> notes;
+    const passes::MirrorGroups mirrors = passes::findPlanarMirrors(scene);
+    if (!mirrors.curved.empty())
+        notes.push_back(fmt::format("{} mirror group(s) are not planar ({}{}): the Snapshot shows their diffuse part "
+                                    "only, so the aamap cannot see what they reflect",
+                                    mirrors.curved.size(), mirrors.curved.front(),
+                                    mirrors.curved.size() > 1 ? ", ..." : ""));
+    std::size_t glass = 0;
+    for (const std::uint32_t id : scene.mesh.materialIds)
+        if (id < scene.materials.size() && scene.materials[id].kind == MaterialKind::Glass) ++glass;
+    if (glass > 0)
+        notes.push_back(fmt::format("{} glass triangle(s): the Snapshot sees through glass, so its silhouettes and "
+                                    "what it refracts are not in the aamap",
+                                    glass));
+    return notes;
 }
 
 }  // namespace aamap

@@ -58,6 +58,10 @@ struct SnapshotResult {
     int shadowCubeMaps = 0;  // cube maps rendered: one per shadowed point light / area-light sample
 };
 
+// What of the scene the Snapshot cannot show the way the tracer will, one sentence each (curved
+// mirror groups, glass seen through): the aamap is blind there, so a run says so up front.
+std::vector<std::string> snapshotLimitations(const Scene& scene);
+
 // Builds the graph for what the scene needs and runs it. Holds per-scene GPU state (vertex
 // buffers, pipelines) so that rendering several views or sizes reuses it.
 class SnapshotRenderer {

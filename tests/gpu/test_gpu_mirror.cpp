@@ -211,5 +211,20 @@ TEST(MirrorGeometry, PlanarGroupsAndCurvedOnes) {
     EXPECT_NEAR(p.x, 1.0f, 1e-6f);
 }
 
+// What the Snapshot cannot show is named up front: a planar mirror is no limitation, a bent one
+// and glass are, each in one sentence.
+TEST(MirrorGeometry, LimitationsNameCurvedMirrorsAndGlass) {
+    Scene s = mirrorScene(MaterialKind::Mirror);
+    EXPECT_TRUE(snapshotLimitations(s).empty());
+    s.mesh.positions[2].z = 0.3f;
+    std::vector<std::string> notes = snapshotLimitations(s);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("not planar"), std::string::npos) << notes[0];
+    s = mirrorScene(MaterialKind::Glass);
+    notes = snapshotLimitations(s);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("2 glass triangle(s)"), std::string::npos) << notes[0];
+}
+
 }  // namespace
 }  // namespace aamap::test
