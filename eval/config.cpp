@@ -35,7 +35,7 @@ std::vector<std::string> leaves() {
         "renders.#.name", "renders.#.series", "renders.#.strategy", "renders.#.rpp",
         "reference.type", "reference.rpp", "reference.mode", "reference.path",
         "metrics.flip", "metrics.flip_hdr", "metrics.flip_threshold", "metrics.mse_threshold", "metrics.ppd",
-        "metrics.map_quality", "report.plots",
+        "metrics.map_quality", "report.plots", "timing.repeats", "timing.interleave",
     };
     for (const std::string& p : allStrategyParamNames()) l.push_back("renders.#." + p);
     for (const std::string& k : lightKeys()) l.push_back("lights.#." + k);
@@ -53,7 +53,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
         throw InputError(ctx.file(), 1, 1, "the config is empty; it needs at least 'scene' and 'renders'");
     MapReader top(ctx, root, "",
                   {"scene", "view", "view_index", "light_file", "lights", "image", "seed", "threads", "snapshot", "shading",
-                   "renders", "reference", "metrics", "report"});
+                   "renders", "reference", "metrics", "report", "timing"});
     ExperimentConfig c;
     c.file = ctx.file();
     top.require("scene");
@@ -122,6 +122,10 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.reference = detail::readReference(ctx, top.node("reference"), c.renders);
     c.metrics = detail::readMetrics(ctx, top.node("metrics"));
     c.report = detail::readReport(ctx, top.node("report"));
+    MapReader timing(ctx, top.node("timing"), "timing", {"repeats", "interleave"});
+    timing.getInt("repeats", c.timing.repeats, 1, 100);
+    c.timing.interleave = detail::readBool(ctx, timing, "interleave", c.timing.interleave);
+    timing.finish();
     top.finish();
     return c;
 }
@@ -271,6 +275,9 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     j["metrics"] = {{"flip", m.flip}, {"flip_hdr", m.flipHdr}, {"flip_threshold", m.flipThreshold},
                     {"mse_threshold", m.mseThreshold}, {"ppd", m.ppd}, {"map_quality", m.mapQuality}};
     j["report"] = {{"plots", c.report.plots}};
+    // Only when not the default: configs without it keep their hash.
+    if (c.timing.repeats != 1 || !c.timing.interleave)
+        j["timing"] = {{"repeats", c.timing.repeats}, {"interleave", c.timing.interleave}};
     return j;
 }
 

@@ -80,6 +80,13 @@ struct MetricsConfig {
     bool mapQuality = true;      // aamap recall/precision; adds a 1-ray uniform render
 };
 
+// How traces are timed: the machine drifts, so a trade is timed over several runs, interleaved
+// across renders so that drift hits all of them alike. Images do not depend on it.
+struct TimingConfig {
+    int repeats = 1;         // timed runs of every trace; times_s.trace is their median
+    bool interleave = true;  // round r times every render once before round r + 1
+};
+
 struct ReportConfig {
     bool plots = true;  // run tools/report_plots.py (skipped with a warning if Python is absent)
 };
@@ -100,6 +107,7 @@ struct ExperimentConfig {
     ReferenceConfig reference;
     MetricsConfig metrics;
     ReportConfig report;
+    TimingConfig timing;
 
     bool usesAamap() const;  // some render needs the Snapshot
 

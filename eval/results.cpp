@@ -48,6 +48,7 @@ nlohmann::ordered_json toJson(const RenderRecord& r) {
                     {"snapshot_passes_gpu_ms", passes},
                     {"readback", r.times.readback},
                     {"trace", r.times.trace},
+                    {"trace_runs", r.times.traceRuns},
                     {"total", r.times.total}};
     j["rays"] = {{"primary", r.rays.primary}, {"shadow", r.rays.shadow}, {"other", r.rays.other},
                  {"total", r.rays.total()}};
@@ -100,6 +101,9 @@ RenderRecord recordFromJson(const nlohmann::ordered_json& j) {
     for (const auto& [pass, ms] : t.at("snapshot_passes_gpu_ms").items()) r.times.snapshotPassesGpuMs.emplace_back(pass, ms.get<double>());
     r.times.readback = t.at("readback").get<double>();
     r.times.trace = t.at("trace").get<double>();
+    // Records written before repeats existed hold one run: the trace itself.
+    r.times.traceRuns = t.contains("trace_runs") ? t.at("trace_runs").get<std::vector<double>>()
+                                                 : std::vector<double>{r.times.trace};
     r.times.total = t.at("total").get<double>();
     const auto& rays = j.at("rays");
     r.rays = {rays.at("primary").get<std::uint64_t>(), rays.at("shadow").get<std::uint64_t>(),

@@ -28,7 +28,8 @@ struct StageTimes {
     double snapshotTotal = 0;  // one execution of the Snapshot for what the strategy consumes
     std::vector<std::pair<std::string, double>> snapshotPassesGpuMs;  // pass -> GPU milliseconds
     double readback = 0;
-    double trace = 0;
+    double trace = 0;                // the median of traceRuns
+    std::vector<double> traceRuns;   // every timed run of the trace (timing.repeats), in order
     double total = 0;
 };
 

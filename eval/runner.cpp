@@ -79,6 +79,7 @@ private:
     void loadOrRenderSnapshot();
     const Traced& loadOrTrace(const Job& job, int index, int count);
     RenderRecord recordFor(const Job& job, const Traced& t, bool cached) const;
+    void repeatTraces(const std::vector<Job>& jobs);
     ImageRGB loadFileReference(const std::vector<Job>& jobs);
     void checkReference(const ImageRGB& reference);
     void writeNamedOutputs(const std::string& name, const Traced& t, int rpp, std::vector<std::string>& outputs) const;
@@ -179,6 +180,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     r.times.load = s.loadSeconds;
     r.times.bvhBuild = s.bvhSeconds;
     r.times.trace = out.seconds;
+    r.times.traceRuns = {out.seconds};
     if (usesMap) {
         r.parameters["snapshot"] = Json::parse(c_.canonicalJson())["snapshot"];
         r.parameters["snapshot_key"] = snapshotRecord_["key"];
@@ -214,6 +216,60 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     reused_[job.key] = false;
     ++tracedNow_;
     return traced_.emplace(job.key, std::move(t)).first->second;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// timing.repeats: every job traces again until it has `repeats` timed runs (a cached record keeps
+// its runs and gets only those it lacks). Interleaved, round r times every job once before round
+// r + 1 starts, so the machine's drift hits all renders alike. The image of each run must equal
+// the first bit for bit (images depend on the seed only); times_s.trace becomes the median.
+void Runner::repeatTraces(const std::vector<Job>& jobs) {
+    const int repeats = c_.timing.repeats;
+    if (repeats <= 1) return;
+    std::vector<const Job*> unique;  // one job per key, in the order they were traced
+    for (const Job& job : jobs)
+        if (std::none_of(unique.begin(), unique.end(), [&](const Job* u) { return u->key == job.key; }))
+            unique.push_back(&job);
+    std::vector<std::string> changed;
+    const auto runOnce = [&](const Job& job) {
+        Traced& t = traced_.at(job.key);
+        const StrategyInfo* info = findStrategy(job.render.strategy);
+        const bool usesMap = info != nullptr && info->usesAamap;
+        scene();
+        Progress progress(fmt::format("[run {}/{}] trace {}", t.record.times.traceRuns.size() + 1, repeats,
+                                      job.render.name));
+        TraceOutput out = backend_.trace(job.render, usesMap ? &*aamap_ : nullptr,
+                                         [&progress](int done, int total) { progress.update(done, total); });
+        progress.finish();
+        if (out.image.pixels() != t.image.pixels())
+            warn(fmt::format("{}: a repeated trace gave a different image (the tracer should be deterministic)",
+                             job.render.name));
+        t.record.times.traceRuns.push_back(out.seconds);
+        if (std::find(changed.begin(), changed.end(), job.key) == changed.end()) changed.push_back(job.key);
+    };
+    const auto runs = [&](const Job& job) { return static_cast<int>(traced_.at(job.key).record.times.traceRuns.size()); };
+    if (c_.timing.interleave) {
+        for (int round = 2; round <= repeats; ++round)
+            for (const Job* job : unique)
+                if (runs(*job) < round) runOnce(*job);
+    } else {
+        for (const Job* job : unique)
+            while (runs(*job) < repeats) runOnce(*job);
+    }
+    for (const std::string& key : changed) {  // the cache keeps every run, for the next rerun
+        StageTimes& times = traced_.at(key).record.times;
+        times.trace = median(times.traceRuns);
+        times.total = times.load + times.bvhBuild + times.snapshotSetup + times.snapshotTotal + times.trace;
+        Json record = readJson(cache_.record(key));
+        const Json updated = toJson(traced_.at(key).record);
+        record["times_s"] = updated["times_s"];
+        writeTextAtomically(cache_.record(key), record.dump(2) + "\n");
+    }
 }
 
 // reference.type file: read and checked against the render size before anything is traced.
@@ -327,6 +383,12 @@ Results Runner::run() {
         else if (refJob && job.key == refJob->key && job.render.name == "reference") results.reference = std::move(rec);
         else results.oneRay = std::move(rec);
         writeResults(out_ / "results.json", results);
+    }
+    repeatTraces(jobs);
+    if (c_.timing.repeats > 1) {  // the records above were taken before the repeated runs
+        for (std::size_t i = 0; i < listed; ++i) results.renders[i].times = traced_.at(jobs[i].key).record.times;
+        if (refJob && results.reference) results.reference->times = traced_.at(refJob->key).record.times;
+        if (oneRayJob && results.oneRay) results.oneRay->times = traced_.at(oneRayJob->key).record.times;
     }
     // Jobs with equal keys (the reference is also a listed render, say) are traced once.
     const std::size_t reused = traced_.size() - static_cast<std::size_t>(tracedNow_);

@@ -348,7 +348,7 @@ protected:
         exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
         return exitCode == 0 ? nlohmann::json::parse(out) : nlohmann::json();
     }
-    std::string quoted(const fs::path& p) const { return "'" + p.string() + "'"; }
+    std::string quoted(const fs::path& p) const { return fmt::format("'{}'", p.string()); }
 };
 
 TEST_F(DiffCommand, IdenticalImagesHaveNoError) {

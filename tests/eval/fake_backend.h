@@ -35,6 +35,7 @@ public:
     }
     TraceOutput trace(const RenderConfig& r, const ImageGrey* aamap, const std::function<void(int, int)>& progress) override {
         ++traces[r.strategy + std::to_string(r.rpp)];
+        order.push_back(r.strategy + std::to_string(r.rpp));
         TraceOutput t;
         t.image = ImageRGB(kW, kH);
         t.primaryRays = Image<std::uint16_t>(kW, kH, 1);
@@ -54,6 +55,7 @@ public:
     bool failPrepare = false;  // like a scene that does not load
     std::vector<std::string> sceneWarnings;  // what prepare() reports about the scene
     std::map<std::string, int> traces;
+    std::vector<std::string> order;  // every trace() call, in order
     int totalTraces() const {
         int n = 0;
         for (const auto& [k, v] : traces) n += v;

@@ -95,5 +95,45 @@ TEST_F(RunnerChecks, SceneWarningsReachTheResults) {
     EXPECT_EQ(r.warnings.front(), backend.sceneWarnings.front());  // first: it explains the rest
 }
 
+// timing.repeats: every distinct render is timed `repeats` times, round by round when
+// interleaved; the record keeps every run and its median; a rerun asking for more runs traces
+// only the runs the cache lacks.
+TEST_F(RunnerChecks, RepeatedTimingsInterleaveAndResume) {
+    FakeBackend backend;
+    const Results r = run(backend, "timing: {repeats: 3}\nmetrics: {map_quality: false}\n");
+    // Distinct keys: uniform1, uniform16 (also the reference), aamap16.
+    const std::vector<std::string> round = {"uniform1", "uniform16", "aamap16"};
+    std::vector<std::string> expected;
+    for (int i = 0; i < 3; ++i) expected.insert(expected.end(), round.begin(), round.end());
+    EXPECT_EQ(backend.order, expected);
+    for (const RenderRecord& rec : r.renders) {
+        ASSERT_EQ(rec.times.traceRuns.size(), 3u) << rec.name;
+        std::vector<double> runs = rec.times.traceRuns;
+        std::sort(runs.begin(), runs.end());
+        EXPECT_EQ(rec.times.trace, runs[1]) << rec.name;
+    }
+    ASSERT_TRUE(r.reference.has_value());
+    EXPECT_EQ(r.reference->times.traceRuns.size(), 3u);
+
+    FakeBackend more;
+    const Results again = run(more, "timing: {repeats: 4}\nmetrics: {map_quality: false}\n");
+    EXPECT_EQ(more.order, round);  // one more run each, nothing traced from scratch
+    for (const RenderRecord& rec : again.renders) EXPECT_EQ(rec.times.traceRuns.size(), 4u) << rec.name;
+}
+
+TEST_F(RunnerChecks, RepeatedTimingsWithoutInterleaving) {
+    FakeBackend backend;
+    run(backend, "timing: {repeats: 2, interleave: false}\nmetrics: {map_quality: false}\n");
+    const std::vector<std::string> expected = {"uniform1", "uniform16", "aamap16",  // the first pass
+                                               "uniform1", "uniform16", "aamap16"};
+    EXPECT_EQ(backend.order, expected);  // with 2 runs each, one more per render in turn
+    FakeBackend three;
+    fs::remove_all(out_);
+    run(three, "timing: {repeats: 3, interleave: false}\nmetrics: {map_quality: false}\n");
+    const std::vector<std::string> blocked = {"uniform1", "uniform16", "aamap16", "uniform1", "uniform1",
+                                              "uniform16", "uniform16", "aamap16", "aamap16"};
+    EXPECT_EQ(three.order, blocked);
+}
+
 }  // namespace
 }  // namespace aamap
