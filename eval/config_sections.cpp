@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include <fmt/format.h>
@@ -227,12 +228,27 @@ std::vector<RenderConfig> readRenders(const yaml::Context& ctx, const YAML::Node
         ctx.fail(renders, "renders", fmt::format("renders: expected a non-empty list, found {}", yaml::describe(renders)));
     std::vector<RenderConfig> all;
     std::set<std::string> names;
+    // The tables have a column per series and a row per rpp: two renders in one cell would hide one.
+    std::map<std::pair<std::string, int>, std::size_t> cells;
     for (std::size_t i = 0; i < renders.size(); ++i) {
         const std::string path = fmt::format("renders.{}", i);
         for (RenderConfig& r : expandEntry(ctx, renders[i], path)) {
             if (!names.insert(lower(r.name)).second)
                 ctx.fail(renders[i], path,
                          fmt::format("{}: render name '{}' is used twice (names are output file names)", path, r.name));
+            const auto [cell, fresh] = cells.emplace(std::make_pair(r.series, r.rpp), all.size());
+            if (!fresh) {
+                const RenderConfig& other = all[cell->second];
+                std::string hint;
+                for (const auto& [key, value] : r.params)
+                    for (const auto& [otherKey, otherValue] : other.params)
+                        if (key == otherKey && value != otherValue && hint.empty())
+                            hint = fmt::format("; did you mean series: \"{} {}={{{}}}\"?", r.series, key, key);
+                ctx.fail(renders[i], path,
+                         fmt::format("{}: renders '{}' and '{}' would share one table cell (series '{}', rpp {}), "
+                                     "and the tables would show only one of them: give them different series{}",
+                                     path, other.name, r.name, r.series, r.rpp, hint));
+            }
             all.push_back(std::move(r));
         }
     }
