@@ -22,6 +22,7 @@
 #include "core/heap.h"
 #include "core/log.h"
 #include "engine/vk/context.h"
+#include "eval/compare.h"
 #include "eval/config.h"
 #include "eval/experiment.h"
 #include "eval/report.h"
@@ -136,6 +137,14 @@ int main(int argc, char** argv) {
     aamap::app::SnapshotOptions snapshotOptions;
     CLI::App* snapshot = aamap::app::addSnapshotCommand(app, snapshotOptions);
     const std::unique_ptr<aamap::ViewCommand> view = aamap::addViewCommand(app);
+    CLI::App* compare = app.add_subcommand("compare", "Merge several experiments' results into one report and CSV, "
+                                                      "with a column for each setting that differs between them");
+    std::vector<std::string> compareDirs;
+    std::string compareOut;
+    compare->add_option("OUTDIR", compareDirs, "Experiment output folders (each with results.json)")->required();
+    compare->add_option("-o,--out", compareOut, "Where compare.html, compare.md and compare.csv go")
+        ->required()
+        ->type_name("OUT");
     aamap::app::DiffOptions diffOptions;
     CLI::App* diff = aamap::app::addDiffCommand(app, diffOptions);
     std::string configPath, outDir, device = envString("AAMAP_DEVICE");
@@ -177,6 +186,10 @@ int main(int argc, char** argv) {
                 return fail(kExitInput, fmt::format("{}: {}", json.string(), e.what()));
             }
             aamap::writeReport(reportDir, results, true);
+            return 0;
+        }
+        if (compare->parsed()) {
+            aamap::writeComparison({compareDirs.begin(), compareDirs.end()}, compareOut);
             return 0;
         }
         if (diff->parsed()) {

@@ -42,6 +42,11 @@ PlotRun runPlots(const std::filesystem::path& outDir);
 std::string htmlReport(const nlohmann::ordered_json& results, const std::vector<Table>& tables, const PlotRun& plots,
                        const std::filesystem::path& outDir);
 
+// One table as HTML (heading, table, note), and text escaped for HTML: for other pages built from
+// the same tables (eval/compare.h).
+std::string htmlTable(const Table& t);
+std::string htmlEscape(const std::string& s);
+
 // Writes results.csv, report.md and report.html (atomically), running the plots first if asked.
 void writeReport(const std::filesystem::path& outDir, const nlohmann::ordered_json& results, bool plots);
 

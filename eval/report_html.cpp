@@ -105,3 +105,11 @@ std::string htmlReport(const Json& results, const std::vector<Table>& tables, co
 }
 
 }  // namespace aamap
+
+namespace aamap {
+
+// For other pages built from the same tables (aamap compare).
+std::string htmlEscape(const std::string& s) { return escape(s); }
+std::string htmlTable(const Table& t) { return tableHtml(t); }
+
+}  // namespace aamap

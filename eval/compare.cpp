@@ -1,0 +1,192 @@
+#include "eval/compare.h"
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "eval/report.h"
+
+namespace aamap {
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+namespace {
+
+// Dotted keys of every scalar (and list) under the config, but the renders (their records say
+// what they are) and the thread count (it changes no image).
+void flatten(const Json& j, const std::string& prefix, std::map<std::string, std::string>& out) {
+    if (j.is_object()) {
+        for (const auto& [k, v] : j.items()) {
+            const std::string key = prefix.empty() ? k : prefix + "." + k;
+            if (key == "renders" || key == "threads") continue;
+            flatten(v, key, out);
+        }
+        return;
+    }
+    out[prefix] = j.is_string() ? j.get<std::string>() : j.dump();
+}
+
+std::string sceneOf(const ComparedRun& run) { return run.results["config"].value("scene", std::string()); }
+
+std::string csvQuoted(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+// Runs grouped by scene, in the order the scenes first appear.
+std::vector<std::vector<const ComparedRun*>> byScene(const std::vector<ComparedRun>& runs) {
+    std::vector<std::vector<const ComparedRun*>> groups;
+    std::vector<std::string> scenes;
+    for (const ComparedRun& r : runs) {
+        const auto it = std::find(scenes.begin(), scenes.end(), sceneOf(r));
+        if (it == scenes.end()) {
+            scenes.push_back(sceneOf(r));
+            groups.push_back({&r});
+        } else {
+            groups[static_cast<std::size_t>(it - scenes.begin())].push_back(&r);
+        }
+    }
+    return groups;
+}
+
+}  // namespace
+
+std::vector<ComparedRun> loadComparedRuns(const std::vector<fs::path>& dirs) {
+    if (dirs.empty()) throw InputError("compare", "needs at least one experiment folder");
+    std::vector<ComparedRun> runs;
+    std::vector<std::map<std::string, std::string>> flat;
+    for (const fs::path& dir : dirs) {
+        const fs::path file = dir / "results.json";
+        std::ifstream in(file);
+        if (!in) throw InputError(file, "cannot read (is it an experiment's output folder?)");
+        ComparedRun run;
+        run.dir = dir;
+        try {
+            run.results = Json::parse(in);
+        } catch (const nlohmann::json::exception& e) {
+            throw InputError(file, e.what());
+        }
+        if (!run.results.contains("config") || !run.results.contains("renders"))
+            throw InputError(file, "not an aamap results document (no 'config' or 'renders')");
+        flat.emplace_back();
+        flatten(run.results["config"], "", flat.back());
+        runs.push_back(std::move(run));
+    }
+    std::set<std::string> keys;
+    for (const auto& f : flat)
+        for (const auto& [k, v] : f) keys.insert(k);
+    for (const std::string& k : keys) {
+        bool same = true;
+        const auto valueIn = [&](const std::map<std::string, std::string>& f) {
+            const auto it = f.find(k);
+            return it == f.end() ? std::optional<std::string>() : std::optional<std::string>(it->second);
+        };
+        for (const auto& f : flat)
+            if (valueIn(f) != valueIn(flat[0])) same = false;
+        if (same) continue;
+        for (std::size_t i = 0; i < runs.size(); ++i) {
+            const auto it = flat[i].find(k);
+            runs[i].differs.emplace_back(k, it == flat[i].end() ? std::string("-") : it->second);
+        }
+    }
+    for (ComparedRun& run : runs) {
+        std::vector<std::string> parts;
+        for (const auto& [k, v] : run.differs) parts.push_back(k + "=" + v);
+        run.label = parts.empty() ? run.dir.filename().string() : fmt::format("{}", fmt::join(parts, ", "));
+    }
+    return runs;
+}
+
+std::string compareCsv(const std::vector<ComparedRun>& runs) {
+    std::vector<std::string> header = {"run"};
+    for (const auto& [k, v] : runs.front().differs) header.push_back(k);
+    for (const std::string& c : resultsCsvColumns()) header.push_back(c);
+    std::string out = fmt::format("{}\n", fmt::join(header, ","));
+    for (const ComparedRun& run : runs) {
+        std::string prefix = csvQuoted(run.dir.string());
+        for (const auto& [k, v] : run.differs) prefix += fmt::format(",{}", csvQuoted(v));
+        const std::string csv = resultsCsv(run.results);
+        std::size_t start = csv.find('\n') + 1;  // after the run's own header
+        for (std::size_t end; (end = csv.find('\n', start)) != std::string::npos; start = end + 1)
+            out += fmt::format("{},{}\n", prefix, csv.substr(start, end - start));
+    }
+    return out;
+}
+
+std::string compareMarkdown(const std::vector<ComparedRun>& runs) {
+    std::string md = fmt::format("# aamap comparison of {} run(s)\n\n", runs.size());
+    if (runs.front().differs.empty()) md += "The runs' settings are the same.\n\n";
+    for (const auto& group : byScene(runs)) {
+        md += fmt::format("## Scene {}\n\n", sceneOf(*group.front()));
+        for (const ComparedRun* run : group) {
+            md += fmt::format("### {} ({})\n\n", run->label, run->dir.string());
+            for (const Json& w : run->results["warnings"]) md += fmt::format("> **warning:** {}\n\n", w.get<std::string>());
+            std::string body = markdownReport(run->results, reportTables(run->results));
+            body = body.substr(body.find("\n## ") + 1);  // without the run's own title
+            std::string demoted;  // its tables one heading level down
+            std::size_t start = 0;
+            for (std::size_t end; (end = body.find('\n', start)) != std::string::npos; start = end + 1) {
+                const std::string line = body.substr(start, end - start);
+                demoted += (line.rfind("## ", 0) == 0 ? "##" + line : line) + "\n";
+            }
+            md += demoted;
+        }
+    }
+    return md;
+}
+
+std::string compareHtml(const std::vector<ComparedRun>& runs, const fs::path& outDir) {
+    std::string h = fmt::format(
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>aamap comparison</title><style>"
+        "body{{font-family:sans-serif;margin:2em;max-width:1400px}}table{{border-collapse:collapse;margin:.5em 0}}"
+        "td,th{{border:1px solid #bbb;padding:.2em .6em;text-align:right}}th{{background:#eee}}"
+        ".note{{color:#555;font-size:90%}}.warn{{background:#fff3cd;border:1px solid #e0b400;padding:.6em}}"
+        "</style></head><body>\n<h1>aamap comparison of {} run(s)</h1>\n",
+        runs.size());
+    Table overview{"runs", "Runs", "what tells the runs apart; each links to its own report", {"run"}, {}};
+    for (const auto& [k, v] : runs.front().differs) overview.header.push_back(k);
+    overview.header.push_back("report");
+    for (const ComparedRun& run : runs) {
+        std::vector<std::string> row = {run.dir.string()};
+        for (const auto& [k, v] : run.differs) row.push_back(v);
+        row.push_back(fs::relative(run.dir / "report.html", outDir).string());
+        overview.rows.push_back(std::move(row));
+    }
+    h += htmlTable(overview);
+    for (const auto& group : byScene(runs)) {
+        h += fmt::format("<h2>Scene {}</h2>\n", htmlEscape(sceneOf(*group.front())));
+        for (const ComparedRun* run : group) {
+            h += fmt::format("<h3>{} (<a href=\"{}\">report</a>)</h3>\n", htmlEscape(run->label),
+                             htmlEscape(fs::relative(run->dir / "report.html", outDir).string()));
+            for (const Json& w : run->results["warnings"])
+                h += "<p class=\"warn\">" + htmlEscape(w.get<std::string>()) + "</p>\n";
+            for (Table t : reportTables(run->results)) {
+                t.id = fmt::format("{}-{}", t.id, static_cast<std::size_t>(run - runs.data()));
+                h += htmlTable(t);
+            }
+        }
+    }
+    return h + "</body></html>\n";
+}
+
+void writeComparison(const std::vector<fs::path>& dirs, const fs::path& outDir) {
+    const std::vector<ComparedRun> runs = loadComparedRuns(dirs);
+    std::error_code ec;
+    fs::create_directories(outDir, ec);
+    if (ec) throw EnvironmentError(fmt::format("{}: cannot create output folder: {}", outDir.string(), ec.message()));
+    writeTextAtomically(outDir / "compare.csv", compareCsv(runs));
+    writeTextAtomically(outDir / "compare.md", compareMarkdown(runs));
+    writeTextAtomically(outDir / "compare.html", compareHtml(runs, outDir));
+    spdlog::info("comparison of {} run(s): {}", runs.size(), (outDir / "compare.html").string());
+}
+
+}  // namespace aamap
