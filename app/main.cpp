@@ -26,6 +26,7 @@
 #include "eval/config.h"
 #include "eval/experiment.h"
 #include "eval/report.h"
+#include "eval/sweep_runner.h"
 #include "eval/strategies.h"
 
 namespace {
@@ -176,16 +177,7 @@ int main(int argc, char** argv) {
 
     try {
         if (report->parsed()) {
-            const std::filesystem::path json = std::filesystem::path(reportDir) / "results.json";
-            std::ifstream in(json);
-            if (!in) return fail(kExitInput, fmt::format("{}: cannot read (run the experiment first)", json.string()));
-            nlohmann::ordered_json results;
-            try {
-                results = nlohmann::ordered_json::parse(in);
-            } catch (const nlohmann::json::exception& e) {
-                return fail(kExitInput, fmt::format("{}: {}", json.string(), e.what()));
-            }
-            aamap::writeReport(reportDir, results, true);
+            aamap::rebuildReport(reportDir, true);
             return 0;
         }
         if (compare->parsed()) {
@@ -213,7 +205,7 @@ int main(int argc, char** argv) {
             if (configPath.empty()) return 0;
         }
         if (configPath.empty()) return fail(kExitInput, "run: CONFIG is required\nRun 'aamap run --help' for usage.");
-        const aamap::ExperimentConfig config = aamap::loadConfig(configPath, overrides);
+        const aamap::Experiment experiment = aamap::loadExperiment(configPath, overrides);
         const std::filesystem::path out =
             outDir.empty() ? std::filesystem::path("out") / std::filesystem::path(configPath).stem() : std::filesystem::path(outDir);
         aamap::RunOptions options;
@@ -222,9 +214,13 @@ int main(int argc, char** argv) {
         options.threads = threads;
         options.gitRevision = AAMAP_GIT_REVISION;
         options.plots = !noPlots;
-        spdlog::info("config {} (hash {}), output {}", configPath, config.hash(), out.string());
+        if (experiment.sweptKeys.empty())
+            spdlog::info("config {} (hash {}), output {}", configPath, experiment.variants.front().hash(), out.string());
+        else
+            spdlog::info("config {}: {} variants sweeping {}, output {}", configPath, experiment.variants.size(),
+                         fmt::join(experiment.sweptKeys, ", "), out.string());
         stopCleanlyOnInterrupt(out);
-        aamap::runExperiment(config, out, options);
+        aamap::runSweptExperiment(experiment, out, options);
         return 0;
     } catch (const aamap::InputError& e) {
         return fail(kExitInput, e.what());

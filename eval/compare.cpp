@@ -178,15 +178,15 @@ std::string compareHtml(const std::vector<ComparedRun>& runs, const fs::path& ou
     return h + "</body></html>\n";
 }
 
-void writeComparison(const std::vector<fs::path>& dirs, const fs::path& outDir) {
+void writeComparison(const std::vector<fs::path>& dirs, const fs::path& outDir, const ComparisonFiles& files) {
     const std::vector<ComparedRun> runs = loadComparedRuns(dirs);
     std::error_code ec;
     fs::create_directories(outDir, ec);
     if (ec) throw EnvironmentError(fmt::format("{}: cannot create output folder: {}", outDir.string(), ec.message()));
-    writeTextAtomically(outDir / "compare.csv", compareCsv(runs));
-    writeTextAtomically(outDir / "compare.md", compareMarkdown(runs));
-    writeTextAtomically(outDir / "compare.html", compareHtml(runs, outDir));
-    spdlog::info("comparison of {} run(s): {}", runs.size(), (outDir / "compare.html").string());
+    writeTextAtomically(outDir / files.csv, compareCsv(runs));
+    writeTextAtomically(outDir / files.markdown, compareMarkdown(runs));
+    writeTextAtomically(outDir / files.html, compareHtml(runs, outDir));
+    spdlog::info("comparison of {} run(s): {}", runs.size(), (outDir / files.html).string());
 }
 
 }  // namespace aamap

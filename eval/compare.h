@@ -28,7 +28,13 @@ std::string compareCsv(const std::vector<ComparedRun>& runs);
 std::string compareMarkdown(const std::vector<ComparedRun>& runs);
 std::string compareHtml(const std::vector<ComparedRun>& runs, const std::filesystem::path& outDir);
 
+// The names of the three files (`aamap compare`'s; a sweep's comparison is its report).
+struct ComparisonFiles {
+    std::string html = "compare.html", markdown = "compare.md", csv = "compare.csv";
+};
+
 // All of the above into outDir (created if needed).
-void writeComparison(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& outDir);
+void writeComparison(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& outDir,
+                     const ComparisonFiles& files = {});
 
 }  // namespace aamap

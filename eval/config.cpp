@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "eval/config_sections.h"
+#include "eval/config_sweeps.h"
 #include "eval/light_list.h"
 #include "eval/strategies.h"
 #include "eval/yaml_reader.h"
@@ -289,8 +290,33 @@ std::string ExperimentConfig::hash() const {
     return fnv1a64Hex(j.dump());
 }
 
-ExperimentConfig parseConfig(const std::string& text, const std::filesystem::path& file,
-                             const std::vector<std::string>& overrides) {
+namespace {
+
+// "builtin:cornell" -> "cornell", "../scenes/hall.obj" -> "hall", "0.02" -> "0.02": a swept value
+// as a piece of a folder name.
+std::string folderPiece(const std::string& key, const std::string& value) {
+    std::string v = value;
+    if (key == "scene" || key == "view" || key == "light_file" || key == "reference.path") {
+        v = v.starts_with("builtin:") ? v.substr(8) : std::filesystem::path(v).stem().string();
+    }
+    for (char& c : v)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-') c = '_';
+    return v;
+}
+
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw InputError(file, fmt::format("cannot read config file: {}", std::strerror(errno)));
+    if (std::filesystem::is_directory(file)) throw InputError(file, "cannot read config file: it is a directory");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+}  // namespace
+
+Experiment parseExperiment(const std::string& text, const std::filesystem::path& file,
+                           const std::vector<std::string>& overrides) {
     yaml::Context ctx(file);
     YAML::Node root;
     try {
@@ -302,16 +328,62 @@ ExperimentConfig parseConfig(const std::string& text, const std::filesystem::pat
         ctx.fail(root, "", fmt::format("expected a mapping of settings, found {}", yaml::describe(root)));
     const std::vector<std::string> settable = leaves();
     for (const std::string& o : overrides) yaml::applyOverride(root, o, settable, ctx);
-    return readConfig(ctx, root);
+
+    const std::vector<detail::ConfigSweep> sweeps = detail::findConfigSweeps(ctx, root);
+    Experiment e;
+    for (const detail::ConfigSweep& s : sweeps) {
+        e.sweptKeys.push_back(s.key);
+        e.sweptAt.push_back(ctx.locate(s.values.front(), s.key));
+    }
+    // A key's last part names it in folder names, unless two swept keys share it.
+    std::vector<std::string> shortKeys;
+    for (const std::string& k : e.sweptKeys) {
+        const std::string last = k.substr(k.rfind('.') + 1);
+        const bool shared = std::count_if(e.sweptKeys.begin(), e.sweptKeys.end(), [&](const std::string& o) {
+                                return o.substr(o.rfind('.') + 1) == last;
+                            }) > 1;
+        std::string name = shared ? k : last;
+        std::replace(name.begin(), name.end(), '.', '_');
+        shortKeys.push_back(name);
+    }
+    detail::forEachConfigVariant(ctx, root, sweeps, kMaxConfigVariants, [&](const YAML::Node& doc,
+                                                                             const std::vector<std::size_t>& choice) {
+        e.variants.push_back(readConfig(ctx, doc));
+        std::vector<std::string> values, pieces;
+        for (std::size_t i = 0; i < sweeps.size(); ++i) {
+            const YAML::Node& node = sweeps[i].values[choice[i]];
+            const std::string value = node.IsScalar() ? node.Scalar() : YAML::Dump(node);
+            values.push_back(value);
+            pieces.push_back(shortKeys[i] + "-" + folderPiece(sweeps[i].key, value));
+        }
+        e.sweptValues.push_back(std::move(values));
+        std::string folder = pieces.empty() ? std::string() : fmt::format("{}", fmt::join(pieces, "_"));
+        if (std::find(e.folders.begin(), e.folders.end(), folder) != e.folders.end())
+            folder += fmt::format("_{}", e.folders.size());
+        e.folders.push_back(std::move(folder));
+    });
+    return e;
+}
+
+Experiment loadExperiment(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+    return parseExperiment(readText(file), file, overrides);
+}
+
+ExperimentConfig parseConfig(const std::string& text, const std::filesystem::path& file,
+                             const std::vector<std::string>& overrides) {
+    Experiment e = parseExperiment(text, file, overrides);
+    if (!e.sweptKeys.empty()) {
+        const SourceLocation& at = e.sweptAt.front();
+        throw InputError(at.file, at.line, at.column,
+                         fmt::format("{}: a list here sweeps the setting, and only `aamap run` expands such sweeps; "
+                                     "give this command one value",
+                                     e.sweptKeys.front()));
+    }
+    return std::move(e.variants.front());
 }
 
 ExperimentConfig loadConfig(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(file, fmt::format("cannot read config file: {}", std::strerror(errno)));
-    if (std::filesystem::is_directory(file)) throw InputError(file, "cannot read config file: it is a directory");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseConfig(text.str(), file, overrides);
+    return parseConfig(readText(file), file, overrides);
 }
 
 }  // namespace aamap

@@ -138,8 +138,25 @@ std::string fnv1a64Hex(const std::string& text);
 // Formats a parameter value for names and labels: integers without a decimal point, others %g.
 std::string formatParam(double value);
 
+// An experiment with its sweeps of settings outside the renders list expanded (eval/config_sweeps.h):
+// one variant per point of the cartesian product, the first swept key varying slowest. Without
+// such sweeps, one variant and no swept keys.
+struct Experiment {
+    std::vector<ExperimentConfig> variants;
+    std::vector<std::string> sweptKeys;                 // "scene", "snapshot.blur_radius", ...
+    std::vector<SourceLocation> sweptAt;                // where each swept list is written
+    std::vector<std::vector<std::string>> sweptValues;  // per variant, the value of each swept key
+    std::vector<std::string> folders;                   // per variant, a file-safe sub-folder name
+};
+inline constexpr std::size_t kMaxConfigVariants = 256;
+
+Experiment loadExperiment(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+Experiment parseExperiment(const std::string& text, const std::filesystem::path& file,
+                           const std::vector<std::string>& overrides = {});
+
 // overrides: "key.path=value" strings (the --set options); value is parsed as YAML, list items
-// are addressed by index ("renders.1.rpp=16"). Throws InputError.
+// are addressed by index ("renders.1.rpp=16"). Throws InputError, also for a sweep outside the
+// renders (the commands that take one experiment; `aamap run` takes them all: loadExperiment).
 ExperimentConfig loadConfig(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 ExperimentConfig parseConfig(const std::string& text, const std::filesystem::path& file,
                              const std::vector<std::string>& overrides = {});

@@ -1,4 +1,5 @@
 #include "eval/experiment.h"
+#include "eval/sweep_runner.h"
 
 #include <algorithm>
 #include <chrono>
@@ -298,7 +299,20 @@ Results runExperiment(const ExperimentConfig& config, const std::filesystem::pat
     RunnerOptions ro;
     ro.gitRevision = options.gitRevision;
     ro.plots = options.plots;
+    ro.cacheDir = options.cacheDir;
     return runExperimentWith(config, outDir, backend, ro);
+}
+
+void runSweptExperiment(const Experiment& experiment, const std::filesystem::path& outDir, const RunOptions& options) {
+    if (experiment.sweptKeys.empty()) {
+        runExperiment(experiment.variants.front(), outDir, options);
+        return;
+    }
+    RunnerOptions ro;
+    ro.gitRevision = options.gitRevision;
+    ro.plots = options.plots;
+    runSweepWith(experiment, outDir,
+                 [&](const ExperimentConfig& config) { return std::make_unique<TracerBackend>(config, options); }, ro);
 }
 
 }  // namespace aamap

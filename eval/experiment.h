@@ -19,6 +19,7 @@ struct RunOptions {
     int threads = -1;         // >= 0 overrides the config's `threads`
     std::string gitRevision = "unknown";
     bool plots = true;  // false: --no-plots
+    std::filesystem::path cacheDir;  // the render cache; empty: OUTDIR/cache
 };
 
 // The run worked, but the Vulkan validation layer reported problems (the messages were already
@@ -33,6 +34,10 @@ public:
 // ValidationFailure. Every render is committed to OUTDIR/cache as it finishes, so a killed run
 // resumes where it stopped.
 Results runExperiment(const ExperimentConfig& config, const std::filesystem::path& outDir, const RunOptions& options);
+
+// Every variant of a swept experiment with the real backend (eval/sweep_runner.h); one variant
+// without sweeps runs as runExperiment.
+void runSweptExperiment(const Experiment& experiment, const std::filesystem::path& outDir, const RunOptions& options);
 
 // The setup `aamap run` and `aamap view` share, so both render exactly the same thing: the scene
 // with the config's lights, the chosen view, and the render size that view fits into image.*.

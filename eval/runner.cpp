@@ -58,7 +58,7 @@ Json readJson(const fs::path& path) {
 class Runner {
 public:
     Runner(const ExperimentConfig& config, const fs::path& outDir, RenderBackend& backend, const RunnerOptions& options)
-        : c_(config), out_(outDir), backend_(backend), options_(options), cache_(outDir / "cache", outDir),
+        : c_(config), out_(outDir), backend_(backend), options_(options), cache_(options.cacheDir.empty() ? outDir / "cache" : options.cacheDir, outDir),
           machine_(currentMachine()) {}
 
     Results run();

@@ -60,6 +60,8 @@ public:
 struct RunnerOptions {
     std::string gitRevision = "unknown";
     bool plots = true;  // ANDed with config.report.plots
+    // The render cache; empty: OUTDIR/cache. The variants of a swept experiment share one.
+    std::filesystem::path cacheDir;
 };
 
 // Throws InputError, EnvironmentError, or whatever the backend throws. results.json is rewritten

@@ -100,7 +100,8 @@ TEST(ConfigErrors, WrongType) {
     expectAt(parseError(kMinimal + "image: {width: abc}\n"), 4, 16, "image.width: expected an integer");
     expectAt(parseError(kMinimal + "image: {width: 1.5}\n"), 4, 16, "expected an integer");
     expectAt(parseError(kMinimal + "image: [1, 2]\n"), 4, 8, "expected a mapping");
-    expectAt(parseError(kMinimal + "snapshot: {gain: [1]}\n"), 4, 18, "expected a finite number");
+    // A list at a single-valued setting is a sweep (test_config_sweeps.cpp), which a single config refuses.
+    expectAt(parseError(kMinimal + "snapshot: {gain: [1]}\n"), 4, 19, "snapshot.gain: a list here sweeps the setting");
     expectAt(parseError(kMinimal + "seed: -1\n"), 4, 7, "non-negative integer");
     expectAt(parseError(kMinimal + "lights:\n  - {position: [0, 1], intensity: [1, 1, 1]}\n"), 5, 16,
              "list of 3 numbers");

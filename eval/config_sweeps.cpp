@@ -1,0 +1,91 @@
+#include "eval/config_sweeps.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+namespace aamap::detail {
+namespace {
+
+// Settings that take one scalar each, so that a list there can only mean a sweep. The renders
+// (which sweep their own way), the lights, the metrics, the report and the timing do not sweep.
+const std::vector<std::string>& topLevelScalars() {
+    static const std::vector<std::string> keys = {"scene", "view", "view_index", "seed", "light_file"};
+    return keys;
+}
+const std::vector<std::string>& sweptSections() {
+    static const std::vector<std::string> keys = {"image", "snapshot", "shading", "reference"};
+    return keys;
+}
+
+void collect(const yaml::Context& ctx, const YAML::Node& node, const std::string& path,
+             std::vector<ConfigSweep>& out) {
+    if (node.IsMap()) {
+        for (const auto& kv : node) collect(ctx, kv.second, path + "." + kv.first.as<std::string>(), out);
+        return;
+    }
+    if (!node.IsSequence()) return;
+    ConfigSweep sweep{path, {}};
+    for (const YAML::Node& item : node) {
+        const auto same = [&](const YAML::Node& v) { return v.IsScalar() && item.IsScalar() && v.Scalar() == item.Scalar(); };
+        if (std::any_of(sweep.values.begin(), sweep.values.end(), same))
+            ctx.fail(item, path, fmt::format("{}: the sweep lists '{}' twice", path, item.Scalar()));
+        sweep.values.push_back(item);
+    }
+    if (sweep.values.empty()) ctx.fail(node, path, fmt::format("{}: an empty list sweeps nothing", path));
+    out.push_back(std::move(sweep));
+}
+
+// The node at a dotted path of a copied document (the path exists: it was found in the original).
+void setAt(YAML::Node root, const std::string& key, const YAML::Node& value) {
+    std::vector<std::string> parts;
+    for (std::size_t start = 0, dot; start <= key.size(); start = dot + 1) {
+        dot = key.find('.', start);
+        if (dot == std::string::npos) dot = key.size();
+        parts.push_back(key.substr(start, dot - start));
+    }
+    YAML::Node node = root;
+    for (std::size_t i = 0; i + 1 < parts.size(); ++i) node.reset(node[parts[i]]);
+    node[parts.back()] = value;
+}
+
+}  // namespace
+
+std::vector<ConfigSweep> findConfigSweeps(const yaml::Context& ctx, const YAML::Node& root) {
+    std::vector<ConfigSweep> sweeps;
+    if (!root.IsMap()) return sweeps;
+    for (const auto& kv : root) {
+        const std::string key = kv.first.as<std::string>();
+        const bool scalarKey = std::find(topLevelScalars().begin(), topLevelScalars().end(), key) != topLevelScalars().end();
+        const bool section = std::find(sweptSections().begin(), sweptSections().end(), key) != sweptSections().end();
+        if (scalarKey && kv.second.IsSequence()) collect(ctx, kv.second, key, sweeps);
+        if (section && kv.second.IsMap())
+            for (const auto& inner : kv.second) collect(ctx, inner.second, key + "." + inner.first.as<std::string>(), sweeps);
+    }
+    return sweeps;
+}
+
+void forEachConfigVariant(const yaml::Context& ctx, YAML::Node& root, const std::vector<ConfigSweep>& sweeps,
+                          std::size_t maxVariants,
+                          const std::function<void(const YAML::Node& doc, const std::vector<std::size_t>& choice)>& variant) {
+    std::size_t count = 1;
+    for (const ConfigSweep& s : sweeps) {
+        count *= s.values.size();
+        if (count > maxVariants)
+            ctx.fail(s.values.front(), s.key,
+                     fmt::format("{}: the sweeps expand to more than {} variants of the experiment", s.key, maxVariants));
+    }
+    for (std::size_t index = 0; index < count; ++index) {
+        std::vector<std::size_t> choice;
+        std::size_t rest = index, stride = count;
+        for (const ConfigSweep& s : sweeps) {
+            stride /= s.values.size();
+            choice.push_back(rest / stride);
+            setAt(root, s.key, s.values[rest / stride]);
+            rest %= stride;
+        }
+        variant(root, choice);
+    }
+}
+
+}  // namespace aamap::detail

@@ -1,0 +1,117 @@
+// Sweeps outside the renders list: the cartesian product of the listed settings, the first key
+// varying slowest, each variant an ordinary experiment; errors name the list's file:line; the
+// variants run into sub-folders that share one cache, so what they share is traced once.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "eval/config.h"
+#include "eval/sweep_runner.h"
+#include "tests/eval/fake_backend.h"
+
+namespace aamap {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kSwept = R"(scene: [builtin:cornell, builtin:spheres-plane]
+image: {width: 48, height: 32}
+snapshot: {blur_radius: [1, 2]}
+timing: {repeats: 3}
+renders:
+  - {strategy: uniform, rpp: [1, 4], series: Standard}
+  - {strategy: aamap, rpp: 4, series: Selective}
+report: {plots: false}
+)";
+
+TEST(ConfigSweeps, CartesianProductWithTheFirstKeySlowest) {
+    const Experiment e = parseExperiment(kSwept, "exp.yaml");
+    ASSERT_EQ(e.sweptKeys, (std::vector<std::string>{"scene", "snapshot.blur_radius"}));
+    ASSERT_EQ(e.variants.size(), 4u);
+    const std::vector<std::pair<std::string, int>> expected = {
+        {"builtin:cornell", 1}, {"builtin:cornell", 2}, {"builtin:spheres-plane", 1}, {"builtin:spheres-plane", 2}};
+    for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(e.variants[i].scene, expected[i].first);
+        EXPECT_EQ(e.variants[i].snapshot.blurRadius, expected[i].second);
+        EXPECT_EQ(e.variants[i].timing.repeats, 3);  // what is not swept is the same everywhere
+        EXPECT_EQ(e.sweptValues[i][0], expected[i].first);
+    }
+    EXPECT_EQ(e.folders, (std::vector<std::string>{"scene-cornell_blur_radius-1", "scene-cornell_blur_radius-2",
+                                                   "scene-spheres-plane_blur_radius-1",
+                                                   "scene-spheres-plane_blur_radius-2"}));
+    // A swept Snapshot setting changes the aamap renders' keys, not the uniform ones'.
+    EXPECT_EQ(renderKey(e.variants[0], e.variants[0].renders[0]), renderKey(e.variants[1], e.variants[1].renders[0]));
+    EXPECT_NE(renderKey(e.variants[0], e.variants[0].renders[2]), renderKey(e.variants[1], e.variants[1].renders[2]));
+}
+
+TEST(ConfigSweeps, OverridesSweepAndSingleConfigCommandsRefuse) {
+    const char* plain = "scene: builtin:cornell\nrenders: [{strategy: uniform, rpp: 1}]\n";
+    const Experiment e = parseExperiment(plain, "exp.yaml", {"snapshot.blur_radius=[1,2]", "shading.mode=[direct, path]"});
+    EXPECT_EQ(e.variants.size(), 4u);
+    EXPECT_EQ(e.folders[3], "blur_radius-2_mode-path");
+    EXPECT_EQ(parseExperiment(plain, "exp.yaml").variants.size(), 1u);
+    EXPECT_TRUE(parseExperiment(plain, "exp.yaml").sweptKeys.empty());
+    EXPECT_THROW(parseConfig(plain, "exp.yaml", {"snapshot.blur_radius=[1,2]"}), InputError);
+    // Two swept keys with the same last name are told apart by their section.
+    const Experiment both = parseExperiment(plain, "exp.yaml", {"snapshot.area_light_samples=[1,2]",
+                                                                "shading.area_light_samples=[4,9]"});
+    EXPECT_EQ(both.folders[0], "snapshot_area_light_samples-1_shading_area_light_samples-4");
+}
+
+TEST(ConfigSweeps, BadListsNameTheirLine) {
+    const auto lineOf = [](const std::string& yaml) {
+        try {
+            parseExperiment(yaml, "exp.yaml");
+        } catch (const InputError& e) {
+            return e.line();
+        }
+        return -1;
+    };
+    EXPECT_EQ(lineOf("scene: builtin:cornell\nsnapshot: {blur_radius: []}\nrenders: [{strategy: uniform, rpp: 1}]\n"), 2);
+    EXPECT_EQ(lineOf("scene: builtin:cornell\nsnapshot:\n  blur_radius: [1, 1]\nrenders: [{strategy: uniform, rpp: 1}]\n"), 3);
+    // A swept value is checked like a single one, and the error points at the list item.
+    EXPECT_EQ(lineOf("scene: builtin:cornell\nsnapshot:\n  blur_radius:\n    - 1\n    - 99\n"
+                     "renders: [{strategy: uniform, rpp: 1}]\n"),
+              5);
+    // The cap on the expansion.
+    std::string many = "scene: builtin:cornell\nseed: [";
+    for (int i = 0; i < 17; ++i) many += std::to_string(i) + (i < 16 ? ", " : "]\n");
+    many += "image: {width: [";
+    for (int i = 1; i <= 17; ++i) many += std::to_string(i) + (i < 17 ? ", " : "]}\n");
+    many += "renders: [{strategy: uniform, rpp: 1}]\n";
+    EXPECT_GT(lineOf(many), 0);
+}
+
+TEST(ConfigSweeps, VariantsShareOneCacheAndOneReport) {
+    const fs::path out = fs::path(::testing::TempDir()) / "config_sweeps_run";
+    fs::remove_all(out);
+    const Experiment e = parseExperiment(kSwept, "exp.yaml");
+    runSweepWith(e, out,
+                 [](const ExperimentConfig&) { return std::unique_ptr<RenderBackend>(std::make_unique<FakeBackend>()); },
+                 RunnerOptions{"test-rev", false});
+    for (const std::string& folder : e.folders) {
+        ASSERT_TRUE(fs::is_regular_file(out / folder / "results.json")) << folder;
+        std::ifstream in(out / folder / "results.json");
+        const nlohmann::json results = nlohmann::json::parse(in);
+        for (const nlohmann::json& r : results["renders"]) EXPECT_EQ(r["times_s"]["trace_runs"].size(), 3u);
+        EXPECT_FALSE(fs::exists(out / folder / "cache"));  // the shared one holds them
+    }
+    // The uniform renders of the second blur radius came from the first one's cache entries.
+    std::ifstream in(out / e.folders[1] / "results.json");
+    const nlohmann::json second = nlohmann::json::parse(in);
+    EXPECT_TRUE(second["renders"][0]["cached"].get<bool>());
+    EXPECT_FALSE(second["renders"][2]["cached"].get<bool>());  // the aamap render depends on the radius
+    for (const char* f : {"report.html", "report.md", "results.csv", "sweep.json"})
+        EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+    // `aamap report OUTDIR` rebuilds it from the files alone.
+    fs::remove(out / "report.md");
+    rebuildReport(out, false);
+    EXPECT_TRUE(fs::is_regular_file(out / "report.md"));
+}
+
+}  // namespace
+}  // namespace aamap
