@@ -1,5 +1,6 @@
 #include "scene/mitsuba_shapes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -138,14 +139,19 @@ ShapeMesh sphere(const Element& shape) {
     const glm::vec3 centre = pointProperty(shape, "center", glm::vec3(0.0f));
     const float radius = floatProperty(shape, "radius", 1.0f);
     if (!(radius > 0.0f)) fail(shape, fmt::format("sphere radius {} is not positive", radius));
-    const int around = circleSegments(kTessellationError);
-    const int rings = std::max(2, (around + 1) / 2);
+    // A triangle's worst point is its circumcentre, at angular distance step / sqrt(2) from the
+    // corners of a (step x step) cell: 1 - cos(step / sqrt(2)) <= error.
+    const double step = std::sqrt(2.0) * std::acos(1.0 - static_cast<double>(kTessellationError));
+    const int around = std::max(8, static_cast<int>(std::ceil(2.0 * std::numbers::pi / step)));
+    const int rings = std::max(4, (around + 1) / 2);
     ShapeMesh m;
     for (int j = 0; j <= rings; ++j) {
         const float theta = kPi * j / rings;
         for (int i = 0; i <= around; ++i) {
             const float phi = 2.0f * kPi * i / around;
-            const glm::vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+            // The poles exactly (sin(pi) is not 0 in float): their slivers must be degenerate and dropped.
+            const float ring = j == 0 || j == rings ? 0.0f : std::sin(theta);
+            const glm::vec3 d(ring * std::cos(phi), ring * std::sin(phi), j == 0 ? 1.0f : j == rings ? -1.0f : std::cos(theta));
             m.positions.push_back(centre + radius * d);
             m.normals.push_back(d);
             m.uvs.push_back({static_cast<float>(i) / around, static_cast<float>(j) / rings});
