@@ -160,9 +160,9 @@ ShapeMesh sphere(const Element& shape) {
     const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(j * (around + 1) + i); };
     for (int j = 0; j < rings; ++j) {
         for (int i = 0; i < around; ++i) {
-            // Outward winding; the poles' degenerate halves are dropped when appended.
-            m.triangles.emplace_back(at(i, j), at(i, j + 1), at(i + 1, j + 1));
-            m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i + 1, j));
+            // Outward winding; at the poles one half of each cell is a point, and left out.
+            if (j + 1 < rings) m.triangles.emplace_back(at(i, j), at(i, j + 1), at(i + 1, j + 1));
+            if (j > 0) m.triangles.emplace_back(at(i, j), at(i + 1, j + 1), at(i + 1, j));
         }
     }
     return m;
