@@ -37,8 +37,10 @@ constexpr int kExitValidation = 3;
 
 const char* const kRunFooter = R"(CONFIG is a YAML experiment (configs/cornell.yaml is the default one; full schema in
 docs/config.md). Paths in it are relative to the config file. Keys:
-  scene: builtin:cornell | path to .obj      view: path to a Radiance .vf, or null (scene's view)
-  view_index: 0                              seed: 1          threads: 0 (all cores)
+  scene: builtin:cornell | path to .obj/.gltf/.glb/.xml (Mitsuba)
+  view: path to a Radiance .vf, or null (scene's view)    view_index: 0
+  camera: {position: [x,y,z], look_at: [x,y,z], up: [0,1,0], fov: 45 (horizontal)} instead of view
+  seed: 1          threads: 0 (all cores)
   light_file: lights.yaml (docs/lights.md)  lights: [{type: point|spot|quad|disk, name, position: [x,y,z],
             intensity|radiance|power: [r,g,b], normal, direction, inner_angle, outer_angle, size, radius}]
   image: {width: 512, height: 512, exposure: 1.0}   (the view's aspect ratio fits inside)

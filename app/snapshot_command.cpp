@@ -12,9 +12,12 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "engine/vk/context.h"
+#include "eval/config.h"
 #include "eval/light_list.h"
 #include "passes/snapshot.h"
+#include "scene/framing.h"
 #include "scene/light_file.h"
+#include "scene/lights.h"
 #include "scene/load_scene.h"
 #include "scene/view_file.h"
 
@@ -23,10 +26,27 @@ namespace {
 
 constexpr int kExitValidation = 3;
 
-View pickView(const SnapshotOptions& o, const Scene& scene) {
+constexpr int kDefaultSide = 512;
+
+// --camera, else --view, else the scene's views, else a view framing the scene (with a warning).
+View pickView(const SnapshotOptions& o, const Scene& scene, int width, int height) {
+    if (!o.camera.empty()) {
+        const CameraConfig c = parseCameraOption(o.camera);
+        const auto vec = [](const std::array<double, 3>& v) { return glm::vec3(v[0], v[1], v[2]); };
+        try {
+            return lookAtView(vec(c.position), vec(c.lookAt), vec(c.up), static_cast<float>(c.fov), width, height);
+        } catch (const std::invalid_argument& e) {
+            throw InputError("--camera", e.what());
+        }
+    }
     const std::vector<View> views = o.view.empty() ? scene.views : loadViewFile(o.view);
     const std::string source = o.view.empty() ? fmt::format("scene '{}'", o.scene) : o.view;
-    if (views.empty()) throw InputError(o.scene, "the scene has no view; pass --view FILE.vf");
+    if (views.empty() && o.viewIndex == 0) {
+        spdlog::warn("{} has no camera: using a view that frames the scene's bounds (pass --camera or --view to choose one)",
+                     source);
+        return framingView(sceneBounds(scene), width, height);
+    }
+    if (views.empty()) throw InputError(o.scene, "the scene has no view; pass --camera or --view FILE.vf");
     if (o.viewIndex >= static_cast<int>(views.size()))
         throw InputError(o.view.empty() ? o.scene : o.view,
                          fmt::format("--view-index {} is out of range: {} has {} view(s)", o.viewIndex, source,
@@ -65,16 +85,22 @@ std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
 CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
     CLI::App* cmd = app.add_subcommand("snapshot", "Run only the Snapshot: snapshot.png, laplacian.png, aamap.png/.exr; "
                                                    "--explain / --dot show the compiled render graph");
-    cmd->add_option("SCENE", o.scene, "Scene: builtin:<name>, or an .obj/.gltf/.glb file")->required();
-    cmd->add_option("--view", o.view, "Radiance .vf view file (default: the scene's own views)")->type_name("VF");
+    cmd->add_option("SCENE", o.scene, "Scene: builtin:<name>, or an .obj/.gltf/.glb/.xml (Mitsuba) file")->required();
+    CLI::Option* view =
+        cmd->add_option("--view", o.view, "Radiance .vf view file (default: the scene's own views)")->type_name("VF");
+    cmd->add_option("--camera", o.camera,
+                    "Camera as YAML, the config's camera keys: '{position: [x, y, z], look_at: [x, y, z], up: [0, 1, 0], "
+                    "fov: 45}' (fov: horizontal degrees)")
+        ->type_name("YAML")->excludes(view);
     cmd->add_option("--view-index", o.viewIndex, "Which view of the file or scene")->check(CLI::NonNegativeNumber);
     cmd->add_option("--lights", o.lights, "Light file to add to the scene's lights (docs/lights.md)")->type_name("FILE");
     cmd->add_flag("--explain", o.explain, "Print the compiled graph: each pass kept and why, each culled and why");
     cmd->add_option("--dot", o.dot, "Write the compiled graph as Graphviz DOT (culled passes dashed)")->type_name("FILE");
     cmd->add_option("-o,--out", o.outDir, "Output folder")->type_name("OUTDIR")->capture_default_str();
-    cmd->add_option("--width", o.width, "Render width (bounding box; the view's aspect ratio fits inside)")
-        ->check(CLI::Range(1, 16384))->capture_default_str();
-    cmd->add_option("--height", o.height, "Render height")->check(CLI::Range(1, 16384))->capture_default_str();
+    cmd->add_option("--width", o.width,
+                    "Render width (bounding box; the view's aspect ratio fits inside; default: the scene file's, else 512)")
+        ->check(CLI::Range(1, 16384));
+    cmd->add_option("--height", o.height, "Render height (default: the scene file's, else 512)")->check(CLI::Range(1, 16384));
     cmd->add_option("--scale", o.scale, "Snapshot resolution / render resolution")->check(CLI::Range(1.0, 4.0))
         ->capture_default_str();
     cmd->add_option("--area-light-samples", o.areaLightSamples, "Point samples per area light")
@@ -93,8 +119,12 @@ CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
 int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::string& device) {
     Scene scene = loadScene(o.scene);
     if (!o.lights.empty()) addLights(scene, loadLightFile(o.lights));
-    const View view = pickView(o, scene);
-    const auto [width, height] = fitResolution(view, o.width, o.height);
+    // The scene file's image size (a Mitsuba film) where --width/--height are not given.
+    const bool sceneSize = o.width == 0 && o.height == 0 && scene.imageWidth > 0;
+    const int boxWidth = o.width > 0 ? o.width : sceneSize ? scene.imageWidth : kDefaultSide;
+    const int boxHeight = o.height > 0 ? o.height : sceneSize ? scene.imageHeight : kDefaultSide;
+    const View view = pickView(o, scene, boxWidth, boxHeight);
+    const auto [width, height] = fitResolution(view, boxWidth, boxHeight);
 
     SnapshotSettings settings;
     settings.scale = o.scale;

@@ -1,5 +1,5 @@
 #pragma once
-// `aamap snapshot SCENE --view VF [--view-index N] [--lights FILE] [--explain] [--dot FILE]
+// `aamap snapshot SCENE [--view VF [--view-index N] | --camera YAML] [--lights FILE] [--explain] [--dot FILE]
 // [-o OUTDIR]`: the Snapshot alone (no tracing), its images, and its compiled render graph.
 #include <string>
 
@@ -8,9 +8,10 @@
 namespace aamap::app {
 
 struct SnapshotOptions {
-    std::string scene, view, lights, dot, outDir = "out/snapshot";
+    std::string scene, view, camera, lights, dot, outDir = "out/snapshot";
     int viewIndex = 0;
-    int width = 512, height = 512;  // render size (bounding box for the view's aspect ratio)
+    // Render size (bounding box for the view's aspect ratio); 0: the scene file's size, else 512.
+    int width = 0, height = 0;
     float scale = 1.5f;             // snapshot resolution / render resolution
     int areaLightSamples = 5;
     float exposure = 1.0f;

@@ -32,6 +32,9 @@ std::unique_ptr<ViewCommand> addViewCommand(CLI::App& app) {
         ->allow_extra_args(false)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
         ->type_name("KEY=VALUE");
+    cmd->add_option("--camera", view->camera,
+                    "Camera as YAML, the config's camera keys: '{position: [x, y, z], look_at: [x, y, z], fov: 45}'")
+        ->type_name("YAML");
     cmd->add_option("--device", o.device, "Vulkan device: index or name substring (default: best GPU)")->type_name("NAME");
     cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; any message fails (exit 3)");
     cmd->add_option("--threads", o.threads, "Tracer threads (overrides the config; 0 = all)")->check(CLI::NonNegativeNumber);
@@ -57,7 +60,12 @@ std::unique_ptr<ViewCommand> addViewCommand(CLI::App& app) {
 void runViewCommand(const ViewCommand& view) {
     if (!view.options.screenshot.empty() && view.options.frames <= 0)
         throw InputError("--screenshot", 0, 0, "--screenshot needs --frames N (the screenshot is the last frame)");
-    const ExperimentConfig config = loadConfig(view.config, view.overrides);
+    std::vector<std::string> overrides = view.overrides;
+    if (!view.camera.empty()) {  // the config's camera, replacing its view file if it names one
+        overrides.push_back("view=null");
+        for (std::string& o : cameraOverrides(parseCameraOption(view.camera))) overrides.push_back(std::move(o));
+    }
+    const ExperimentConfig config = loadConfig(view.config, overrides);
     runViewer(config, view.options);
 }
 

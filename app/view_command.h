@@ -14,6 +14,7 @@ struct ViewCommand {
     CLI::App* command = nullptr;
     std::string config;
     std::vector<std::string> overrides;
+    std::string camera;  // --camera: YAML as the config's camera key; replaces the config's view
     ViewerOptions options;
 };
 

@@ -28,6 +28,7 @@ using yaml::MapReader;
 std::vector<std::string> leaves() {
     std::vector<std::string> l = {
         "scene", "view", "view_index", "seed", "threads",
+        "camera.position", "camera.look_at", "camera.up", "camera.fov",
         "image.width", "image.height", "image.exposure",
         "snapshot.scale", "snapshot.area_light_samples", "snapshot.blur_radius", "snapshot.noise_floor",
         "snapshot.gain", "snapshot.map", "shading.area_light_samples", "shading.mode", "shading.max_depth",
@@ -53,8 +54,8 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     if (root.IsNull() || !root.IsDefined())
         throw InputError(ctx.file(), 1, 1, "the config is empty; it needs at least 'scene' and 'renders'");
     MapReader top(ctx, root, "",
-                  {"scene", "view", "view_index", "light_file", "lights", "image", "seed", "threads", "snapshot", "shading",
-                   "renders", "reference", "metrics", "report", "timing"});
+                  {"scene", "view", "view_index", "camera", "light_file", "lights", "image", "seed", "threads", "snapshot",
+                   "shading", "renders", "reference", "metrics", "report", "timing"});
     ExperimentConfig c;
     c.file = ctx.file();
     top.require("scene");
@@ -69,6 +70,12 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.viewLocation = locationOf(ctx, top, "view");
     top.getInt("view_index", c.viewIndex, 0, 1000000);
     c.viewIndexLocation = locationOf(ctx, top, "view_index");
+    if (top.has("camera") && !top.node("camera").IsNull()) {
+        c.camera = detail::readCamera(ctx, top.node("camera"));
+        if (c.view)
+            ctx.fail(top.node("camera"), "camera", "camera: set either 'camera' or 'view' (a .vf file), not both");
+    }
+    c.cameraLocation = locationOf(ctx, top, "camera");
     top.getUInt64("seed", c.seed);
     top.getInt("threads", c.threads, 0, 4096);
 
@@ -88,6 +95,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     for (LightSpec& l : readLightList(ctx, top.node("lights"), "lights")) c.lights.push_back(std::move(l));
 
     MapReader image(ctx, top.node("image"), "image", {"width", "height", "exposure"});
+    c.image.sizeGiven = image.has("width") || image.has("height");
     image.getInt("width", c.image.width, 1, kMaxSide);
     image.getInt("height", c.image.height, 1, kMaxSide);
     image.getDouble("exposure", c.image.exposure, 0.0, 1e6, true);
@@ -212,11 +220,20 @@ Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = ""
             {"max_specular_depth", s.maxSpecularDepth}, {"light_selection", s.lightSelection}};
 }
 
+Json cameraJson(const CameraConfig& cam) {
+    return {{"position", cam.position}, {"look_at", cam.lookAt}, {"up", cam.up}, {"fov", cam.fov}};
+}
+
 Json sceneJson(const ExperimentConfig& c) {
     const auto view = c.resolvedView();
-    return {{"scene", c.resolvedScene()}, {"view", view ? Json(view->string()) : Json(nullptr)},
-            {"view_index", c.viewIndex}, {"lights", lightsJson(c)},
-            {"image", {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}}}};
+    Json j = {{"scene", c.resolvedScene()}, {"view", view ? Json(view->string()) : Json(nullptr)},
+              {"view_index", c.viewIndex}, {"lights", lightsJson(c)},
+              {"image", {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}}}};
+    // Only when they apply, so that other configs keep their keys.
+    if (c.camera) j["camera"] = cameraJson(*c.camera);
+    if (!c.image.sizeGiven && !c.scene.starts_with("builtin:") && c.scene.ends_with(".xml"))
+        j["image"]["size"] = "scene";  // the Mitsuba film's size, which the file decides
+    return j;
 }
 
 }  // namespace
@@ -259,6 +276,7 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     j["scene"] = c.scene;
     j["view"] = c.view ? Json(*c.view) : Json(nullptr);
     j["view_index"] = c.viewIndex;
+    if (c.camera) j["camera"] = cameraJson(*c.camera);  // only when set: older configs keep their hash
     if (c.lightFile) j["light_file"] = *c.lightFile;  // only when set: older configs keep their hash
     j["lights"] = lightsJson(c);
     j["image"] = {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}};
@@ -288,6 +306,23 @@ std::string ExperimentConfig::hash() const {
     nlohmann::ordered_json j = canonical(*this);
     j.erase("threads");
     return fnv1a64Hex(j.dump());
+}
+
+CameraConfig parseCameraOption(const std::string& text) {
+    yaml::Context ctx("--camera");
+    YAML::Node node;
+    try {
+        node = YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+        throw InputError("--camera", 0, e.mark.column + 1, fmt::format("invalid YAML: {}", e.msg));
+    }
+    return detail::readCamera(ctx, node);
+}
+
+std::vector<std::string> cameraOverrides(const CameraConfig& cam) {
+    const auto vec = [](const std::array<double, 3>& v) { return fmt::format("[{}, {}, {}]", v[0], v[1], v[2]); };
+    return {"camera.position=" + vec(cam.position), "camera.look_at=" + vec(cam.lookAt), "camera.up=" + vec(cam.up),
+            fmt::format("camera.fov={}", cam.fov)};
 }
 
 namespace {

@@ -25,7 +25,16 @@ using LightConfig = LightSpec;
 
 struct ImageConfig {
     int width = 512, height = 512;  // the bounding box; the view's aspect ratio decides the fit
+    bool sizeGiven = false;         // width or height written: else a scene's own size (Mitsuba film) wins
     double exposure = 1.0;          // PNG tone mapping and the snapshot's greyscale
+};
+
+// `camera`: a view written in the config instead of a .vf file (scene/framing.h, lookAtView).
+struct CameraConfig {
+    std::array<double, 3> position{0, 0, 0};
+    std::array<double, 3> lookAt{0, 0, -1};
+    std::array<double, 3> up{0, 1, 0};
+    double fov = 45.0;  // degrees, the full horizontal angle; the vertical one follows the image
 };
 
 struct SnapshotConfig {
@@ -96,6 +105,7 @@ struct ExperimentConfig {
     std::string scene;           // as written: "builtin:NAME" or a path relative to the config file
     std::optional<std::string> view;  // as written: a .vf path relative to the config file
     int viewIndex = 0;
+    std::optional<CameraConfig> camera;  // wins over the scene's views; exclusive with `view`
     std::optional<std::string> lightFile;  // as written: a light file relative to the config file
     std::vector<LightConfig> lights;       // the light file's lights, then the inline `lights` list
     ImageConfig image;
@@ -112,7 +122,7 @@ struct ExperimentConfig {
     bool usesAamap() const;  // some render needs the Snapshot
 
     // For errors found when the scene or view is loaded.
-    SourceLocation sceneLocation, viewLocation, viewIndexLocation;
+    SourceLocation sceneLocation, viewLocation, viewIndexLocation, cameraLocation;
 
     // The scene spec for loadScene(): builtin names unchanged, paths resolved against the
     // config file's folder.
@@ -134,6 +144,12 @@ std::string renderKeyJson(const ExperimentConfig& config, const RenderConfig& re
 // The same for the Snapshot and its aamap.
 std::string snapshotKey(const ExperimentConfig& config);
 std::string fnv1a64Hex(const std::string& text);
+
+// The --camera option of `aamap snapshot` and `aamap view`: the config's camera mapping as YAML
+// flow text ("{position: [0, 1, 5], look_at: [0, 1, 0], fov: 50}"). Throws InputError.
+CameraConfig parseCameraOption(const std::string& text);
+// The same camera as --set overrides ("camera.position=[0, 1, 5]", ...).
+std::vector<std::string> cameraOverrides(const CameraConfig& camera);
 
 // Formats a parameter value for names and labels: integers without a decimal point, others %g.
 std::string formatParam(double value);

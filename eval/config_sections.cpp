@@ -305,4 +305,32 @@ ReportConfig readReport(const yaml::Context& ctx, const YAML::Node& node) {
     return c;
 }
 
+CameraConfig readCamera(const yaml::Context& ctx, const YAML::Node& node) {
+    if (!node.IsMap())
+        ctx.fail(node, "camera", fmt::format("camera: expected a mapping {{position, look_at, up, fov}}, found {}",
+                                             yaml::describe(node)));
+    MapReader m(ctx, node, "camera", {"position", "look_at", "up", "fov"});
+    CameraConfig c;
+    m.require("position");
+    m.require("look_at");
+    constexpr double kFar = 1e30;
+    m.getVec3("position", c.position, -kFar, kFar);
+    m.getVec3("look_at", c.lookAt, -kFar, kFar);
+    m.getVec3("up", c.up, -kFar, kFar);
+    m.getDouble("fov", c.fov, 0.0, 180.0, true);
+    if (c.fov >= 180.0) ctx.fail(m.node("fov"), "camera.fov", "camera.fov: must be below 180 degrees");
+    if (c.position == c.lookAt)
+        ctx.fail(m.node("look_at"), "camera.look_at", "camera.look_at: equals camera.position; the camera needs a direction");
+    const std::array<double, 3> d = {c.lookAt[0] - c.position[0], c.lookAt[1] - c.position[1], c.lookAt[2] - c.position[2]};
+    const std::array<double, 3> x = {d[1] * c.up[2] - d[2] * c.up[1], d[2] * c.up[0] - d[0] * c.up[2],
+                                     d[0] * c.up[1] - d[1] * c.up[0]};
+    const double dd = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double uu = std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]);
+    if (!(std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > 1e-6 * dd * uu))
+        ctx.fail(m.has("up") ? m.node("up") : node, "camera.up",
+                 "camera.up: zero or parallel to the view direction (look_at - position)");
+    m.finish();
+    return c;
+}
+
 }  // namespace aamap::detail

@@ -18,6 +18,8 @@ std::vector<RenderConfig> readRenders(const yaml::Context& ctx, const YAML::Node
 ReferenceConfig readReference(const yaml::Context& ctx, const YAML::Node& node, const std::vector<RenderConfig>& renders);
 MetricsConfig readMetrics(const yaml::Context& ctx, const YAML::Node& node);
 ReportConfig readReport(const yaml::Context& ctx, const YAML::Node& node);
+// `camera`: position and look_at required, up (0, 1, 0) and fov (45) optional.
+CameraConfig readCamera(const yaml::Context& ctx, const YAML::Node& node);
 
 std::string lower(std::string s);
 bool readBool(const yaml::Context& ctx, yaml::MapReader& m, const std::string& key, bool fallback);

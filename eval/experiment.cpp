@@ -22,7 +22,9 @@
 #include "passes/cpu_aamap.h"
 #include "passes/snapshot.h"
 #include "scene/camera.h"
+#include "scene/framing.h"
 #include "scene/light_file.h"
+#include "scene/lights.h"
 #include "scene/load_scene.h"
 #include "scene/view_file.h"
 #include "eval/runner.h"
@@ -51,7 +53,21 @@ Scene loadSceneFor(const ExperimentConfig& config) {
     }
 }
 
-View pickView(const ExperimentConfig& config, const Scene& scene, std::string& label) {
+// Precedence: the config's camera, its view file, the scene's own views, a view framing the
+// scene's bounds (with a warning). width x height: the image box the camera fills.
+View pickView(const ExperimentConfig& config, const Scene& scene, std::string& label, int width, int height) {
+    if (config.camera) {
+        const CameraConfig& c = *config.camera;
+        const auto vec = [](const std::array<double, 3>& v) { return glm::vec3(v[0], v[1], v[2]); };
+        try {
+            View v = lookAtView(vec(c.position), vec(c.lookAt), vec(c.up), static_cast<float>(c.fov), width, height);
+            v.name = label = "camera";
+            return v;
+        } catch (const std::invalid_argument& e) {
+            const SourceLocation& at = config.cameraLocation;
+            throw InputError(at.file, at.line, at.column, fmt::format("camera: {}", e.what()));
+        }
+    }
     std::vector<View> views;
     std::string source;
     if (const auto file = config.resolvedView()) {
@@ -68,9 +84,15 @@ View pickView(const ExperimentConfig& config, const Scene& scene, std::string& l
         source = scene.name.empty() ? config.scene : scene.name;
     }
     const SourceLocation& at = config.viewIndexLocation;
+    if (views.empty() && config.viewIndex == 0) {
+        spdlog::warn("{} has no camera: using a view that frames the scene's bounds (set 'camera' or 'view' to choose one)",
+                     source);
+        label = "framed";
+        return framingView(sceneBounds(scene), width, height);
+    }
     if (views.empty())
         throw InputError(config.viewLocation.file, config.viewLocation.line, config.viewLocation.column,
-                         fmt::format("{} has no view; set 'view' to a Radiance .vf file", source));
+                         fmt::format("{} has no view; set 'camera', or 'view' to a Radiance .vf file", source));
     if (config.viewIndex >= static_cast<int>(views.size()))
         throw InputError(at.file, at.line, at.column,
                          fmt::format("view_index {} is out of range: {} has {} view(s)", config.viewIndex, source,
@@ -276,8 +298,15 @@ PreparedScene prepareScene(const ExperimentConfig& config) {
     p.scene = loadSceneFor(config);
     addConfigLights(config, p.scene);
     p.loadSeconds = secondsSince(t0);
-    p.view = pickView(config, p.scene, p.viewLabel);
-    std::tie(p.width, p.height) = fitResolution(p.view, config.image.width, config.image.height);
+    // The scene's own image size (a Mitsuba film) unless the config gives one.
+    int width = config.image.width, height = config.image.height;
+    if (!config.image.sizeGiven && p.scene.imageWidth > 0) {
+        width = p.scene.imageWidth;
+        height = p.scene.imageHeight;
+        spdlog::info("image size {}x{} from the scene file (set image.width/height to change it)", width, height);
+    }
+    p.view = pickView(config, p.scene, p.viewLabel, width, height);
+    std::tie(p.width, p.height) = fitResolution(p.view, width, height);
     return p;
 }
 

@@ -9,6 +9,8 @@
 #include "core/error.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
+#include "scene/lights.h"
+#include "scene/mitsuba_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/text_util.h"
 #include "scene/view_file.h"
@@ -16,16 +18,19 @@
 namespace aamap {
 namespace fs = std::filesystem;
 
-Scene loadScene(const std::string& spec) {
+namespace {
+
+Scene loadSceneFile(const std::string& spec) {
     constexpr std::string_view kBuiltin = "builtin:";
     if (spec.starts_with(kBuiltin)) return builtinScene(std::string_view(spec).substr(kBuiltin.size()));
 
     const fs::path path(spec);
     const std::string ext = text::toLower(path.extension().string());
     if (ext == ".gltf" || ext == ".glb") return loadGltf(path);
+    if (ext == ".xml") return loadMitsuba(path);
     if (ext != ".obj") {
-        throw InputError(path, fmt::format("unsupported scene format '{}' (expected .obj, .gltf, .glb or builtin:<name>)",
-                                           path.extension().string()));
+        throw InputError(path, fmt::format("unsupported scene format '{}' (expected .obj, .gltf, .glb, .xml (Mitsuba) "
+                                           "or builtin:<name>)", path.extension().string()));
     }
     Scene scene = loadObj(path);
     fs::path viewFile = path;
@@ -35,6 +40,18 @@ Scene loadScene(const std::string& spec) {
         scene.views = loadViewFile(viewFile);
         spdlog::info("{}: {} view(s) from {}", path.string(), scene.views.size(), viewFile.string());
     }
+    return scene;
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& spec) {
+    Scene scene = loadSceneFile(spec);
+    // Where the scene is and how big, so that cameras and lights can be placed in its units.
+    const Bounds b = sceneBounds(scene);
+    spdlog::info("scene '{}': {} triangles, bounds ({:.4g}, {:.4g}, {:.4g}) to ({:.4g}, {:.4g}, {:.4g}), size "
+                 "{:.4g} x {:.4g} x {:.4g}", scene.name, scene.mesh.triangles.size(), b.lo.x, b.lo.y, b.lo.z, b.hi.x,
+                 b.hi.y, b.hi.z, b.extent().x, b.extent().y, b.extent().z);
     return scene;
 }
 

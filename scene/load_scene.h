@@ -6,8 +6,9 @@
 
 namespace aamap {
 
-// spec: "builtin:<name>" (see builtin_scenes.h) or a file path: .obj, .gltf or .glb (case-
-// insensitive extension). For an OBJ, a Radiance view file "<stem>.vf" next to it supplies
+// spec: "builtin:<name>" (see builtin_scenes.h) or a file path: .obj, .gltf, .glb or .xml (a
+// Mitsuba scene, scene/mitsuba_loader.h; case-insensitive extension). Logs the triangle count and
+// the bounds. For an OBJ, a Radiance view file "<stem>.vf" next to it supplies
 // Scene::views. Throws InputError for unknown formats and for anything the loaders reject.
 Scene loadScene(const std::string& spec);
 

@@ -133,6 +133,7 @@ struct Scene {
     std::vector<DirectionalLight> directionalLights;
     std::optional<EnvironmentLight> environment;  // at most one sky
     std::vector<View> views;  // views that came with the scene (glTF cameras, built-in default view)
+    int imageWidth = 0, imageHeight = 0;  // the image size the scene file asks for (a Mitsuba film); 0: none
 
     bool hasTextures() const { return !textures.empty(); }
 };

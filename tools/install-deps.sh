@@ -10,6 +10,7 @@ packages=(
   # libraries
   libglm-dev libembree-dev libtbb-dev libopenexr-dev libtinygltf-dev libtinyobjloader-dev
   libglfw3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev libstb-dev
+  libpugixml-dev libassimp-dev
   # tests and benchmarks (xvfb + xauth: a virtual display for the viewer test, xvfb-run)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
   # sanitizer build and libFuzzer targets (the asan preset): clang and its runtime libraries

@@ -23,6 +23,7 @@
 #include "eval/light_list.h"
 #include "scene/gltf_loader.h"
 #include "scene/light_file.h"
+#include "scene/mitsuba_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/texture_loader.h"
 #include "scene/view_file.h"
@@ -87,6 +88,8 @@ void load(const CorpusFile& file, const Scratch& scratch) {
         expectUsable(loadObj(scratch.write("uses.obj", "mtllib " + abs + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n")));
     } else if (file.parser == "gltf" || file.parser == "glb") {
         expectUsable(loadGltf(file.path));
+    } else if (file.parser == "mitsuba") {
+        expectUsable(loadMitsuba(file.path));
     } else if (file.parser == "view") {
         const auto views = loadViewFile(file.path);
         ASSERT_FALSE(views.empty());

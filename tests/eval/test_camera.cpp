@@ -1,0 +1,129 @@
+// The config's camera key and the views prepareScene picks: camera, view file, the scene's own
+// views, or a framed view; and the image size a Mitsuba film gives.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "eval/config.h"
+#include "eval/experiment.h"
+
+namespace aamap {
+namespace {
+namespace fs = std::filesystem;
+
+const std::string kRenders = "renders: [{name: u, strategy: uniform, rpp: 1}]\n";
+
+InputError configError(const std::string& text) {
+    try {
+        parseConfig(text, "exp.yaml");
+    } catch (const InputError& e) {
+        return e;
+    }
+    ADD_FAILURE() << "no error for:\n" << text;
+    return InputError("", "");
+}
+
+TEST(CameraConfig, ParsesWithDefaults) {
+    const ExperimentConfig c = parseConfig("scene: builtin:cornell\ncamera: {position: [0, 1, 5], look_at: [0, 1, 0]}\n" + kRenders,
+                                           "exp.yaml");
+    ASSERT_TRUE(c.camera.has_value());
+    EXPECT_EQ(c.camera->position, (std::array<double, 3>{0, 1, 5}));
+    EXPECT_EQ(c.camera->up, (std::array<double, 3>{0, 1, 0}));
+    EXPECT_EQ(c.camera->fov, 45.0);
+}
+
+TEST(CameraConfig, ErrorsNameTheLine) {
+    const InputError both = configError("scene: builtin:cornell\nview: a.vf\ncamera: {position: [0, 0, 1], look_at: [0, 0, 0]}\n" + kRenders);
+    EXPECT_EQ(both.line(), 3) << both.what();
+    EXPECT_NE(std::string(both.what()).find("not both"), std::string::npos);
+    const InputError missing = configError("scene: builtin:cornell\ncamera: {position: [0, 0, 1]}\n" + kRenders);
+    EXPECT_NE(std::string(missing.what()).find("look_at"), std::string::npos) << missing.what();
+    const InputError parallel = configError("scene: builtin:cornell\ncamera: {position: [0, 5, 0], look_at: [0, 0, 0]}\n" + kRenders);
+    EXPECT_NE(std::string(parallel.what()).find("camera.up"), std::string::npos) << parallel.what();
+    const InputError fov = configError("scene: builtin:cornell\ncamera: {position: [0, 0, 1], look_at: [0, 0, 0], fov: 0}\n" + kRenders);
+    EXPECT_NE(std::string(fov.what()).find("camera.fov"), std::string::npos) << fov.what();
+}
+
+TEST(CameraConfig, EntersTheCacheKeys) {
+    const std::string base = "scene: builtin:cornell\n" + kRenders;
+    const ExperimentConfig none = parseConfig(base, "exp.yaml");
+    const ExperimentConfig a = parseConfig(base + "camera: {position: [0, 1, 5], look_at: [0, 1, 0]}\n", "exp.yaml");
+    const ExperimentConfig b = parseConfig(base + "camera: {position: [0, 1, 6], look_at: [0, 1, 0]}\n", "exp.yaml");
+    EXPECT_NE(renderKey(none, none.renders[0]), renderKey(a, a.renders[0]));
+    EXPECT_NE(renderKey(a, a.renders[0]), renderKey(b, b.renders[0]));
+    EXPECT_NE(snapshotKey(a), snapshotKey(b));
+    EXPECT_NE(a.hash(), b.hash());
+}
+
+TEST(CameraConfig, OptionTextRoundTripsThroughOverrides) {
+    const CameraConfig c = parseCameraOption("{position: [1, 2, 3], look_at: [0, 0, 0], fov: 30.5}");
+    const ExperimentConfig e = parseConfig("scene: builtin:cornell\n" + kRenders, "exp.yaml", cameraOverrides(c));
+    ASSERT_TRUE(e.camera.has_value());
+    EXPECT_EQ(e.camera->position, c.position);
+    EXPECT_EQ(e.camera->fov, 30.5);
+    EXPECT_THROW(parseCameraOption("{position: [1, 2]}"), InputError);
+}
+
+TEST(PrepareScene, CameraWinsOverTheScenesView) {
+    ExperimentConfig c = parseConfig("scene: builtin:cornell\nimage: {width: 200, height: 100}\n"
+                                     "camera: {position: [0.2, 0.3, -1], look_at: [0.2, 0.3, 0], fov: 60}\n" + kRenders,
+                                     "exp.yaml");
+    const PreparedScene p = prepareScene(c);
+    EXPECT_EQ(p.viewLabel, "camera");
+    EXPECT_NEAR(p.view.position.z, -1.0f, 1e-6f);
+    EXPECT_NEAR(p.view.horizontalFovDeg, 60.0f, 1e-4f);
+    EXPECT_EQ(p.width, 200);
+    EXPECT_EQ(p.height, 100);
+}
+
+class Files : public ::testing::Test {
+protected:
+    fs::path dir = fs::temp_directory_path() / ("aamap_camera_" + std::to_string(::getpid()));
+    void SetUp() override { fs::create_directories(dir); }
+    void TearDown() override {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+    fs::path write(const std::string& name, const std::string& text) const {
+        std::ofstream(dir / name, std::ios::binary) << text;
+        return dir / name;
+    }
+};
+
+TEST_F(Files, CameralessSceneGetsAFramedView) {
+    write("tri.obj", "v 10 0 0\nv 12 0 0\nv 10 2 0\nf 1 2 3\n");
+    const fs::path cfg = write("exp.yaml", "scene: tri.obj\n" + kRenders);
+    const PreparedScene p = prepareScene(loadConfig(cfg));
+    EXPECT_EQ(p.viewLabel, "framed");
+    // Looking at the triangle's bounds' centre.
+    const glm::vec3 toCentre = glm::normalize(glm::vec3(11, 1, 0) - p.view.position);
+    EXPECT_GT(glm::dot(toCentre, p.view.direction), 0.9999f);
+}
+
+TEST_F(Files, MitsubaFilmIsTheDefaultImageSize) {
+    write("scene.xml", R"(<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="50"/>
+    <film type="hdrfilm"><integer name="width" value="320"/><integer name="height" value="180"/></film>
+  </sensor>
+  <shape type="cube"><transform name="to_world"><translate z="5"/></transform></shape>
+</scene>
+)");
+    const fs::path cfg = write("exp.yaml", "scene: scene.xml\n" + kRenders);
+    const PreparedScene p = prepareScene(loadConfig(cfg));
+    EXPECT_EQ(p.width, 320);
+    EXPECT_EQ(p.height, 180);
+    const PreparedScene q = prepareScene(loadConfig(cfg, {"image.width=160"}));
+    EXPECT_EQ(q.width, 160);  // the config's box wins; the film's aspect ratio still fits inside
+    EXPECT_EQ(q.height, 90);
+    // The key says the size comes from the scene, so an explicit 512 x 512 is a different render.
+    const ExperimentConfig fromScene = loadConfig(cfg), explicitSize = loadConfig(cfg, {"image.width=512"});
+    EXPECT_NE(renderKey(fromScene, fromScene.renders[0]), renderKey(explicitSize, explicitSize.renders[0]));
+}
+
+}  // namespace
+}  // namespace aamap

@@ -1,0 +1,330 @@
+// Mitsuba scene import: small scenes written here, checked against what the file says.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "scene/lights.h"
+#include "scene/load_scene.h"
+#include "scene/mitsuba_loader.h"
+#include "scene/mitsuba_shapes.h"
+#include "scene/mitsuba_xml.h"
+#include "scene/spectrum.h"
+
+namespace aamap {
+namespace {
+namespace fs = std::filesystem;
+
+class Mitsuba : public ::testing::Test {
+protected:
+    fs::path dir = fs::temp_directory_path() / ("aamap_mitsuba_" + std::to_string(::getpid()));
+    void SetUp() override { fs::create_directories(dir); }
+    void TearDown() override {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+    fs::path write(const std::string& name, const std::string& text) const {
+        fs::create_directories((dir / name).parent_path());
+        std::ofstream(dir / name, std::ios::binary) << text;
+        return dir / name;
+    }
+    Scene load(const std::string& body, MitsubaLoadReport* report = nullptr, const std::string& version = "3.0.0") {
+        return loadMitsuba(write("scene.xml", "<scene version=\"" + version + "\">\n" + body + "</scene>\n"), report);
+    }
+    // The InputError's message for a scene that must fail.
+    std::string error(const std::string& body) {
+        try {
+            load(body);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        ADD_FAILURE() << "loaded; expected an InputError";
+        return {};
+    }
+};
+
+Bounds boundsOf(const Scene& s) { return sceneBounds(s); }
+
+void expectVec(glm::vec3 a, glm::vec3 b, float tol = 1e-5f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+TEST_F(Mitsuba, SensorLookAtFovAxisAndFilm) {
+    const Scene s = load(R"(<sensor type="perspective">
+  <float name="fov" value="60"/>
+  <string name="fov_axis" value="y"/>
+  <transform name="to_world"><lookat origin="1, 2, 3" target="1, 2, 0" up="0, 1, 0"/></transform>
+  <film type="hdrfilm"><integer name="width" value="200"/><integer name="height" value="100"/></film>
+</sensor>
+)");
+    ASSERT_EQ(s.views.size(), 1u);
+    const View& v = s.views[0];
+    expectVec(v.position, {1, 2, 3});
+    expectVec(v.direction, {0, 0, -1});
+    expectVec(v.up, {0, 1, 0});
+    EXPECT_NEAR(v.verticalFovDeg, 60.0f, 1e-3f);
+    // tan(h/2) = aspect * tan(v/2)
+    EXPECT_NEAR(std::tan(glm::radians(v.horizontalFovDeg) / 2), 2.0f * std::tan(glm::radians(30.0f)), 1e-5f);
+    EXPECT_EQ(s.imageWidth, 200);
+    EXPECT_EQ(s.imageHeight, 100);
+}
+
+TEST_F(Mitsuba, Version05CamelCaseNamesAndDefaultFilm) {
+    const Scene s = load(R"(<sensor type="perspective">
+  <float name="fov" value="40"/>
+  <string name="fovAxis" value="x"/>
+  <transform name="toWorld"><translate x="0" y="0" z="-5"/></transform>
+</sensor>
+)", nullptr, "0.5.0");
+    ASSERT_EQ(s.views.size(), 1u);
+    expectVec(s.views[0].position, {0, 0, -5});
+    expectVec(s.views[0].direction, {0, 0, 1});  // Mitsuba's cameras look down local +Z
+    EXPECT_NEAR(s.views[0].horizontalFovDeg, 40.0f, 1e-3f);
+    EXPECT_EQ(s.imageWidth, 768);  // Mitsuba's default film
+    EXPECT_EQ(s.imageHeight, 576);
+}
+
+TEST_F(Mitsuba, TransformsApplyInOrder) {
+    // Scale by 2, then rotate 90 degrees about +Z, then translate: the rectangle [-1,1]^2 becomes
+    // [-2,2]^2 around (10, 0, 0).
+    const Scene s = load(R"(<shape type="rectangle">
+  <transform name="to_world">
+    <scale value="2"/>
+    <rotate z="1" angle="90"/>
+    <translate x="10"/>
+  </transform>
+</shape>
+)");
+    const Bounds b = boundsOf(s);
+    expectVec(b.lo, {8, -2, 0}, 1e-4f);
+    expectVec(b.hi, {12, 2, 0}, 1e-4f);
+    ASSERT_EQ(s.mesh.triangles.size(), 2u);
+    for (const glm::vec3& n : s.mesh.normals) expectVec(n, {0, 0, 1});
+}
+
+TEST_F(Mitsuba, MatrixIsRowMajorAndFlipNormalsTurnsTheFront) {
+    const Scene s = load(R"(<shape type="rectangle">
+  <transform name="to_world"><matrix value="1 0 0 5  0 1 0 6  0 0 1 7  0 0 0 1"/></transform>
+  <boolean name="flip_normals" value="true"/>
+</shape>
+)");
+    expectVec(boundsOf(s).centre(), {5, 6, 7}, 1e-5f);
+    expectVec(triangleNormal(s.mesh, 0), {0, 0, -1});
+    for (const glm::vec3& n : s.mesh.normals) expectVec(n, {0, 0, -1});
+}
+
+TEST_F(Mitsuba, CubeIsClosedAndFacesOutwards) {
+    const Scene s = load("<shape type=\"cube\"/>\n");
+    ASSERT_EQ(s.mesh.triangles.size(), 12u);
+    for (std::uint32_t t = 0; t < 12; ++t) {
+        const glm::uvec3 tri = s.mesh.triangles[t];
+        const glm::vec3 centroid = (s.mesh.positions[tri.x] + s.mesh.positions[tri.y] + s.mesh.positions[tri.z]) / 3.0f;
+        EXPECT_GT(glm::dot(triangleNormal(s.mesh, t), centroid), 0.0f) << "triangle " << t;
+        EXPECT_NEAR(triangleArea(s.mesh, t), 2.0f, 1e-5f);
+    }
+}
+
+TEST_F(Mitsuba, SphereIsWithinTheStatedError) {
+    const float r = 2.0f;
+    const Scene s = load(R"(<shape type="sphere"><point name="center" x="1" y="2" z="3"/><float name="radius" value="2"/></shape>
+)");
+    ASSERT_GT(s.mesh.triangles.size(), 100u);
+    const glm::vec3 c(1, 2, 3);
+    for (std::uint32_t t = 0; t < s.mesh.triangles.size(); ++t) {
+        const glm::uvec3 tri = s.mesh.triangles[t];
+        const glm::vec3 a = s.mesh.positions[tri.x], b = s.mesh.positions[tri.y], d = s.mesh.positions[tri.z];
+        for (const glm::vec3& p : {a, (a + b + d) / 3.0f, 0.5f * (a + b), 0.5f * (b + d)}) {
+            const float dist = glm::length(p - c);
+            ASSERT_LE(dist, r * (1 + 1e-5f));
+            ASSERT_GE(dist, r * (1 - mitsuba::kTessellationError) - 1e-5f) << "triangle " << t;
+        }
+        ASSERT_GT(glm::dot(triangleNormal(s.mesh, t), (a + b + d) / 3.0f - c), 0.0f) << "faces inwards: " << t;
+    }
+}
+
+TEST_F(Mitsuba, DiskKeepsItsAreaAndEmits) {
+    const Scene s = load(R"(<shape type="disk">
+  <transform name="to_world"><scale value="0.5"/></transform>
+  <emitter type="area"><rgb name="radiance" value="1, 2, 3"/></emitter>
+</shape>
+)");
+    ASSERT_EQ(s.areaLights.size(), 1u);
+    EXPECT_NEAR(s.areaLights[0].area, std::numbers::pi_v<float> * 0.25f, 1e-4f);
+    expectVec(s.areaLights[0].radiance, {1, 2, 3});
+    for (std::uint32_t t = 0; t < s.mesh.triangles.size(); ++t) expectVec(triangleNormal(s.mesh, t), {0, 0, 1});
+    const float sagitta = 1.0f - std::cos(std::numbers::pi_v<float> / mitsuba::circleSegments(mitsuba::kTessellationError));
+    EXPECT_LE(sagitta, mitsuba::kTessellationError);
+}
+
+TEST_F(Mitsuba, IncludeDefaultsAndParameters) {
+    write("parts/floor.xml", R"(<scene version="3.0.0">
+  <shape type="rectangle"><transform name="to_world"><scale value="$size"/></transform></shape>
+</scene>
+)");
+    const Scene s = load(R"(<default name="size" value="3"/>
+<include filename="parts/floor.xml"/>
+)");
+    expectVec(boundsOf(s).hi, {3, 3, 0}, 1e-5f);
+    // A given parameter wins over the default.
+    const Scene t = loadMitsuba(dir / "scene.xml", nullptr, {{"size", "5"}});
+    expectVec(boundsOf(t).hi, {5, 5, 0}, 1e-5f);
+}
+
+TEST_F(Mitsuba, ErrorsNameFileAndLine) {
+    EXPECT_NE(error("<shape type=\"rectangle\">\n  <bsdf type=\"diffuse\">\n</shape>\n").find("scene.xml:4"),
+              std::string::npos);  // malformed: the mismatched close tag on line 4
+    EXPECT_NE(error("\n<shape type=\"teapot\"/>\n").find("scene.xml:3: unknown shape type 'teapot'"), std::string::npos);
+    EXPECT_NE(error("<shape type=\"rectangle\">\n  <bsdf type=\"hair\"/>\n</shape>\n").find(":3: unknown BSDF type 'hair'"),
+              std::string::npos);
+    EXPECT_NE(error("<emitter type=\"sunsky\"/>\n").find(":2: unknown emitter type"), std::string::npos);
+    EXPECT_NE(error("<include filename=\"nope.xml\"/>\n").find(":2: included file"), std::string::npos);
+    EXPECT_NE(error("<shape type=\"obj\"><string name=\"filename\" value=\"m.obj\"/></shape>\n").find(":2: mesh file"),
+              std::string::npos);
+    EXPECT_NE(error("<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>\n").find("'$r' is not defined"),
+              std::string::npos);
+    write("a.xml", "<scene version=\"3.0.0\">\n<include filename=\"b.xml\"/>\n</scene>\n");
+    write("b.xml", "<scene version=\"3.0.0\">\n\n<include filename=\"a.xml\"/>\n</scene>\n");
+    const std::string cycle = error("<include filename=\"a.xml\"/>\n");
+    EXPECT_NE(cycle.find("b.xml:3: include cycle"), std::string::npos) << cycle;
+}
+
+TEST_F(Mitsuba, MaterialsMapToTheNearestAndWarnOncePerKind) {
+    MitsubaLoadReport report;
+    const Scene s = load(R"(<bsdf type="roughplastic" id="p1"><float name="alpha" value="0.1"/></bsdf>
+<bsdf type="roughplastic" id="p2"><float name="alpha" value="0.3"/></bsdf>
+<shape type="rectangle"><ref id="p1"/></shape>
+<shape type="rectangle"><ref id="p2"/></shape>
+<shape type="rectangle"><bsdf type="conductor"><rgb name="eta" value="0.2"/><rgb name="k" value="3"/></bsdf></shape>
+<shape type="rectangle"><bsdf type="twosided"><bsdf type="dielectric"><float name="int_ior" value="1.33"/></bsdf></bsdf></shape>
+<shape type="rectangle"><bsdf type="mask"><float name="opacity" value="0.25"/><bsdf type="diffuse"/></bsdf></shape>
+<shape type="rectangle"><bsdf type="bumpmap"><bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.2, 0.3"/></bsdf></bsdf></shape>
+)", &report);
+    ASSERT_EQ(s.materials.size(), 6u);
+    const Material& p1 = s.materials[0];
+    EXPECT_EQ(p1.kind, MaterialKind::Diffuse);
+    expectVec(p1.kd, glm::vec3(0.5f));
+    EXPECT_NEAR(p1.ns, 2.0f / 0.01f - 2.0f, 1e-2f);
+    const float f0 = std::pow((1.49f / 1.000277f - 1) / (1.49f / 1.000277f + 1), 2.0f);
+    EXPECT_NEAR(p1.ks.x, f0, 1e-4f);
+    const Material& mirror = s.materials[2];
+    EXPECT_EQ(mirror.kind, MaterialKind::Mirror);
+    EXPECT_NEAR(mirror.ks.x, (0.64f + 9.0f) / (1.44f + 9.0f), 1e-4f);  // ((eta-1)^2 + k^2) / ((eta+1)^2 + k^2)
+    EXPECT_EQ(s.materials[3].kind, MaterialKind::Glass);
+    EXPECT_NEAR(s.materials[3].ior, 1.33f / 1.000277f, 1e-4f);
+    EXPECT_EQ(s.materials[4].alphaMode, AlphaMode::Mask);
+    EXPECT_NEAR(s.materials[4].alpha, 0.25f, 1e-6f);
+    expectVec(s.materials[5].kd, {0.1f, 0.2f, 0.3f});
+    // One warning each for roughplastic, conductor and bumpmap, however many use them.
+    ASSERT_EQ(report.warnings.size(), 3u);
+    EXPECT_NE(report.warnings[0].find("roughplastic"), std::string::npos);
+    EXPECT_NE(report.warnings[2].find("bumpmap"), std::string::npos);
+}
+
+TEST_F(Mitsuba, EmittersOfEveryKind) {
+    const Scene s = load(R"(<emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="4"/></emitter>
+<emitter type="spot">
+  <transform name="to_world"><lookat origin="0, 5, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+  <float name="cutoff_angle" value="40"/><float name="beam_width" value="30"/>
+</emitter>
+<emitter type="directional"><vector name="direction" x="0" y="-2" z="0"/><rgb name="irradiance" value="3"/></emitter>
+<emitter type="constant"><rgb name="radiance" value="0.5, 0.25, 1"/></emitter>
+)");
+    ASSERT_EQ(s.pointLights.size(), 2u);
+    expectVec(s.pointLights[0].position, {1, 2, 3});
+    expectVec(s.pointLights[0].intensity, glm::vec3(4.0f));
+    expectVec(s.pointLights[1].spotDirection, {0, -1, 0});
+    EXPECT_NEAR(s.pointLights[1].cosOuter, std::cos(glm::radians(40.0f)), 1e-6f);
+    EXPECT_NEAR(s.pointLights[1].cosInner, std::cos(glm::radians(30.0f)), 1e-6f);
+    ASSERT_EQ(s.directionalLights.size(), 1u);
+    expectVec(s.directionalLights[0].direction, {0, -1, 0});
+    expectVec(s.directionalLights[0].irradiance, glm::vec3(3.0f));
+    ASSERT_TRUE(s.environment.has_value());
+    EXPECT_TRUE(s.environment->map.empty());
+    expectVec(s.environment->scale, {0.5f, 0.25f, 1.0f});
+    EXPECT_NE(error("<emitter type=\"constant\"/>\n<emitter type=\"constant\"/>\n").find(":3: a second environment"),
+              std::string::npos);
+}
+
+TEST_F(Mitsuba, EnvmapLoadsItsMapAndRotation) {
+    // A 2 x 1 Radiance HDR: stb decodes it to linear floats.
+    std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n";
+    hdr += std::string("\x80\x80\x80\x81", 4) + std::string("\x80\x80\x80\x80", 4);  // (1,1,1) and (0.5,0.5,0.5)
+    write("sky.hdr", hdr);
+    const Scene s = load(R"(<emitter type="envmap">
+  <string name="filename" value="sky.hdr"/><float name="scale" value="2"/>
+  <transform name="to_world"><rotate y="1" angle="90"/></transform>
+</emitter>
+)");
+    ASSERT_TRUE(s.environment.has_value());
+    ASSERT_EQ(s.environment->mapWidth, 2);
+    ASSERT_EQ(s.environment->map.size(), 2u);
+    EXPECT_NEAR(s.environment->map[0].x, 1.0f, 1e-3f);
+    expectVec(s.environment->scale, glm::vec3(2.0f));
+    // toLocal undoes the rotation: to_world turns local +Z into world +X.
+    const glm::vec3 localOfWorldX = s.environment->toLocal * glm::vec3(1, 0, 0);
+    expectVec(localOfWorldX, {0, 0, 1}, 1e-5f);
+}
+
+TEST_F(Mitsuba, ShapegroupInstancesPlaceCopies) {
+    const Scene s = load(R"(<shape type="shapegroup" id="g"><shape type="cube"/></shape>
+<shape type="instance"><ref id="g"/><transform name="to_world"><translate x="-5"/></transform></shape>
+<shape type="instance"><ref id="g"/><transform name="to_world"><translate x="5"/></transform></shape>
+)");
+    EXPECT_EQ(s.mesh.triangles.size(), 24u);
+    expectVec(boundsOf(s).lo, {-6, -1, -1});
+    expectVec(boundsOf(s).hi, {6, 1, 1});
+}
+
+TEST_F(Mitsuba, PlyAsciiAndBinaryThroughAssimp) {
+    const std::string header = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    write("tri.ply", "ply\nformat ascii 1.0\n" + header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    std::string binary = "ply\nformat binary_little_endian 1.0\n" + header;
+    const float v[9] = {0, 0, 0, 2, 0, 0, 0, 2, 0};
+    binary.append(reinterpret_cast<const char*>(v), sizeof v);
+    binary += '\x03';
+    const int idx[3] = {0, 1, 2};
+    binary.append(reinterpret_cast<const char*>(idx), sizeof idx);
+    write("tri-bin.ply", binary);
+    const Scene s = load(R"(<shape type="ply"><string name="filename" value="tri.ply"/></shape>
+<shape type="ply"><string name="filename" value="tri-bin.ply"/></shape>
+)");
+    ASSERT_EQ(s.mesh.triangles.size(), 2u);
+    EXPECT_NEAR(triangleArea(s.mesh, 0), 0.5f, 1e-6f);
+    EXPECT_NEAR(triangleArea(s.mesh, 1), 2.0f, 1e-6f);
+    expectVec(triangleNormal(s.mesh, 1), {0, 0, 1});
+}
+
+TEST_F(Mitsuba, LoadSceneDispatchesXml) {
+    const fs::path file = write("room.xml", "<scene version=\"2.1.0\"><shape type=\"cube\"/></scene>");
+    EXPECT_EQ(loadScene(file.string()).mesh.triangles.size(), 12u);
+}
+
+TEST(Spectrum, ConstantIsGreyAndBandsLandInTheirChannels) {
+    const glm::vec3 grey = spectrumToRgb({{400, 0.6}, {700, 0.6}});
+    expectVec(grey, glm::vec3(0.6f), 1e-5f);
+    const glm::vec3 red = spectrumToRgb({{400, 0}, {590, 0}, {600, 1}, {700, 1}});
+    EXPECT_GT(red.r, 3.0f * red.g);
+    EXPECT_GT(red.r, 3.0f * red.b);
+    const glm::vec3 blue = spectrumToRgb({{400, 1}, {480, 1}, {490, 0}, {700, 0}});
+    EXPECT_GT(blue.b, 3.0f * blue.r);
+}
+
+TEST(MitsubaXml, SnakeCase) {
+    EXPECT_EQ(mitsuba::snakeCase("toWorld"), "to_world");
+    EXPECT_EQ(mitsuba::snakeCase("intIOR"), "int_ior");
+    EXPECT_EQ(mitsuba::snakeCase("fov_axis"), "fov_axis");
+    EXPECT_EQ(mitsuba::snakeCase("diffuseReflectance"), "diffuse_reflectance");
+}
+
+}  // namespace
+}  // namespace aamap
