@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/image_io.h"
+#include "eval/metrics/flip_color.h"
 #include "eval/metrics/image_comparison.h"
 
 namespace aamap::app {
@@ -15,21 +16,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// sRGB EOTF, the inverse of srgbEncode: a PNG is what a display shows, so its linear values are
-// what the experiment's metrics would have seen at exposure 1.
-float srgbDecode(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
-
 ImageRGB readLinear(const fs::path& path) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".exr") return readExr(path);
-    if (ext == ".png") {
+    if (ext == ".png") {  // what a display shows: decoded, as the metrics see it at exposure 1
         const ImageRGB8 png = readPng(path);
         ImageRGB img(png.width(), png.height());
         for (int y = 0; y < png.height(); ++y)
             for (int x = 0; x < png.width(); ++x) {
                 const glm::u8vec3 c = png.at(x, y);
-                img.at(x, y) = {srgbDecode(c.r / 255.0f), srgbDecode(c.g / 255.0f), srgbDecode(c.b / 255.0f)};
+                img.at(x, y) = {metrics::flip::srgbToLinear(c.r / 255.0f), metrics::flip::srgbToLinear(c.g / 255.0f), metrics::flip::srgbToLinear(c.b / 255.0f)};
             }
         return img;
     }

@@ -35,13 +35,6 @@ void flatten(const Json& j, const std::string& prefix, std::map<std::string, std
 
 std::string sceneOf(const ComparedRun& run) { return run.results["config"].value("scene", std::string()); }
 
-std::string csvQuoted(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-}
-
 // Runs grouped by scene, in the order the scenes first appear.
 std::vector<std::vector<const ComparedRun*>> byScene(const std::vector<ComparedRun>& runs) {
     std::vector<std::vector<const ComparedRun*>> groups;
@@ -112,8 +105,8 @@ std::string compareCsv(const std::vector<ComparedRun>& runs) {
     for (const std::string& c : resultsCsvColumns()) header.push_back(c);
     std::string out = fmt::format("{}\n", fmt::join(header, ","));
     for (const ComparedRun& run : runs) {
-        std::string prefix = csvQuoted(run.dir.string());
-        for (const auto& [k, v] : run.differs) prefix += fmt::format(",{}", csvQuoted(v));
+        std::string prefix = csvField(run.dir.string());
+        for (const auto& [k, v] : run.differs) prefix += fmt::format(",{}", csvField(v));
         const std::string csv = resultsCsv(run.results);
         std::size_t start = csv.find('\n') + 1;  // after the run's own header
         for (std::size_t end; (end = csv.find('\n', start)) != std::string::npos; start = end + 1)

@@ -57,12 +57,6 @@ std::string baselineSeries(const Json& renders) {
     return "";
 }
 
-std::string csvField(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-}
 
 std::string paramsText(const Json& r) {
     std::vector<std::string> parts;
@@ -259,6 +253,13 @@ void writeReport(const fs::path& outDir, const Json& results, bool plots) {
     else plotRun.warning = "plots turned off (report.plots: false)";
     writeTextAtomically(outDir / "report.html", htmlReport(results, tables, plotRun, outDir));
     spdlog::info("report: {}", (outDir / "report.html").string());
+}
+
+std::string csvField(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
 }
 
 }  // namespace aamap

@@ -24,6 +24,9 @@ struct Table {
 // cost, without the scene load and BVH build that every render shares.
 std::vector<Table> reportTables(const nlohmann::ordered_json& results);
 
+// A CSV field, quoted (RFC 4180) when it holds a comma, a quote or a newline.
+std::string csvField(const std::string& s);
+
 // One row per render; the header is resultsCsvColumns().
 std::string resultsCsv(const nlohmann::ordered_json& results);
 const std::vector<std::string>& resultsCsvColumns();

@@ -11,19 +11,13 @@
 #include "eval/compare.h"
 #include "eval/config.h"
 #include "eval/runner.h"
+#include "tests/common/read_text.h"
 #include "tests/eval/fake_backend.h"
 
 namespace aamap {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 TEST(Compare, RunsDifferingInOneSettingSideBySide) {
     const fs::path dir = fs::path(::testing::TempDir()) / "compare_two_runs";
@@ -37,7 +31,7 @@ TEST(Compare, RunsDifferingInOneSettingSideBySide) {
         runExperimentWith(c, dir / (std::string("gain") + gain), backend, RunnerOptions{"test-rev", false});
     }
     writeComparison({dir / "gain1", dir / "gain2"}, dir / "cmp");
-    const std::string csv = slurp(dir / "cmp" / "compare.csv");
+    const std::string csv = test::readText(dir / "cmp" / "compare.csv");
     std::istringstream lines(csv);
     std::string header;
     std::getline(lines, header);
@@ -52,11 +46,11 @@ TEST(Compare, RunsDifferingInOneSettingSideBySide) {
     }
     EXPECT_EQ(rows, 6);  // 3 renders per run
     EXPECT_EQ(gain2, 3);
-    const std::string md = slurp(dir / "cmp" / "compare.md");
+    const std::string md = test::readText(dir / "cmp" / "compare.md");
     EXPECT_NE(md.find("### snapshot.gain=1.0"), std::string::npos) << md;
     EXPECT_NE(md.find("### snapshot.gain=2.0"), std::string::npos) << md;
     EXPECT_NE(md.find("#### Table 3"), std::string::npos) << md;
-    const std::string html = slurp(dir / "cmp" / "compare.html");
+    const std::string html = test::readText(dir / "cmp" / "compare.html");
     EXPECT_NE(html.find("../gain2/report.html"), std::string::npos);  // relative links to each run's report
 
     EXPECT_THROW(writeComparison({dir / "gain1", dir / "missing"}, dir / "cmp2"), InputError);

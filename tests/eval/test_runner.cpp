@@ -16,6 +16,7 @@
 #include "eval/config.h"
 #include "eval/report.h"
 #include "eval/runner.h"
+#include "tests/common/read_text.h"
 #include "tests/eval/fake_backend.h"
 
 namespace aamap {
@@ -40,12 +41,6 @@ protected:
     Results run(FakeBackend& backend, const std::vector<std::string>& overrides = {}) {
         const ExperimentConfig c = parseConfig(kConfig, "exp.yaml", overrides);
         return runExperimentWith(c, out_, backend, RunnerOptions{"test-rev", false});
-    }
-    static std::string slurp(const fs::path& p) {
-        std::ifstream in(p);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
     }
     fs::path out_;
 };
@@ -167,7 +162,7 @@ TEST_F(Runner, ReportFilesAndTables) {
     run(backend);
     for (const char* f : {"report.html", "report.md", "results.csv", "results.json"})
         EXPECT_TRUE(fs::is_regular_file(out_ / f)) << f;
-    const std::string csv = slurp(out_ / "results.csv");
+    const std::string csv = test::readText(out_ / "results.csv");
     std::istringstream lines(csv);
     std::string header;
     std::getline(lines, header);
@@ -179,14 +174,14 @@ TEST_F(Runner, ReportFilesAndTables) {
     EXPECT_EQ(rows, 6);
     EXPECT_NE(csv.find("\naamap16,Selective,aamap,16,"), std::string::npos) << csv;
 
-    const std::string md = slurp(out_ / "report.md");
+    const std::string md = test::readText(out_ / "report.md");
     for (const char* s : {"Table 1/2: render time", "Table 1/2: speedup over Standard", "Table 3: % error pixels",
                           "| rpp | Standard | Selective |", "| rpp | Selective |",
                           "| rpp | Standard FLIP | Standard MSE | Selective FLIP | Selective MSE |", "Map quality"})
         EXPECT_NE(md.find(s), std::string::npos) << s << "\n" << md;
     for (const char* row : {"\n| 1 |", "\n| 4 |", "\n| 16 |"}) EXPECT_NE(md.find(row), std::string::npos) << row;
 
-    const std::string html = slurp(out_ / "report.html");
+    const std::string html = test::readText(out_ / "report.html");
     for (const char* s : {"<h2 id=\"time\">", "<h2 id=\"speedup\">", "<h2 id=\"error\">", "<h2 id=\"map_quality\">",
                           "src=\"aamap16.overlay.png\"", "src=\"aamap.png\"", "href=\"results.csv\"",
                           "plots turned off"})
@@ -202,7 +197,7 @@ TEST_F(Runner, MissingPythonDegradesWithAWarning) {
     const nlohmann::ordered_json results = nlohmann::ordered_json::parse(in);
     writeReport(out_, results, true);
     ::unsetenv("AAMAP_PYTHON");
-    const std::string html = slurp(out_ / "report.html");
+    const std::string html = test::readText(out_ / "report.html");
     EXPECT_NE(html.find("Python venv not found"), std::string::npos);
     EXPECT_NE(html.find("Table 3"), std::string::npos);  // the tables are there regardless
 }
