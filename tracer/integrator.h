@@ -1,5 +1,5 @@
 #pragma once
-// Radiance along a ray: the shading budget of DESIGN.md section 2, separate from the primary-ray
+// Radiance along a ray: the shading budget (docs/tracer.md), separate from the primary-ray
 // (antialiasing) budget. Three modes (ShadingSettings::mode):
 // - Direct: emission, direct light from every light type (point lights one shadow ray each, area
 //   lights an m x m stratified pattern per hit traced as 8-wide packets; with many lights, m x m

@@ -1,5 +1,5 @@
 #pragma once
-// Cache mode's indirect diffuse light (DESIGN.md section 2): an IndirectDiffuseSource over the
+// Cache mode's indirect diffuse light (docs/tracer.md, the shading budget): an IndirectDiffuseSource over the
 // irradiance cache, whose hemisphere rays are shaded by the render's own Integrator. Wiring, ray
 // accounting and the candidate grid: docs/irradiance-cache.md, "Wiring".
 #include <memory>

@@ -1,5 +1,5 @@
 #pragma once
-// How well an aamap predicts where aliasing is (DESIGN.md section 6; the measure the paper
+// How well an aamap predicts where aliasing is (docs/experiments.md, map quality; the measure the paper
 // lacked).
 //
 //   true aliasing T = pixels where FLIP(1-ray image vs converged reference) > aliasingThreshold

@@ -1,6 +1,6 @@
 // Cache mode end to end (tracer/irradiance_source.h): the irradiance cache against path tracing
 // with the same light transport, determinism, the bounces-0 fallback, and the property selective
-// rendering rests on (DESIGN.md section 2): 1 ray per pixel agrees with 36 away from edges.
+// rendering rests on (docs/tracer.md, the shading budget): 1 ray per pixel agrees with 36 away from edges.
 #include <algorithm>
 #include <cmath>
 #include <span>

@@ -90,7 +90,7 @@ void pointLightCase(glm::vec3 lightNormal, float scale = 1.0f, glm::vec3 shift =
 
 TEST(KnownAnswer, PointLightOverDiffusePlane) { pointLightCase(glm::vec3(0.0f)); }
 
-// DESIGN.md section 5: the ray offset scales with the coordinates, so a scene in millimetres or
+// docs/tracer.md (ray offsets): the ray offset scales with the coordinates, so a scene in millimetres or
 // far from the origin shows no shadow acne and no light leaks.
 TEST(KnownAnswer, PointLightSceneInMillimetresFarFromOrigin) {
     pointLightCase(glm::vec3(0.0f), 1000.0f, glm::vec3(3.0e4f, 2.0e3f, -7.0e4f));

@@ -182,7 +182,7 @@ TEST(Shadows, BlockerBetweenPlaneAndLightsLeavesItBlack) {
     EXPECT_EQ(r.rays.shadow, r.rays.primary * (1 + 4));
 }
 
-// DESIGN.md section 2: the shading budget makes one primary ray per pixel already clean away from
+// The shading budget (docs/tracer.md) makes one primary ray per pixel already clean away from
 // edges, so a 1-ray image agrees with a 36-ray image on a smoothly lit plane.
 TEST(ShadingBudget, OneRayAgreesWithThirtySixAwayFromEdges) {
     testing::SceneBuilder b;
