@@ -78,6 +78,29 @@ std::string formatDuration(double seconds) {
     return fmt::format("{} h {:02} min", s / 3600, (s % 3600) / 60);
 }
 
+void WorkEstimate::plan(double units, int jobs) {
+    plannedUnits_ += std::max(0.0, units);
+    jobsPlanned_ += std::max(0, jobs);
+}
+
+void WorkEstimate::finished(double units, double seconds) {
+    doneUnits_ += std::max(0.0, units);
+    seconds_ += std::max(0.0, seconds);
+    ++jobsDone_;
+}
+
+std::optional<double> WorkEstimate::secondsLeft() const {
+    if (!(doneUnits_ > 0)) return std::nullopt;
+    return seconds_ / doneUnits_ * std::max(0.0, plannedUnits_ - doneUnits_);
+}
+
+std::string WorkEstimate::text() const {
+    std::string text = fmt::format("run: {} of {} traces done", jobsDone_, jobsPlanned_);
+    if (jobsDone_ < jobsPlanned_)
+        if (const std::optional<double> left = secondsLeft()) text += fmt::format(", about {} left", formatDuration(*left));
+    return text;
+}
+
 std::string progressText(const std::string& label, int done, int total, double elapsed) {
     total = std::max(1, total);
     std::string text = fmt::format("{} {}% ({}/{}), {}", label, done * 100 / total, done, total, formatDuration(elapsed));

@@ -21,6 +21,25 @@ void initLogging(spdlog::level::level_enum level = spdlog::level::info, std::FIL
 // while nothing is done yet (no rate to go by).
 std::optional<double> secondsLeft(int done, int total, double elapsed);
 
+// Time left for a whole run of jobs of unequal size (renders of different rays per pixel): each
+// job's size is an estimate in common units (its ray budget), and the rate in seconds per unit
+// comes from the jobs finished so far. Not thread-safe; the runner calls it between jobs.
+class WorkEstimate {
+public:
+    void plan(double units, int jobs = 1);
+    void finished(double units, double seconds);
+    int jobsPlanned() const { return jobsPlanned_; }
+    int jobsDone() const { return jobsDone_; }
+    // nullopt until a timed job with a non-zero size has finished.
+    std::optional<double> secondsLeft() const;
+    // "run: 3 of 8 traces done, about 2 min 10 s left".
+    std::string text() const;
+
+private:
+    double plannedUnits_ = 0, doneUnits_ = 0, seconds_ = 0;
+    int jobsPlanned_ = 0, jobsDone_ = 0;
+};
+
 // "12 s", "3 min 05 s", "2 h 04 min": a duration as a person reads it.
 std::string formatDuration(double seconds);
 

@@ -37,7 +37,7 @@ std::vector<std::string> leaves() {
         "renders.#.name", "renders.#.series", "renders.#.strategy", "renders.#.rpp",
         "reference.type", "reference.rpp", "reference.mode", "reference.path",
         "metrics.flip", "metrics.flip_hdr", "metrics.flip_threshold", "metrics.mse_threshold", "metrics.ppd",
-        "metrics.map_quality", "report.plots", "timing.repeats", "timing.interleave",
+        "metrics.map_quality", "metrics.causes", "report.plots", "timing.repeats", "timing.interleave",
     };
     for (const std::string& p : allStrategyParamNames()) l.push_back("renders.#." + p);
     for (const std::string& k : lightKeys()) l.push_back("lights.#." + k);
@@ -99,7 +99,6 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     image.getInt("width", c.image.width, 1, kMaxSide);
     image.getInt("height", c.image.height, 1, kMaxSide);
     image.getDouble("exposure", c.image.exposure, 0.0, 1e6, true);
-    image.finish();
 
     MapReader snap(ctx, top.node("snapshot"), "snapshot",
                    {"scale", "area_light_samples", "blur_radius", "noise_floor", "gain", "map"});
@@ -110,7 +109,6 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     snap.getDouble("gain", c.snapshot.gain, 0.0, 1e6, true);
     snap.getString("map", c.snapshot.map);
     detail::checkOneOf(ctx, snap.node("map"), "snapshot.map", c.snapshot.map, {"luminance", "geometric", "combined"});
-    snap.finish();
 
     MapReader shading(ctx, top.node("shading"), "shading",
                       {"area_light_samples", "mode", "max_depth", "russian_roulette", "roulette_depth",
@@ -125,7 +123,6 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     shading.getString("light_selection", c.shading.lightSelection);
     detail::checkOneOf(ctx, shading.node("light_selection"), "shading.light_selection", c.shading.lightSelection,
                        {"contribution", "power"});
-    shading.finish();
 
     c.renders = detail::readRenders(ctx, top.node("renders"));
     c.reference = detail::readReference(ctx, top.node("reference"), c.renders);
@@ -134,8 +131,6 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     MapReader timing(ctx, top.node("timing"), "timing", {"repeats", "interleave"});
     timing.getInt("repeats", c.timing.repeats, 1, 100);
     c.timing.interleave = detail::readBool(ctx, timing, "interleave", c.timing.interleave);
-    timing.finish();
-    top.finish();
     return c;
 }
 
@@ -293,6 +288,7 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     const MetricsConfig& m = c.metrics;
     j["metrics"] = {{"flip", m.flip}, {"flip_hdr", m.flipHdr}, {"flip_threshold", m.flipThreshold},
                     {"mse_threshold", m.mseThreshold}, {"ppd", m.ppd}, {"map_quality", m.mapQuality}};
+    if (!m.causes) j["metrics"]["causes"] = false;  // only when not the default: older configs keep their hash
     j["report"] = {{"plots", c.report.plots}};
     // Only when not the default: configs without it keep their hash.
     if (c.timing.repeats != 1 || !c.timing.interleave)

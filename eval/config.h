@@ -87,6 +87,7 @@ struct MetricsConfig {
     double mseThreshold = (2.0 / 255.0) * (2.0 / 255.0);  // per-pixel display-space squared error
     double ppd = 67.0206;        // FLIP viewing condition (pixels per degree)
     bool mapQuality = true;      // aamap recall/precision; adds a 1-ray uniform render
+    bool causes = true;          // with mapQuality: why pixels are missed or wasted (pixel facts)
 };
 
 // How traces are timed: the machine drifts, so a trade is timed over several runs, interleaved

@@ -35,11 +35,12 @@ struct Axis {
 double readNumber(const yaml::Context& ctx, const YAML::Node& n, const std::string& path, bool integer, double lo,
                   double hi) {
     double v = 0;
-    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v) || !std::isfinite(v))
+    long long i = 0;
+    const bool ok = integer ? yaml::decodePlain(n, i) : yaml::decodePlain(n, v) && std::isfinite(v);
+    if (!ok)
         ctx.fail(n, path, fmt::format("{}: expected {}, found {}", path, integer ? "an integer" : "a finite number",
                                       yaml::describe(n)));
-    if (integer && v != std::floor(v))
-        ctx.fail(n, path, fmt::format("{}: expected an integer, found {}", path, yaml::describe(n)));
+    if (integer) v = static_cast<double>(i);
     if (v < lo || v > hi) ctx.fail(n, path, fmt::format("{}: {} is out of range [{}, {}]", path, v, lo, hi));
     return v;
 }
@@ -184,7 +185,6 @@ std::vector<RenderConfig> expandEntry(const yaml::Context& ctx, const YAML::Node
                                  fmt::join(reserved, ", ")));
         out.push_back(std::move(r));
     }
-    m.finish();
     return out;
 }
 
@@ -200,7 +200,7 @@ bool readBool(const yaml::Context& ctx, MapReader& m, const std::string& key, bo
     const YAML::Node n = m.node(key);
     if (!n.IsDefined()) return fallback;
     bool v = false;
-    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v))
+    if (!yaml::decodePlain(n, v))
         ctx.fail(n, m.childPath(key), fmt::format("{}: expected true or false, found {}", m.childPath(key), yaml::describe(n)));
     return v;
 }
@@ -280,12 +280,11 @@ ReferenceConfig readReference(const yaml::Context& ctx, const YAML::Node& node, 
         ref.mode.clear();
     }
     if (ref.type != "file") ref.path.clear();
-    m.finish();
     return ref;
 }
 
 MetricsConfig readMetrics(const yaml::Context& ctx, const YAML::Node& node) {
-    MapReader m(ctx, node, "metrics", {"flip", "flip_hdr", "flip_threshold", "mse_threshold", "ppd", "map_quality"});
+    MapReader m(ctx, node, "metrics", {"flip", "flip_hdr", "flip_threshold", "mse_threshold", "ppd", "map_quality", "causes"});
     MetricsConfig c;
     c.flip = readBool(ctx, m, "flip", c.flip);
     c.flipHdr = readBool(ctx, m, "flip_hdr", c.flipHdr);
@@ -293,7 +292,7 @@ MetricsConfig readMetrics(const yaml::Context& ctx, const YAML::Node& node) {
     m.getDouble("mse_threshold", c.mseThreshold, 0.0, 1.0, true);
     m.getDouble("ppd", c.ppd, 0.0, 1000.0, true);
     c.mapQuality = readBool(ctx, m, "map_quality", c.mapQuality);
-    m.finish();
+    c.causes = readBool(ctx, m, "causes", c.causes);
     return c;
 }
 
@@ -301,7 +300,6 @@ ReportConfig readReport(const yaml::Context& ctx, const YAML::Node& node) {
     MapReader m(ctx, node, "report", {"plots"});
     ReportConfig c;
     c.plots = readBool(ctx, m, "plots", c.plots);
-    m.finish();
     return c;
 }
 
@@ -329,7 +327,6 @@ CameraConfig readCamera(const yaml::Context& ctx, const YAML::Node& node) {
     if (!(std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) > 1e-6 * dd * uu))
         ctx.fail(m.has("up") ? m.node("up") : node, "camera.up",
                  "camera.up: zero or parallel to the view direction (look_at - position)");
-    m.finish();
     return c;
 }
 

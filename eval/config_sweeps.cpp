@@ -18,10 +18,15 @@ const std::vector<std::string>& sweptSections() {
     return keys;
 }
 
+// A mapping key's name; "" for a key that is not a scalar (`? [a, b]: 1`), which the section's
+// MapReader then rejects with its position.
+std::string keyName(const YAML::Node& key) { return key.IsScalar() ? key.Scalar() : std::string(); }
+
 void collect(const yaml::Context& ctx, const YAML::Node& node, const std::string& path,
              std::vector<ConfigSweep>& out) {
     if (node.IsMap()) {
-        for (const auto& kv : node) collect(ctx, kv.second, path + "." + kv.first.as<std::string>(), out);
+        for (const auto& kv : node)
+            if (!keyName(kv.first).empty()) collect(ctx, kv.second, path + "." + keyName(kv.first), out);
         return;
     }
     if (!node.IsSequence()) return;
@@ -55,12 +60,13 @@ std::vector<ConfigSweep> findConfigSweeps(const yaml::Context& ctx, const YAML::
     std::vector<ConfigSweep> sweeps;
     if (!root.IsMap()) return sweeps;
     for (const auto& kv : root) {
-        const std::string key = kv.first.as<std::string>();
+        const std::string key = keyName(kv.first);
         const bool scalarKey = std::find(topLevelScalars().begin(), topLevelScalars().end(), key) != topLevelScalars().end();
         const bool section = std::find(sweptSections().begin(), sweptSections().end(), key) != sweptSections().end();
         if (scalarKey && kv.second.IsSequence()) collect(ctx, kv.second, key, sweeps);
         if (section && kv.second.IsMap())
-            for (const auto& inner : kv.second) collect(ctx, inner.second, key + "." + inner.first.as<std::string>(), sweeps);
+            for (const auto& inner : kv.second)
+                if (!keyName(inner.first).empty()) collect(ctx, inner.second, key + "." + keyName(inner.first), sweeps);
     }
     return sweeps;
 }

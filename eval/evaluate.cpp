@@ -7,6 +7,7 @@
 #include "eval/metrics/image_comparison.h"
 #include "eval/metrics/magma.h"
 #include "eval/metrics/map_quality.h"
+#include "eval/metrics/pixel_causes.h"
 #include "eval/metrics/pixel_error.h"
 
 namespace aamap {
@@ -35,6 +36,17 @@ metrics::ComparisonOptions comparisonOptions(const MetricsConfig& m, float expos
 
 Json finiteOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
+Json causesJson(const metrics::CauseCounts& c, const std::string& image) {
+    Json missed = Json::object(), wasted = Json::object();
+    for (int i = 0; i < metrics::kPixelCauses; ++i) {
+        const auto cause = static_cast<metrics::PixelCause>(i);
+        missed[metrics::key(cause)] = c.missed[static_cast<std::size_t>(i)];
+        wasted[metrics::key(cause)] = c.wasted[static_cast<std::size_t>(i)];
+    }
+    return {{"missed", missed}, {"wasted", wasted}, {"missed_total", c.missedTotal()},
+            {"wasted_total", c.wastedTotal()}, {"image", image}};
+}
+
 }  // namespace
 
 ImageRGB8 errorOverlay(const ImageRGB8& base, const ImageGrey& error, float threshold) {
@@ -52,8 +64,10 @@ ImageRGB8 errorOverlay(const ImageRGB8& base, const ImageGrey& error, float thre
 }
 
 Json evaluateRender(const ImageRGB& reference, const ImageRGB& test, const MetricsConfig& m, float exposure,
-                    const fs::path& outDir, const std::string& name, std::vector<std::string>& outputs) {
+                    const fs::path& outDir, const std::string& name, std::vector<std::string>& outputs,
+                    ImageGrey* flipError) {
     const metrics::Comparison c = metrics::compareImages(reference, test, comparisonOptions(m, exposure));
+    if (flipError) *flipError = c.flip ? c.flip->errorMap : ImageGrey();
     Json j;
     j["mse"] = c.display.mse;
     j["rmse"] = c.display.rmse;
@@ -78,9 +92,10 @@ Json evaluateRender(const ImageRGB& reference, const ImageRGB& test, const Metri
 }
 
 Json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageGrey& aamap, const MetricsConfig& m,
-                 float exposure, const fs::path& outDir) {
+                 float exposure, const fs::path& outDir, ImageGrey* oneRayError) {
     const float t = static_cast<float>(m.flipThreshold);
     const metrics::FlipResult f = metrics::flipDisplay(reference, oneRay, exposure, flipOptions(m));
+    if (oneRayError) *oneRayError = f.errorMap;
     const Image<std::uint8_t> own = metrics::ownDisplayDifference(oneRay, reference, exposure);
     const metrics::MapQuality q = metrics::mapQuality(f.errorMap, aamap, t, &own);
     const ImageRGB8 base = toneMap(oneRay, exposure);
@@ -109,6 +124,25 @@ Json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageG
             {"own_true_positives", q.ownTruePositives},
             {"own_recall", q.ownRecall},
             {"image", "aliasing.png"}};
+}
+
+Json evaluateRenderCauses(const PixelFacts& facts, const ImageGrey& flipError, const ImageGrey& oneRayError,
+                          const Image<std::uint16_t>& rays, float threshold, const fs::path& outDir,
+                          const std::string& name, std::vector<std::string>& outputs) {
+    ImageRGB8 image;
+    const metrics::CauseCounts c = metrics::renderCauses(facts, flipError, oneRayError, rays, threshold, &image);
+    const std::string file = name + ".causes.png";
+    writePng(outDir / file, image);
+    outputs.push_back(file);
+    return causesJson(c, file);
+}
+
+Json evaluateMapCauses(const PixelFacts& facts, const ImageGrey& oneRayError, const ImageGrey& aamap, float threshold,
+                       const fs::path& outDir) {
+    ImageRGB8 image;
+    const metrics::CauseCounts c = metrics::mapCauses(facts, oneRayError, aamap, threshold, &image);
+    writePng(outDir / "causes.png", image);
+    return causesJson(c, "causes.png");
 }
 
 }  // namespace aamap

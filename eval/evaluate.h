@@ -9,6 +9,7 @@
 
 #include "core/image.h"
 #include "core/image_io.h"
+#include "core/pixel_facts.h"
 #include "eval/config.h"
 
 namespace aamap {
@@ -17,16 +18,31 @@ namespace aamap {
 // MSE-family values are in display space (what the PNGs show, eval/metrics/pixel_error.h); psnr
 // is null for identical images. Writes NAME.flip.png (magma) and NAME.overlay.png (FLIP error in
 // red over the render, Figure 8) into outDir when FLIP is on, and appends their names to outputs.
+// flipError (if not null) receives the LDR-FLIP error map (empty when FLIP is off).
 nlohmann::ordered_json evaluateRender(const ImageRGB& reference, const ImageRGB& test, const MetricsConfig& metrics,
                                       float exposure, const std::filesystem::path& outDir, const std::string& name,
-                                      std::vector<std::string>& outputs);
+                                      std::vector<std::string>& outputs, ImageGrey* flipError = nullptr);
 
 // Map quality: true aliasing T = FLIP(oneRay vs reference) > flip_threshold, flagged F = aamap > 0.
 // {threshold, pixels, true_pixels, flagged_pixels, true_positives, recall, precision,
 // flagged_fraction, true_fraction}. Writes aliasing.png: true positives white, misses red, false
 // alarms blue, the rest the dimmed 1-ray image.
+// oneRayError (if not null) receives the 1-ray image's LDR-FLIP error map.
 nlohmann::ordered_json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageGrey& aamap,
-                                   const MetricsConfig& metrics, float exposure, const std::filesystem::path& outDir);
+                                   const MetricsConfig& metrics, float exposure, const std::filesystem::path& outDir,
+                                   ImageGrey* oneRayError = nullptr);
+
+// Why a render's error pixels were missed and its extra rays wasted (eval/metrics/pixel_causes.h):
+// {missed: {cause: pixels}, wasted: {...}, missed_total, wasted_total, image}. Writes
+// NAME.causes.png and appends it to outputs.
+nlohmann::ordered_json evaluateRenderCauses(const PixelFacts& facts, const ImageGrey& flipError,
+                                            const ImageGrey& oneRayError, const Image<std::uint16_t>& rays,
+                                            float threshold, const std::filesystem::path& outDir,
+                                            const std::string& name, std::vector<std::string>& outputs);
+
+// The same for the aamap against true aliasing; writes causes.png.
+nlohmann::ordered_json evaluateMapCauses(const PixelFacts& facts, const ImageGrey& oneRayError, const ImageGrey& aamap,
+                                         float threshold, const std::filesystem::path& outDir);
 
 // The red overlay: the display image greyed, with red mixed in by alpha = min(1, error / (2 t)),
 // so an error at the threshold t is a half-strength red.

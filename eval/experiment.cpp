@@ -280,6 +280,9 @@ public:
         return out;
     }
 
+    bool hasPixelFacts() const override { return true; }
+    PixelFacts pixelFacts() override { return tracer_->pixelFacts(view_, info_.width, info_.height, options_.threads); }
+
 private:
     const ExperimentConfig& config_;
     RunOptions options_;

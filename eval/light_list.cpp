@@ -49,7 +49,7 @@ void getPositive2(const yaml::Context& ctx, MapReader& m, const std::string& key
                  fmt::format("{}: expected a list of 2 numbers, found {}", m.childPath(key), yaml::describe(n)));
     for (std::size_t i = 0; i < 2; ++i) {
         double v = 0;
-        if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], v) || !std::isfinite(v) || !(v > 0.0) || v > kBig)
+        if (!yaml::decodePlain(n[i], v) || !std::isfinite(v) || !(v > 0.0) || v > kBig)
             ctx.fail(n[i], m.childPath(key),
                      fmt::format("{}[{}]: expected a positive number, found {}", m.childPath(key), i, yaml::describe(n[i])));
         out[i] = v;
@@ -73,6 +73,12 @@ LightSpec readLight(const yaml::Context& ctx, const YAML::Node& node, const std:
         ctx.fail(constNode["type"], path + ".type",
                  fmt::format("{}.type: unknown light type '{}' (supported: point, spot, quad, disk)", path, typeName));
 
+    // The other kind of light's emission key is a likely slip; say what this type takes instead.
+    const char* otherUnit = std::string(info->nativeUnit) == "intensity" ? "radiance" : "intensity";
+    if (const YAML::Node k = constNode[otherUnit]; k.IsDefined())
+        ctx.fail(k, path + "." + otherUnit,
+                 fmt::format("{}: a {} light is given by exactly one of '{}' and 'power', not '{}'", path, typeName,
+                             info->nativeUnit, otherUnit));
     MapReader m(ctx, node, path, info->keys);
     LightSpec light;
     light.type = info->type;
@@ -124,7 +130,6 @@ LightSpec readLight(const yaml::Context& ctx, const YAML::Node& node, const std:
             m.getInt("segments", light.segments, 3, 4096);
             break;
     }
-    m.finish();
     return light;
 }
 

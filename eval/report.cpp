@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.h"
+#include "eval/metrics/pixel_causes.h"
 
 namespace aamap {
 namespace fs = std::filesystem;
@@ -24,6 +25,42 @@ double num(const Json& j, const char* key, double fallback = NAN) {
 
 // Cost of a render's image: the trace plus, for aamap-driven strategies, the Snapshot.
 double renderSeconds(const Json& r) { return num(r["times_s"], "trace", 0) + num(r["times_s"], "snapshot_total", 0); }
+
+// The render time's median and the range its timed runs spanned (timing.repeats): the trace runs
+// plus the Snapshot's per-frame cost. One run (or a record without trace_runs): min = max = median.
+struct TimeRange {
+    double median = NAN, min = NAN, max = NAN;
+    int runs = 1;
+};
+
+TimeRange renderTimeRange(const Json& r) {
+    const double snapshot = num(r["times_s"], "snapshot_total", 0);
+    TimeRange t{renderSeconds(r), renderSeconds(r), renderSeconds(r), 1};
+    const Json& times = r["times_s"];
+    if (times.contains("trace_runs") && times["trace_runs"].is_array() && !times["trace_runs"].empty()) {
+        const auto runs = times["trace_runs"].get<std::vector<double>>();
+        t.min = *std::min_element(runs.begin(), runs.end()) + snapshot;
+        t.max = *std::max_element(runs.begin(), runs.end()) + snapshot;
+        t.runs = static_cast<int>(runs.size());
+    }
+    return t;
+}
+
+// A speedup b/r as its median ratio and the range the runs allow: from the fastest baseline run
+// over the slowest series run (the worst case) to the reverse (the best).
+TimeRange speedupRange(const Json& baseline, const Json& r) {
+    const TimeRange b = renderTimeRange(baseline), s = renderTimeRange(r);
+    if (!(s.median > 0 && s.min > 0)) return {};
+    return {b.median / s.median, b.min / s.max, b.max / s.min, std::min(b.runs, s.runs)};
+}
+
+// "1.23" for one run, "1.23 (1.10-1.41)" when repeated runs give a spread.
+std::string rangeCell(const TimeRange& t, const char* format) {
+    if (!std::isfinite(t.median)) return "—";
+    const std::string median = fmt::format(fmt::runtime(format), t.median);
+    if (t.runs < 2) return median;
+    return fmt::format("{} ({}–{})", median, fmt::format(fmt::runtime(format), t.min), fmt::format(fmt::runtime(format), t.max));
+}
 
 std::string cell(double v, const char* format = "{:.2f}") { return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "—"; }
 
@@ -67,6 +104,46 @@ std::string paramsText(const Json& r) {
     return fmt::format("{}", fmt::join(parts, ";"));
 }
 
+// Tables of causes (eval/metrics/pixel_causes.h): one row for the map (true aliasing it missed,
+// flags it wasted) and one per render, a column per cause that occurs anywhere.
+void addCauseTables(const Json& results, std::vector<Table>& tables) {
+    std::vector<std::pair<std::string, const Json*>> rows;
+    if (results.contains("map_quality") && results["map_quality"].contains("causes"))
+        rows.emplace_back("aamap (1-ray)", &results["map_quality"]["causes"]);
+    for (const Json& r : results["renders"])
+        if (r.contains("metrics") && r["metrics"].contains("causes"))
+            rows.emplace_back(r["name"].get<std::string>(), &r["metrics"]["causes"]);
+    if (rows.empty()) return;
+    const double t = num(results["config"]["metrics"], "flip_threshold", 0.1);
+    for (const char* kind : {"missed", "wasted"}) {
+        const bool missed = std::string(kind) == "missed";
+        std::vector<int> used;
+        for (int i = 0; i < metrics::kPixelCauses; ++i) {
+            const char* k = metrics::key(static_cast<metrics::PixelCause>(i));
+            if (std::any_of(rows.begin(), rows.end(), [&](const auto& row) {
+                    return (*row.second)[kind].value(k, std::uint64_t{0}) > 0;
+                }))
+                used.push_back(i);
+        }
+        Table table{missed ? "causes_missed" : "causes_wasted",
+                    missed ? "Causes: why error pixels remain" : "Causes: where extra rays bought nothing",
+                    missed ? fmt::format("pixels with LDR-FLIP > {} against the reference, by what the tracer sees in "
+                                         "them; aamap row: true aliasing the map did not flag", t)
+                           : fmt::format("pixels given more than one primary ray although the 1-ray image is within "
+                                         "FLIP {} there; aamap row: flagged pixels that are not truly aliased", t),
+                    {"render", "pixels"}, {}};
+        for (int i : used) table.header.push_back(metrics::toString(static_cast<metrics::PixelCause>(i)));
+        for (const auto& [name, causes] : rows) {
+            std::vector<std::string> row{name, std::to_string((*causes).value(std::string(kind) + "_total", std::uint64_t{0}))};
+            for (int i : used)
+                row.push_back(std::to_string((*causes)[kind].value(metrics::key(static_cast<metrics::PixelCause>(i)),
+                                                                    std::uint64_t{0})));
+            table.rows.push_back(std::move(row));
+        }
+        tables.push_back(std::move(table));
+    }
+}
+
 }  // namespace
 
 std::vector<Table> reportTables(const Json& results) {
@@ -77,21 +154,24 @@ std::vector<Table> reportTables(const Json& results) {
     std::vector<Table> tables;
 
     Table time{"time", "Table 1/2: render time (s) per rays per pixel",
-               "time = trace + Snapshot per frame (for aamap-driven series); scene load, BVH build and Snapshot setup, shared by all, are left out",
+               "time = trace + Snapshot per frame (for aamap-driven series); scene load, BVH build and Snapshot setup, shared by all, "
+               "are left out. With timing.repeats > 1: the median, then (min–max) over the timed runs",
                {"rpp"}, {}};
     for (const std::string& s : series) time.header.push_back(s);
     for (int rpp : rpps) {
         std::vector<std::string> row{std::to_string(rpp)};
         for (const std::string& s : series) {
             const Json* r = find(renders, rpp, s);
-            row.push_back(r ? cell(renderSeconds(*r), "{:.3f}") : "");
+            row.push_back(r ? rangeCell(renderTimeRange(*r), "{:.3f}") : "");
         }
         time.rows.push_back(row);
     }
     tables.push_back(time);
 
     Table speed{"speedup", "Table 1/2: speedup over " + (base.empty() ? std::string("uniform") : base),
-                base.empty() ? "no uniform render in the experiment: no baseline" : "baseline time / series time at the same rpp",
+                base.empty() ? "no uniform render in the experiment: no baseline"
+                             : "baseline time / series time at the same rpp; with timing.repeats > 1, the ratio of medians, "
+                               "then (min–max): the fastest baseline run over the slowest series run, and the reverse",
                 {"rpp"}, {}};
     for (const std::string& s : series)
         if (s != base) speed.header.push_back(s);
@@ -101,7 +181,7 @@ std::vector<Table> reportTables(const Json& results) {
         for (const std::string& s : series) {
             if (s == base) continue;
             const Json* r = find(renders, rpp, s);
-            row.push_back(r && b && renderSeconds(*r) > 0 ? cell(renderSeconds(*b) / renderSeconds(*r), "{:.1f}") : "");
+            row.push_back(r && b ? rangeCell(speedupRange(*b, *r), "{:.2f}") : "");
         }
         speed.rows.push_back(row);
     }
@@ -129,13 +209,13 @@ std::vector<Table> reportTables(const Json& results) {
     tables.push_back(error);
 
     Table all{"renders", "All renders", "cached: reused from an earlier run of this folder",
-              {"name", "series", "rpp", "time (s)", "mean rpp", "rays", "PSNR (dB)", "FLIP mean", "% FLIP", "% MSE", "cached"},
+              {"name", "series", "rpp", "time (s)", "timed runs", "mean rpp", "rays", "PSNR (dB)", "FLIP mean", "% FLIP", "% MSE", "cached"},
               {}};
     for (const Json& r : renders) {
         const Json m = r.contains("metrics") ? r["metrics"] : Json::object();
         all.rows.push_back({r["name"].get<std::string>(), r.value("series", std::string()),
-                            std::to_string(r["max_rays_per_pixel"].get<int>()), cell(renderSeconds(r), "{:.3f}"),
-                            cell(num(r, "mean_primary_rpp")), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
+                            std::to_string(r["max_rays_per_pixel"].get<int>()), rangeCell(renderTimeRange(r), "{:.3f}"),
+                            std::to_string(renderTimeRange(r).runs), cell(num(r, "mean_primary_rpp")), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
                             m.contains("psnr") && m["psnr"].is_null() ? "inf" : cell(num(m, "psnr")),
                             cell(num(m, "flip_mean"), "{:.4f}"), cell(num(m, "pct_error_flip")),
                             cell(num(m, "pct_error_mse")), r.value("cached", false) ? "yes" : "no"});
@@ -161,13 +241,14 @@ std::vector<Table> reportTables(const Json& results) {
                             cell(100 * num(q, "true_fraction")), count("true_pixels"), count("own_true_pixels"),
                             count("flagged_pixels")}}});
     }
+    addCauseTables(results, tables);
     return tables;
 }
 
 const std::vector<std::string>& resultsCsvColumns() {
     static const std::vector<std::string> columns = {
         "name", "series", "strategy", "rpp", "params", "width", "height", "time_s", "trace_s", "snapshot_s",
-        "total_s", "speedup", "mean_primary_rpp", "rays_primary", "rays_total", "mse", "rmse", "psnr",
+        "total_s", "time_min_s", "time_max_s", "trace_runs", "speedup", "speedup_min", "speedup_max", "mean_primary_rpp", "rays_primary", "rays_total", "mse", "rmse", "psnr",
         "pct_error_mse", "flip_mean", "pct_error_flip", "flip_hdr_mean", "pct_error_flip_hdr", "cached", "key",
         "git_revision"};
     return columns;
@@ -182,13 +263,15 @@ std::string resultsCsv(const Json& results) {
         const Json m = r.contains("metrics") ? r["metrics"] : Json::object();
         const int rpp = r["max_rays_per_pixel"].get<int>();
         const Json* b = base.empty() ? nullptr : find(renders, rpp, base);
-        const double speedup = b && renderSeconds(r) > 0 ? renderSeconds(*b) / renderSeconds(r) : NAN;
+        const TimeRange time = renderTimeRange(r);
+        const TimeRange speedup = b ? speedupRange(*b, r) : TimeRange{};
         std::vector<std::string> f = {
             csvField(r["name"].get<std::string>()), csvField(r.value("series", std::string())),
             r["strategy"].get<std::string>(), std::to_string(rpp), csvField(paramsText(r)),
             std::to_string(r["width"].get<int>()), std::to_string(r["height"].get<int>()), value(renderSeconds(r)),
             value(num(r["times_s"], "trace")), value(num(r["times_s"], "snapshot_total")),
-            value(num(r["times_s"], "total")), value(speedup), value(num(r, "mean_primary_rpp")),
+            value(num(r["times_s"], "total")), value(time.min), value(time.max), std::to_string(time.runs),
+            value(speedup.median), value(speedup.min), value(speedup.max), value(num(r, "mean_primary_rpp")),
             std::to_string(r["rays"]["primary"].get<std::uint64_t>()), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
             value(num(m, "mse")), value(num(m, "rmse")),
             m.contains("psnr") && m["psnr"].is_null() ? "inf" : value(num(m, "psnr")), value(num(m, "pct_error_mse")),

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "eval/metrics/pixel_causes.h"
 #include "eval/report.h"
 
 namespace aamap {
@@ -89,7 +90,19 @@ std::string htmlReport(const Json& results, const std::vector<Table>& tables, co
             h += figure(outDir, r["name"].get<std::string>() + ".rpp.png", r["name"].get<std::string>() + " rays/pixel");
     if (results.contains("map_quality"))
         h += figure(outDir, "aliasing.png", "aliasing: white hit, red missed, blue false alarm");
+    const bool causes = results.contains("map_quality") && results["map_quality"].contains("causes");
+    if (causes) h += figure(outDir, "causes.png", "causes of the map's misses (bright) and waste (dark)");
     h += "</div>\n";
+    if (causes) {
+        h += "<p class=\"note\">Cause colours (NAME.causes.png, causes.png; missed pixels bright, wasted ones dark): ";
+        for (int i = 0; i < metrics::kPixelCauses; ++i) {
+            const auto cause = static_cast<metrics::PixelCause>(i);
+            const glm::u8vec3 c = metrics::colour(cause);
+            h += fmt::format("<span style=\"background:#000;color:rgb({},{},{});padding:0 4px\">&#9632; {}</span> ", c.r, c.g,
+                             c.b, metrics::toString(cause));
+        }
+        h += "</p>\n";
+    }
 
     h += "<h2 id=\"images\">Renders against the reference (Figure 8: FLIP error in red)</h2>\n";
     if (results.contains("reference") && results["reference"].contains("render"))
@@ -98,7 +111,7 @@ std::string htmlReport(const Json& results, const std::vector<Table>& tables, co
         const std::string n = r["name"].get<std::string>();
         h += "<div>" + figure(outDir, n + ".png", n) + figure(outDir, n + ".overlay.png", n + ": FLIP in red") +
              figure(outDir, n + ".flip.png", n + ": FLIP map") + figure(outDir, n + ".rpp.png", n + ": rays/pixel") +
-             "</div>\n";
+             figure(outDir, n + ".causes.png", n + ": causes") + "</div>\n";
     }
     h += "<h2 id=\"config\">Config</h2>\n<pre>" + escape(results["config"].dump(2)) + "</pre>\n</body></html>\n";
     return h;

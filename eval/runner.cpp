@@ -1,10 +1,12 @@
 #include "eval/runner.h"
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -77,9 +79,12 @@ private:
         warnings_.push_back(message);
     }
     void loadOrRenderSnapshot();
+    PixelFacts loadOrComputeFacts();
     const Traced& loadOrTrace(const Job& job, int index, int count);
     RenderRecord recordFor(const Job& job, const Traced& t, bool cached) const;
     void repeatTraces(const std::vector<Job>& jobs);
+    void planTraces(const std::vector<Job>& jobs);
+    void traceFinished(const Job& job, double seconds);
     ImageRGB loadFileReference(const std::vector<Job>& jobs);
     void checkReference(const ImageRGB& reference);
     void writeNamedOutputs(const std::string& name, const Traced& t, int rpp, std::vector<std::string>& outputs) const;
@@ -96,6 +101,7 @@ private:
     std::map<std::string, Traced> traced_;  // by key
     std::map<std::string, bool> reused_;    // by key: came from the cache
     int tracedNow_ = 0;
+    WorkEstimate estimate_;  // the whole run's time left, logged after each trace
     std::vector<std::string> warnings_;  // for the top of the report
 };
 
@@ -135,6 +141,31 @@ void Runner::loadOrRenderSnapshot() {
                                                      static_cast<double>(std::max<std::size_t>(1, aamap_->size())));
 }
 
+// The pixel facts depend on the scene, the view and the image size; the key of a 1-ray render
+// covers them (and more, which only costs a recomputation), under a prefix of its own.
+PixelFacts Runner::loadOrComputeFacts() {
+    RenderConfig probe{"pixel_facts", "pixel_facts", "uniform", 1, {}, ""};
+    const std::string key = "facts-" + renderKey(c_, probe);
+    if (cache_.has(key)) {
+        try {
+            return greyToRays(readExrGrey(cache_.entry(key) / "facts.exr"));
+        } catch (const std::exception& e) {
+            spdlog::warn("pixel facts in {} are unreadable ({}); computing them again", cache_.entry(key).string(), e.what());
+        }
+    }
+    scene();
+    spdlog::info("pixel facts: tracing {} sub-rays per pixel", pixel_fact::kGrid * pixel_fact::kGrid);
+    const auto start = std::chrono::steady_clock::now();
+    PixelFacts facts = backend_.pixelFacts();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    cache_.commit(key, [&](const fs::path& dir) {
+        writeExr(dir / "facts.exr", raysToGrey(facts));
+        writeTextAtomically(dir / "record.json", Json{{"key", key}, {"seconds", seconds}}.dump(2) + "\n");
+    });
+    spdlog::info("pixel facts: {:.2f} s", seconds);
+    return facts;
+}
+
 const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     if (auto it = traced_.find(job.key); it != traced_.end()) return it->second;
     Traced t;
@@ -160,6 +191,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     TraceOutput out = backend_.trace(job.render, usesMap ? &*aamap_ : nullptr,
                                      [&progress](int done, int total) { progress.update(done, total); });
     progress.finish();
+    traceFinished(job, out.seconds);
 
     RenderRecord& r = t.record;
     r.name = job.render.name;
@@ -218,6 +250,37 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     return traced_.emplace(job.key, std::move(t)).first->second;
 }
 
+// A trace's size for the run's time left: its ray budget per pixel (every render has the same
+// pixel count). Adaptive renders trace fewer rays than their budget; the measured rate absorbs
+// the mix once they have run.
+double traceUnits(const Job& job) { return std::max(1, job.render.rpp); }
+
+// Counts the traces the run will do: every job missing from the cache once, plus the timed runs
+// timing.repeats asks for that its record does not have yet.
+void Runner::planTraces(const std::vector<Job>& jobs) {
+    std::set<std::string> seen;
+    for (const Job& job : jobs) {
+        if (!seen.insert(job.key).second) continue;
+        int runs = 0;
+        if (cache_.has(job.key)) {
+            runs = 1;
+            try {
+                const Json times = readJson(cache_.record(job.key))["times_s"];
+                if (times.contains("trace_runs")) runs = std::max<int>(1, static_cast<int>(times["trace_runs"].size()));
+            } catch (const std::exception&) {
+                runs = 0;  // unreadable: loadOrTrace traces it again
+            }
+        }
+        const int missing = std::max(0, std::max(1, c_.timing.repeats) - runs);
+        if (missing > 0) estimate_.plan(missing * traceUnits(job), missing);
+    }
+}
+
+void Runner::traceFinished(const Job& job, double seconds) {
+    estimate_.finished(traceUnits(job), seconds);
+    spdlog::info("{}", estimate_.text());
+}
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const std::size_t n = v.size();
@@ -246,6 +309,7 @@ void Runner::repeatTraces(const std::vector<Job>& jobs) {
         TraceOutput out = backend_.trace(job.render, usesMap ? &*aamap_ : nullptr,
                                          [&progress](int done, int total) { progress.update(done, total); });
         progress.finish();
+        traceFinished(job, out.seconds);
         if (out.image.pixels() != t.image.pixels())
             warn(fmt::format("{}: a repeated trace gave a different image (the tracer should be deterministic)",
                              job.render.name));
@@ -372,6 +436,7 @@ Results Runner::run() {
     else spdlog::info("no render uses the aamap: snapshot skipped");
     if (!snapshotRecord_.is_null()) results.snapshot = snapshotRecord_;
 
+    planTraces(jobs);
     const int count = static_cast<int>(jobs.size());
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         const Job& job = jobs[i];
@@ -409,14 +474,31 @@ Results Runner::run() {
     if (reference) checkReference(*reference);
     if (reference) {
         const float exposure = static_cast<float>(c_.image.exposure);
-        for (std::size_t i = 0; i < listed; ++i) {
-            RenderRecord& rec = results.renders[i];
-            rec.metrics = evaluateRender(*reference, traced_.at(jobs[i].key).image, c_.metrics, exposure, out_,
-                                         rec.name, rec.outputs);
-        }
+        // Causes need the 1-ray image's error (map quality) and LDR-FLIP, and a tracer's facts.
+        const bool causes = mapQuality && c_.metrics.causes && c_.metrics.flip &&
+                            backend_.hasPixelFacts();
+        ImageGrey oneRayError;
+        std::optional<PixelFacts> facts;
         if (mapQuality) {
             results.mapQuality = evaluateMap(traced_.at(oneRayJob->key).image, *reference, *aamap_, c_.metrics,
-                                             exposure, out_);
+                                             exposure, out_, &oneRayError);
+            if (causes) {
+                facts = loadOrComputeFacts();
+                results.mapQuality["causes"] =
+                    evaluateMapCauses(*facts, oneRayError, *aamap_, static_cast<float>(c_.metrics.flipThreshold), out_);
+            }
+        }
+        for (std::size_t i = 0; i < listed; ++i) {
+            RenderRecord& rec = results.renders[i];
+            const Traced& t = traced_.at(jobs[i].key);
+            ImageGrey flipError;
+            rec.metrics = evaluateRender(*reference, t.image, c_.metrics, exposure, out_, rec.name, rec.outputs, &flipError);
+            if (facts)
+                rec.metrics["causes"] = evaluateRenderCauses(*facts, flipError, oneRayError, t.rays,
+                                                             static_cast<float>(c_.metrics.flipThreshold), out_,
+                                                             rec.name, rec.outputs);
+        }
+        if (mapQuality) {
             spdlog::info("map quality: recall {:.3f}, precision {:.3f}, flagged {:.1f}%",
                          results.mapQuality["recall"].get<double>(), results.mapQuality["precision"].get<double>(),
                          100.0 * results.mapQuality["flagged_fraction"].get<double>());

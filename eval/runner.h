@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/pixel_facts.h"
 #include "eval/config.h"
 #include "eval/results.h"
 
@@ -55,6 +56,10 @@ public:
     // aamap: the Snapshot's map for strategies that use it, else null. progress(done, total).
     virtual TraceOutput trace(const RenderConfig& render, const ImageGrey* aamap,
                               const std::function<void(int, int)>& progress) = 0;
+    // What each pixel's sub-rays see (core/pixel_facts.h), at the render resolution; after
+    // prepare(). A backend without a tracer has none: then no causes are reported.
+    virtual bool hasPixelFacts() const { return false; }
+    virtual PixelFacts pixelFacts() { return {}; }
 };
 
 struct RunnerOptions {

@@ -26,10 +26,17 @@ void Context::fail(const YAML::Node& node, const std::string& path, const std::s
     throw InputError(where.file, where.line, where.column, problem);
 }
 
+bool isPlainScalar(const YAML::Node& node) {
+    // yaml-cpp tags a quoted scalar without an explicit tag "!", a plain one "?".
+    return node.IsScalar() && node.Tag() != "!";
+}
+
 std::string describe(const YAML::Node& node) {
     switch (node.Type()) {
         case YAML::NodeType::Null: return "nothing (null)";
-        case YAML::NodeType::Scalar: return fmt::format("'{}'", node.Scalar());
+        case YAML::NodeType::Scalar:
+            return isPlainScalar(node) ? fmt::format("'{}'", node.Scalar())
+                                       : fmt::format("the quoted string \"{}\"", node.Scalar());
         case YAML::NodeType::Sequence: return "a list";
         case YAML::NodeType::Map: return "a mapping";
         default: return "nothing";
@@ -65,6 +72,7 @@ MapReader::MapReader(const Context& ctx, const YAML::Node& node, std::string pat
     if (!node_.IsNull() && !node_.IsMap())
         ctx_.fail(node_, path_, fmt::format("{}: expected a mapping, found {}", path_.empty() ? "config" : path_,
                                             describe(node_)));
+    checkKeys();
 }
 
 bool MapReader::has(const std::string& key) const { return node_.IsMap() && node_[key].IsDefined(); }
@@ -83,7 +91,7 @@ void MapReader::getInt(const std::string& key, int& out, long long lo, long long
     const YAML::Node n = node(key);
     if (!n.IsDefined()) return;
     long long v = 0;
-    if (!n.IsScalar() || !YAML::convert<long long>::decode(n, v))
+    if (!decodePlain(n, v))
         ctx_.fail(n, childPath(key), fmt::format("{}: expected an integer, found {}", childPath(key), describe(n)));
     if (v < lo || v > hi)
         ctx_.fail(n, childPath(key), fmt::format("{}: {} is out of range [{}, {}]", childPath(key), v, lo, hi));
@@ -95,7 +103,7 @@ void MapReader::getUInt64(const std::string& key, std::uint64_t& out) {
     if (!n.IsDefined()) return;
     std::uint64_t v = 0;
     // yaml-cpp would wrap "-1" round to 2^64-1; a leading minus is an error here.
-    if (!n.IsScalar() || n.Scalar().starts_with("-") || !YAML::convert<std::uint64_t>::decode(n, v))
+    if (!decodePlain(n, v) || n.Scalar().starts_with("-"))
         ctx_.fail(n, childPath(key),
                   fmt::format("{}: expected a non-negative integer, found {}", childPath(key), describe(n)));
     out = v;
@@ -105,7 +113,7 @@ void MapReader::getDouble(const std::string& key, double& out, double lo, double
     const YAML::Node n = node(key);
     if (!n.IsDefined()) return;
     double v = 0;
-    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v) || !std::isfinite(v))
+    if (!decodePlain(n, v) || !std::isfinite(v))
         ctx_.fail(n, childPath(key), fmt::format("{}: expected a finite number, found {}", childPath(key), describe(n)));
     if (v < lo || v > hi || (openLo && v == lo))
         ctx_.fail(n, childPath(key), fmt::format("{}: {} is out of range {}{}, {}]", childPath(key), v,
@@ -129,7 +137,7 @@ void MapReader::getVec3(const std::string& key, std::array<double, 3>& out, doub
                   fmt::format("{}: expected a list of 3 numbers, found {}", childPath(key), describe(n)));
     for (std::size_t i = 0; i < 3; ++i) {
         double v = 0;
-        if (!n[i].IsScalar() || !YAML::convert<double>::decode(n[i], v) || !std::isfinite(v))
+        if (!decodePlain(n[i], v) || !std::isfinite(v))
             ctx_.fail(n[i], childPath(key),
                       fmt::format("{}[{}]: expected a finite number, found {}", childPath(key), i, describe(n[i])));
         if (v < lo || v > hi)
@@ -139,13 +147,15 @@ void MapReader::getVec3(const std::string& key, std::array<double, 3>& out, doub
     }
 }
 
-void MapReader::finish() const {
+void MapReader::checkKeys() const {
     if (!node_.IsMap()) return;
     std::set<std::string> seen;
     for (auto it = node_.begin(); it != node_.end(); ++it) {
         const YAML::Node k = it->first;  // a copy: it-> returns a temporary proxy (ASan: stack-use-after-scope)
-        const std::string name = k.IsScalar() ? k.Scalar() : std::string();
         const std::string where = path_.empty() ? "the config" : "'" + path_ + "'";
+        if (!k.IsScalar())
+            ctx_.fail(k, path_, fmt::format("a key in {} is {}; keys are names", where, describe(k)));
+        const std::string name = k.Scalar();
         if (std::find(keys_.begin(), keys_.end(), name) == keys_.end()) {
             const std::string hint = closest(name, keys_);
             ctx_.fail(k, childPath(name),

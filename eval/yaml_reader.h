@@ -31,13 +31,26 @@ private:
     std::map<std::string, std::string> overridden_;
 };
 
+// Numbers and booleans are written plain: a quoted scalar ("4", 'true') is a string in YAML, and
+// the config is parsed as strictly as it is documented.
+bool isPlainScalar(const YAML::Node& node);
+
+// Decodes a plain scalar as T (yaml-cpp's own conversion, which takes only integer literals for
+// integer types: 4, not 4.0); false for a quoted scalar, a list or a mapping.
+template <class T>
+bool decodePlain(const YAML::Node& node, T& out) {
+    return isPlainScalar(node) && YAML::convert<T>::decode(node, out);
+}
+
 // "a string", "a list", ... for error messages.
 std::string describe(const YAML::Node& node);
 
 // The closest of `candidates` to `word` (edit distance at most 2), or "".
 std::string closest(const std::string& word, const std::vector<std::string>& candidates);
 
-// Reads one mapping. Keys are claimed by the get* calls; finish() rejects the rest.
+// Reads one mapping whose allowed keys are `keys`. The constructor rejects unknown keys (naming
+// the nearest known one) and duplicates before any value is read, so a typo ("intensty") is
+// reported as a typo, not as the missing key it was meant to be.
 class MapReader {
 public:
     // A null node (an empty section) reads as an empty mapping.
@@ -57,10 +70,9 @@ public:
     void getVec3(const std::string& key, std::array<double, 3>& out, double lo, double hi);
     void require(const std::string& key) const;  // fails at the mapping if key is absent
 
-    // Rejects keys no get*/node call claimed (naming the nearest known key), and duplicates.
-    void finish() const;
-
 private:
+    void checkKeys() const;
+
     const Context& ctx_;
     YAML::Node node_;
     std::string path_;

@@ -19,6 +19,7 @@
 #include "tracer/integrator.h"
 #include "tracer/irradiance_source.h"
 #include "tracer/lights.h"
+#include "tracer/pixel_facts.h"
 #include "tracer/sampler.h"
 #include "tracer/strategy.h"
 
@@ -248,6 +249,12 @@ Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
 Tracer::~Tracer() = default;
 
 double Tracer::bvhBuildSeconds() const { return impl_->geometry.buildSeconds(); }
+
+PixelFacts Tracer::pixelFacts(const View& view, int width, int height, int threads) const {
+    if (width <= 0 || height <= 0) throw std::invalid_argument(fmt::format("facts size {}x{} is empty", width, height));
+    return tracePixelFacts(impl_->geometry, impl_->lights, impl_->shapes, PinholeCamera::fromView(view), width, height,
+                           threads);
+}
 
 TraceResult Tracer::render(const View& view, const TraceSettings& settings, const StrategySettings& strategySettings) const {
     const auto start = std::chrono::steady_clock::now();

@@ -9,6 +9,7 @@
 #include "core/image.h"
 #include "scene/scene.h"
 #include "tracer/irradiance_cache.h"
+#include "core/pixel_facts.h"
 
 namespace aamap {
 
@@ -159,6 +160,9 @@ public:
 
     double bvhBuildSeconds() const;
     TraceResult render(const View& view, const TraceSettings& settings, const StrategySettings& strategy) const;
+    // What each pixel's sub-rays see (core/pixel_facts.h), for explaining the map's misses.
+    // threads 0: all hardware threads; the result does not depend on it.
+    PixelFacts pixelFacts(const View& view, int width, int height, int threads = 0) const;
 
 private:
     struct Impl;

@@ -307,7 +307,9 @@ TEST_F(CliErrors, SchemaErrorsGiveLineAndColumn) {
     const CommandResult run = aamap("run '" + config.string() + "'");
     EXPECT_EQ(run.exitCode, 2) << run.stderrText;
     EXPECT_NE(run.stderrText.find(config.string() + ":2:9: unknown key 'widht'"), std::string::npos) << run.stderrText;
-    const CommandResult set = aamap("run '" + config.string() + "' --set image.width=abc");
+    // A bad value from --set names the option (unknown keys in the file are reported first).
+    const fs::path valid = write("valid.yaml", "scene: builtin:cornell\nimage: {width: 64}\nrenders: [{strategy: uniform, rpp: 4}]\n");
+    const CommandResult set = aamap("run '" + valid.string() + "' --set image.width=abc");
     EXPECT_EQ(set.exitCode, 2) << set.stderrText;
     EXPECT_NE(set.stderrText.find("--set image.width=abc"), std::string::npos) << set.stderrText;
 }

@@ -51,6 +51,16 @@ public:
         progress(1, 1);
         return t;
     }
+    // The edge column is a silhouette, the rest of the image plain (pixel facts for the causes).
+    bool hasPixelFacts() const override { return withFacts; }
+    PixelFacts pixelFacts() override {
+        ++factsComputed;
+        PixelFacts f(kW, kH, 0);
+        for (int y = 0; y < kH; ++y) f.at(kW / 2, y) = pixel_fact::Silhouette;
+        return f;
+    }
+    bool withFacts = false;
+    int factsComputed = 0;
     int prepares = 0, snapshots = 0;
     bool failPrepare = false;  // like a scene that does not load
     std::vector<std::string> sceneWarnings;  // what prepare() reports about the scene

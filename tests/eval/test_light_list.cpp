@@ -102,8 +102,9 @@ TEST_F(LightFile, ErrorsNameFileLineAndColumn) {
     expectError("- {intensity: [1, 1, 1]}\n", 1, 3, "missing required key 'lights.0.position'");
     expectError("- {position: [0, 0, 0]}\n", 1, 3, "give exactly one of 'intensity' and 'power' for a point light");
     expectError("- {position: [0, 0, 0], intensity: [1, 1, 1], power: [1, 1, 1]}\n", 1, 54, "exactly one of");
-    expectError("- {type: quad, position: [0, 0, 0], intensity: [1, 1, 1], normal: [0, 1, 0], size: [1, 1]}\n", 1, 3,
-                "exactly one of 'radiance' and 'power' for a quad light");
+    expectError("- {type: quad, position: [0, 0, 0], intensity: [1, 1, 1], normal: [0, 1, 0], size: [1, 1]}\n", 1, 48,
+                "a quad light is given by exactly one of 'radiance' and 'power', not 'intensity'");
+    expectError("- {position: [0, 0, 0], intensty: [1, 1, 1]}\n", 1, 25, "did you mean 'intensity'?");
     expectError("- {type: spot, position: [0, 0, 0], intensity: [1, 1, 1], direction: [0, -1, 0],\n"
                 "   inner_angle: 30, outer_angle: 20}\n",
                 2, 17, "lights.0.inner_angle: 30 degrees is wider than outer_angle (20 degrees)");

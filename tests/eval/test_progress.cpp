@@ -19,6 +19,25 @@ TEST(Progress, TimeLeftFollowsTheRateSoFar) {
     EXPECT_DOUBLE_EQ(*secondsLeft(10, 10, 3.0), 0.0);
 }
 
+TEST(Progress, RunTimeLeftWeighsJobsByTheirSize) {
+    WorkEstimate run;
+    run.plan(4);       // a 4-rpp trace
+    run.plan(16);      // a 16-rpp trace
+    run.plan(128, 2);  // a 64-rpp trace, timed twice
+    EXPECT_EQ(run.jobsPlanned(), 4);
+    EXPECT_FALSE(run.secondsLeft().has_value());  // no rate yet
+    run.finished(4, 2.0);                         // 0.5 s a unit
+    ASSERT_TRUE(run.secondsLeft().has_value());
+    EXPECT_DOUBLE_EQ(*run.secondsLeft(), 0.5 * (148 - 4));
+    EXPECT_EQ(run.text(), "run: 1 of 4 traces done, about 1 min 12 s left");
+    run.finished(16, 6.0);  // now 8 s for 20 units
+    EXPECT_DOUBLE_EQ(*run.secondsLeft(), 8.0 / 20.0 * 128);
+    run.finished(64, 1.0);
+    run.finished(64, 1.0);
+    EXPECT_DOUBLE_EQ(*run.secondsLeft(), 0.0);
+    EXPECT_EQ(run.text(), "run: 4 of 4 traces done");
+}
+
 TEST(Progress, DurationsReadAsPeopleWriteThem) {
     EXPECT_EQ(formatDuration(3.14), "3.1 s");
     EXPECT_EQ(formatDuration(42.4), "42 s");
