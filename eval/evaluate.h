@@ -13,7 +13,9 @@
 
 namespace aamap {
 
-// {mse, rmse, psnr, pct_error_mse, flip_mean, pct_error_flip[, flip_hdr_mean, pct_error_flip_hdr]}.
+// {mse, rmse, psnr, pct_error_mse, flip_mean, pct_error_flip, worst_regions[, flip_hdr_mean,
+// pct_error_flip_hdr]}; worst_regions: up to 4 non-overlapping square windows [{x, y, size,
+// flip_mean}] with the largest summed FLIP error, worst first (eval/metrics/worst_regions.h).
 // MSE-family values are in display space (what the PNGs show, eval/metrics/pixel_error.h); psnr
 // is null for identical images. Writes NAME.flip.png (magma) and NAME.overlay.png (FLIP error in
 // red over the render, Figure 8) into outDir when FLIP is on, and appends their names to outputs.

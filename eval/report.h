@@ -24,6 +24,11 @@ struct Table {
 // cost, without the scene load and BVH build that every render shares.
 std::vector<Table> reportTables(const nlohmann::ordered_json& results);
 
+// A number as people write it: the shortest text that reads back as the same float when the value
+// is one (0.1, not 0.10000000149011612), else 3 significant digits ("1.23e+04" only past 1e6);
+// "—" when not finite.
+std::string readableNumber(double v);
+
 // A CSV field, quoted (RFC 4180) when it holds a comma, a quote or a newline.
 std::string csvField(const std::string& s);
 
