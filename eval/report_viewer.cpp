@@ -76,8 +76,8 @@ Json viewerData(const Json& results, const fs::path& outDir) {
     std::vector<int> rpps;
     std::vector<std::string> series;
     Json list = Json::array();
-    std::size_t initial = 0;
-    double worstPct = -1;
+    std::size_t worstSelective = 0, worstAny = 0;
+    double worstSelectivePct = -1, worstAnyPct = -1;
     for (const Json& r : renders) {
         const std::string name = r["name"].get<std::string>();
         const std::string s = r.value("series", r["strategy"].get<std::string>());
@@ -87,8 +87,11 @@ Json viewerData(const Json& results, const fs::path& outDir) {
         for (const Json& g : m.value("worst_regions", Json::array()))
             regions.push_back({{"x", g["x"]}, {"y", g["y"]}, {"size", g["size"]}, {"flip_mean", g["flip_mean"]}});
         const double pct = number(m, "pct_error_flip");
-        // Open on the selective render with most error: where there is most to see.
-        if (r["strategy"] != "uniform" && std::isfinite(pct) && pct > worstPct) worstPct = pct, initial = list.size();
+        // Open on the selective render with most error, where there is most to see (or on the
+        // render with most error when no selective one has any).
+        if (std::isfinite(pct) && pct > worstAnyPct) worstAnyPct = pct, worstAny = list.size();
+        if (r["strategy"] != "uniform" && std::isfinite(pct) && pct > worstSelectivePct)
+            worstSelectivePct = pct, worstSelective = list.size();
         list.push_back({{"name", name},
                         {"series", s},
                         {"strategy", r["strategy"]},
@@ -110,7 +113,7 @@ Json viewerData(const Json& results, const fs::path& outDir) {
     d["series"] = series;
     d["rpps"] = rpps;
     d["renders"] = list;
-    d["initial"] = initial;
+    d["initial"] = worstSelectivePct > 0 ? worstSelective : worstAny;
     return d;
 }
 

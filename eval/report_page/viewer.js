@@ -360,7 +360,7 @@
     flip: () => { state.mode = 'flip'; state.showB = !state.showB; refresh(); },
     slide: (split) => { if (split !== undefined) state.split = split; setMode('slide'); },
     zoom: (s, x, y) => (x === undefined ? zoomTo(s) : zoomAt(s * dpr, state.ox + x * state.scale, state.oy + y * state.scale)),
-    zoomToRegion: (k) => zoomToRegion(render().regions[k]),
+    zoomToRegion: (k) => { const g = render().regions[k]; if (g) zoomToRegion(g); return !!g; },
     state: () => ({render: render().name, shown: root.dataset.shown, mode: state.mode, scale: state.scale / dpr,
       offset: [state.ox / dpr, state.oy / dpr], dpr}),
     canvas,
