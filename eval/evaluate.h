@@ -25,8 +25,9 @@ nlohmann::ordered_json evaluateRender(const ImageRGB& reference, const ImageRGB&
 
 // Map quality: true aliasing T = FLIP(oneRay vs reference) > flip_threshold, flagged F = aamap > 0.
 // {threshold, pixels, true_pixels, flagged_pixels, true_positives, recall, precision,
-// flagged_fraction, true_fraction}. Writes aliasing.png: true positives white, misses red, false
-// alarms blue, the rest the dimmed 1-ray image.
+// flagged_fraction, true_fraction}. Writes aliasing.png: true positives white, misses red (orange
+// where the pixel's own display value equals the reference's), false alarms blue, the rest the
+// dimmed 1-ray image.
 nlohmann::ordered_json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageGrey& aamap,
                                    const MetricsConfig& metrics, float exposure, const std::filesystem::path& outDir);
 
