@@ -1,7 +1,7 @@
 #pragma once
 // The report of an experiment, built from its results document (results.json) alone, so that
 // `aamap report OUTDIR` can rebuild it: results.csv, report.md (the paper's tables in Markdown),
-// report.html (tables, plots, image figures; relative links, opens without a server), and the
+// report.html (tables, a comparison viewer, plots; relative links, opens from disk, offline), and the
 // plots of tools/report_plots.py (run from the Python venv; skipped with a warning without one).
 #include <filesystem>
 #include <string>
