@@ -8,6 +8,7 @@
 #include "eval/metrics/magma.h"
 #include "eval/metrics/map_quality.h"
 #include "eval/metrics/pixel_causes.h"
+#include "eval/metrics/worst_regions.h"
 #include "eval/metrics/pixel_error.h"
 
 namespace aamap {
@@ -76,6 +77,12 @@ Json evaluateRender(const ImageRGB& reference, const ImageRGB& test, const Metri
     if (c.flip) {
         j["flip_mean"] = c.flip->mean;
         j["pct_error_flip"] = 100.0 * c.flip->fractionAbove;
+        // The report's crops: where to look first. Computed here, where the float map exists.
+        Json regions = Json::array();
+        const ImageGrey& e = c.flip->errorMap;
+        for (const metrics::Region& r : metrics::worstRegions(e, metrics::defaultRegionSize(e.width(), e.height()), 4))
+            regions.push_back({{"x", r.x}, {"y", r.y}, {"size", r.size}, {"flip_mean", r.meanError}});
+        j["worst_regions"] = regions;
         writePng(outDir / (name + ".flip.png"), toneMap(metrics::flipMagma(*c.flip), 1.0f));
         writePng(outDir / (name + ".overlay.png"),
                  errorOverlay(toneMap(test, exposure), c.flip->errorMap, static_cast<float>(m.flipThreshold)));

@@ -14,7 +14,9 @@
 
 namespace aamap {
 
-// {mse, rmse, psnr, pct_error_mse, flip_mean, pct_error_flip[, flip_hdr_mean, pct_error_flip_hdr]}.
+// {mse, rmse, psnr, pct_error_mse, flip_mean, pct_error_flip, worst_regions[, flip_hdr_mean,
+// pct_error_flip_hdr]}; worst_regions: up to 4 non-overlapping square windows [{x, y, size,
+// flip_mean}] with the largest summed FLIP error, worst first (eval/metrics/worst_regions.h).
 // MSE-family values are in display space (what the PNGs show, eval/metrics/pixel_error.h); psnr
 // is null for identical images. Writes NAME.flip.png (magma) and NAME.overlay.png (FLIP error in
 // red over the render, Figure 8) into outDir when FLIP is on, and appends their names to outputs.
@@ -25,8 +27,9 @@ nlohmann::ordered_json evaluateRender(const ImageRGB& reference, const ImageRGB&
 
 // Map quality: true aliasing T = FLIP(oneRay vs reference) > flip_threshold, flagged F = aamap > 0.
 // {threshold, pixels, true_pixels, flagged_pixels, true_positives, recall, precision,
-// flagged_fraction, true_fraction}. Writes aliasing.png: true positives white, misses red, false
-// alarms blue, the rest the dimmed 1-ray image.
+// flagged_fraction, true_fraction}. Writes aliasing.png: true positives white, misses red (orange
+// where the pixel's own display value equals the reference's), false alarms blue, the rest the
+// dimmed 1-ray image.
 // oneRayError (if not null) receives the 1-ray image's LDR-FLIP error map.
 nlohmann::ordered_json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageGrey& aamap,
                                    const MetricsConfig& metrics, float exposure, const std::filesystem::path& outDir,

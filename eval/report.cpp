@@ -232,7 +232,7 @@ std::vector<Table> reportTables(const Json& results) {
                           fmt::format("true aliasing: pixels where FLIP(1-ray, reference) > {}; own: those whose own "
                                       "8-bit display value differs too (FLIP also rises beside a high-contrast "
                                       "error, where the images agree); flagged: aamap > 0",
-                                      num(q, "threshold")),
+                                      readableNumber(num(q, "threshold"))),
                           {"recall", "own recall", "precision", "flagged %", "true aliasing %", "true pixels",
                            "own true pixels", "flagged pixels"},
                           {{cell(num(q, "recall"), "{:.3f}"),
@@ -297,6 +297,10 @@ std::string markdownReport(const Json& results, const std::vector<Table>& tables
     return md;
 }
 
+namespace {
+constexpr const char* kPlotFiles[] = {"plots/time_vs_rpp.png", "plots/error_vs_time.png", "plots/psnr_vs_time.png"};
+}  // namespace
+
 PlotRun runPlots(const fs::path& outDir) {
     PlotRun run;
     const char* envPython = std::getenv("AAMAP_PYTHON");
@@ -309,6 +313,8 @@ PlotRun runPlots(const fs::path& outDir) {
     } else if (!fs::is_regular_file(script)) {
         run.warning = fmt::format("no plots: {} not found", script.string());
     } else {
+        // Plots of an earlier run must not pass for this one's when the script fails.
+        for (const char* f : kPlotFiles) fs::remove(outDir / f);
         const pid_t pid = ::fork();
         if (pid == 0) {
             ::dup2(STDERR_FILENO, STDOUT_FILENO);  // results go to files; chatter to stderr
@@ -322,8 +328,8 @@ PlotRun runPlots(const fs::path& outDir) {
         else run.ran = true;
     }
     if (!run.warning.empty()) spdlog::warn("{}", run.warning);
-    for (const char* f : {"plots/time_vs_rpp.png", "plots/error_vs_time.png", "plots/psnr_vs_time.png"})
-        if (fs::is_regular_file(outDir / f)) run.files.push_back(f);
+    for (const char* f : kPlotFiles)
+        if (run.ran && fs::is_regular_file(outDir / f)) run.files.push_back(f);
     return run;
 }
 
@@ -336,6 +342,16 @@ void writeReport(const fs::path& outDir, const Json& results, bool plots) {
     else plotRun.warning = "plots turned off (report.plots: false)";
     writeTextAtomically(outDir / "report.html", htmlReport(results, tables, plotRun, outDir));
     spdlog::info("report: {}", (outDir / "report.html").string());
+}
+
+std::string readableNumber(double v) {
+    if (!std::isfinite(v)) return "—";
+    // A float held in a double (a threshold the metrics stored) reads best as the float's shortest form.
+    const float f = static_cast<float>(v);
+    if (static_cast<double>(f) == v && fmt::format("{}", f).size() <= 8) return fmt::format("{}", f);
+    const double a = std::fabs(v);
+    if (a >= 1e6 || (a > 0 && a < 1e-3)) return fmt::format("{:.3g}", v);
+    return fmt::format("{}", std::stod(fmt::format("{:.3g}", v)));  // 3 digits, no trailing zeros, no exponent
 }
 
 std::string csvField(const std::string& s) {

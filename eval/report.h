@@ -1,7 +1,7 @@
 #pragma once
 // The report of an experiment, built from its results document (results.json) alone, so that
 // `aamap report OUTDIR` can rebuild it: results.csv, report.md (the paper's tables in Markdown),
-// report.html (tables, plots, image figures; relative links, opens without a server), and the
+// report.html (tables, a comparison viewer, plots; relative links, opens from disk, offline), and the
 // plots of tools/report_plots.py (run from the Python venv; skipped with a warning without one).
 #include <filesystem>
 #include <string>
@@ -23,6 +23,11 @@ struct Table {
 // per-render summary and map quality. A render's time is trace + snapshot_total: what its image
 // cost, without the scene load and BVH build that every render shares.
 std::vector<Table> reportTables(const nlohmann::ordered_json& results);
+
+// A number as people write it: the shortest text that reads back as the same float when the value
+// is one (0.1, not 0.10000000149011612), else 3 significant digits ("1.23e+04" only past 1e6);
+// "—" when not finite.
+std::string readableNumber(double v);
 
 // A CSV field, quoted (RFC 4180) when it holds a comma, a quote or a newline.
 std::string csvField(const std::string& s);

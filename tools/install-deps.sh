@@ -13,6 +13,8 @@ packages=(
   libpugixml-dev libassimp-dev
   # tests and benchmarks (xvfb + xauth: a virtual display for the viewer test, xvfb-run)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
+  # the report page test (ctest -L browser): report.html in headless Chromium
+  chromium
   # sanitizer build and libFuzzer targets (the asan preset): clang and its runtime libraries
   clang libclang-rt-14-dev
   # plots and metric cross-checks (the venv is made by tools/python-env.sh)

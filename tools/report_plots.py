@@ -3,10 +3,11 @@
 
     .venv/bin/python tools/report_plots.py OUTDIR
 
-Writes OUTDIR/plots/time_vs_rpp.png (the paper's Figures 6-7: render time against rays per pixel,
-one line per series with its least-squares fit and R^2) and OUTDIR/plots/error_vs_time.png (the
-speed-accuracy trade: % FLIP error pixels against time, one curve per series, the Pareto front
-marked). `aamap run` calls this itself; `aamap report OUTDIR` reruns it. Files are written under
+Writes OUTDIR/plots/time_vs_rpp.png (the paper's Figures 6-7: render time against the mean primary
+rays per pixel each render actually traced, one line per series with its least-squares fit and
+R^2) and OUTDIR/plots/error_vs_time.png (the speed-accuracy trade: % FLIP error pixels against
+time, one curve per series, the Pareto front marked). An axis whose values span a decade or more
+is logarithmic; point labels that would collide are moved or left out. `aamap run` calls this itself; `aamap report OUTDIR` reruns it. Files are written under
 a temporary name and renamed, like every aamap output.
 """
 import json
@@ -23,6 +24,41 @@ import numpy as np  # noqa: E402
 def render_seconds(r):
     t = r["times_s"]
     return t.get("trace", 0.0) + t.get("snapshot_total", 0.0)
+
+
+def mean_rpp(r):
+    """Primary rays per pixel the render traced (a supersampled rpp 1 traces 4), else the nominal rpp."""
+    v = r.get("mean_primary_rpp")
+    return v if isinstance(v, (int, float)) and v > 0 else r["max_rays_per_pixel"]
+
+
+def log_if_wide(ax, axis, values):
+    """Log scale when positive values span a decade or more: points at 0.1 s and 10 s both readable."""
+    values = [v for v in values if v > 0]
+    if values and max(values) >= 10 * min(values):
+        (ax.set_xscale if axis == "x" else ax.set_yscale)("log")
+
+
+def label_points(ax, points):
+    """Annotates (x, y, text) in data space where the label overlaps no other label or marker:
+    tries four offsets around each point, drops the label when none is free."""
+    fig = ax.figure
+    fig.canvas.draw()  # fixes the limits and scales, so display positions are final
+    to_px = ax.transData.transform
+    placed = []  # label boxes in display pixels
+    markers = [to_px((x, y)) for x, y, _ in points]
+    dpi_scale = fig.dpi / 72.0
+    for x, y, text in points:
+        px, py = to_px((x, y))
+        w, h = (5.0 * len(text) + 2) * dpi_scale, 9.0 * dpi_scale
+        for dx, dy in ((4, 3), (4, -12), (-6 - 5.0 * len(text), 3), (-6 - 5.0 * len(text), -12)):
+            box = (px + dx * dpi_scale, py + dy * dpi_scale, px + dx * dpi_scale + w, py + dy * dpi_scale + h)
+            clash = any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3] for b in placed)
+            clash = clash or any(box[0] - 3 < mx < box[2] + 3 and box[1] - 3 < my < box[3] + 3 for mx, my in markers)
+            if not clash:
+                placed.append(box)
+                ax.annotate(text, (x, y), fontsize=7, xytext=(dx, dy), textcoords="offset points")
+                break
 
 
 def by_series(renders):
@@ -55,7 +91,7 @@ def linear_fit(x, y):
 def time_vs_rpp(series, path, title):
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for i, (name, rs) in enumerate(series.items()):
-        x = [r["max_rays_per_pixel"] for r in rs]
+        x = [mean_rpp(r) for r in rs]
         y = [render_seconds(r) for r in rs]
         colour = f"C{i % 10}"
         fit = linear_fit(x, y)
@@ -64,8 +100,12 @@ def time_vs_rpp(series, path, title):
         if fit is not None:
             xs = np.linspace(min(x), max(x), 50)
             ax.plot(xs, fit[0] * xs + fit[1], "-", color=colour, alpha=0.6)
-    ax.set_xlabel("rays per pixel (maximum, n x n)")
-    ax.set_ylabel("render time (s): trace + snapshot")
+    all_x = [mean_rpp(r) for rs in series.values() for r in rs]
+    all_y = [render_seconds(r) for rs in series.values() for r in rs]
+    log_if_wide(ax, "x", all_x)
+    log_if_wide(ax, "y", all_y)
+    ax.set_xlabel("mean primary rays per pixel traced")
+    ax.set_ylabel("render time (s): trace + Snapshot")
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
@@ -91,18 +131,18 @@ def error_vs_time(series, path, key, ylabel, title):
         if not pts:
             continue
         ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=f"C{i % 10}", label=name)
-        for t, e, rpp in pts:
-            ax.annotate(str(rpp), (t, e), fontsize=7, xytext=(3, 3), textcoords="offset points")
-        points += [(t, e) for t, e, _ in pts]
+        points += pts
     if points:
-        front = pareto(points)
+        front = pareto([(t, e) for t, e, _ in points])
         ax.plot([p[0] for p in front], [p[1] for p in front], "k--", lw=1, label="Pareto front")
         ax.scatter([p[0] for p in front], [p[1] for p in front], s=90, facecolors="none", edgecolors="k")
-    ax.set_xlabel("render time (s): trace + snapshot")
+    log_if_wide(ax, "x", [t for t, _, _ in points])
+    ax.set_xlabel("render time (s): trace + Snapshot")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
-    ax.grid(alpha=0.3)
+    ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
+    label_points(ax, [(t, e, str(rpp)) for t, e, rpp in points])
     save(fig, path)
 
 
@@ -124,10 +164,10 @@ def main(argv):
     metrics = [r.get("metrics", {}) for r in renders]
     if any("pct_error_flip" in m for m in metrics):
         error_vs_time(series, os.path.join(out, "plots", "error_vs_time.png"), "pct_error_flip",
-                      "% pixels in error (FLIP)", "Speed against accuracy (points: rpp)")
+                      "% pixels in error (FLIP)", "Speed against accuracy (labels: rpp)")
     elif any("pct_error_mse" in m for m in metrics):
         error_vs_time(series, os.path.join(out, "plots", "error_vs_time.png"), "pct_error_mse",
-                      "% pixels in error (MSE)", "Speed against accuracy (points: rpp)")
+                      "% pixels in error (MSE)", "Speed against accuracy (labels: rpp)")
     return 0
 
 

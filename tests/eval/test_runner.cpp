@@ -145,6 +145,13 @@ TEST_F(Runner, MetricsAgainstTheReference) {
     EXPECT_GT(r.mapQuality["precision"].get<double>(), 0.0);  // FLIP spreads less wide than the band
     EXPECT_TRUE(r.reference.has_value());
     EXPECT_TRUE(r.oneRay.has_value());
+    // The report's crops: none where the render is the reference, the edge column where it errs.
+    EXPECT_TRUE(same.metrics["worst_regions"].empty());
+    ASSERT_FALSE(coarse.metrics["worst_regions"].empty());
+    const nlohmann::ordered_json& worst = coarse.metrics["worst_regions"][0];
+    EXPECT_LE(worst["x"].get<int>(), FakeBackend::kW / 2);
+    EXPECT_GT(worst["x"].get<int>() + worst["size"].get<int>(), FakeBackend::kW / 2);
+    EXPECT_GT(worst["flip_mean"].get<double>(), 0.0);
 }
 
 TEST_F(Runner, ReferenceAndOneRayRendersAreAddedWhenMissing) {
@@ -187,6 +194,55 @@ TEST_F(Runner, ReportFilesAndTables) {
                           "plots turned off"})
         EXPECT_NE(html.find(s), std::string::npos) << s;
     EXPECT_EQ(html.find("file://"), std::string::npos);  // relative links only
+}
+
+TEST_F(Runner, ViewerDataNamesEveryRenderAndOnlyFilesThatExist) {
+    FakeBackend backend;
+    run(backend);
+    const std::string html = test::readText(out_ / "report.html");
+    const std::string open = "<script type=\"application/json\" id=\"aamap-viewer-data\">";
+    const std::size_t begin = html.find(open);
+    ASSERT_NE(begin, std::string::npos);
+    const std::size_t end = html.find("</script>", begin);
+    const nlohmann::json data = nlohmann::json::parse(html.substr(begin + open.size(), end - begin - open.size()));
+    EXPECT_EQ(data["renders"].size(), 6u);
+    EXPECT_EQ(data["width"].get<int>(), FakeBackend::kW);
+    for (const nlohmann::json& r : data["renders"])
+        for (const auto& [layer, file] : r["layers"].items())
+            if (!file.is_null()) {
+                EXPECT_TRUE(fs::is_regular_file(out_ / file.get<std::string>())) << file;
+            }
+    EXPECT_EQ(data["reference"], "reference.png");
+    EXPECT_NE(html.find("<script>"), std::string::npos);  // the viewer's script is on the page itself
+    EXPECT_EQ(html.find("http://"), std::string::npos);   // nothing to fetch from a network
+    EXPECT_EQ(html.find("https://"), std::string::npos);
+}
+
+TEST_F(Runner, AFailedPlotScriptLinksNoStalePlots) {
+    FakeBackend backend;
+    run(backend);
+    fs::create_directories(out_ / "plots");
+    std::ofstream(out_ / "plots/time_vs_rpp.png") << "an earlier run's plot";
+    ::setenv("AAMAP_PYTHON", "/bin/false", 1);  // runs, and fails
+    std::ifstream in(out_ / "results.json");
+    writeReport(out_, nlohmann::ordered_json::parse(in), true);
+    ::unsetenv("AAMAP_PYTHON");
+    const std::string html = test::readText(out_ / "report.html");
+    EXPECT_NE(html.find("What went wrong"), std::string::npos);
+    EXPECT_NE(html.find("failed (exit status 1)"), std::string::npos);
+    EXPECT_EQ(html.find("plots/time_vs_rpp.png"), std::string::npos);
+    EXPECT_FALSE(fs::exists(out_ / "plots/time_vs_rpp.png"));
+}
+
+TEST(ReadableNumber, ShortestFormForFloatsThreeDigitsOtherwise) {
+    EXPECT_EQ(readableNumber(static_cast<double>(0.1f)), "0.1");  // not 0.10000000149011612
+    EXPECT_EQ(readableNumber(0.1), "0.1");
+    EXPECT_EQ(readableNumber(36.0), "36");
+    EXPECT_EQ(readableNumber(0.123456789), "0.123");
+    EXPECT_EQ(readableNumber(12.3456789), "12.3");
+    EXPECT_EQ(readableNumber(1234.56789), "1230");
+    EXPECT_EQ(readableNumber(0.000123456), "0.000123");
+    EXPECT_EQ(readableNumber(NAN), "—");
 }
 
 TEST_F(Runner, MissingPythonDegradesWithAWarning) {
