@@ -33,6 +33,8 @@ std::vector<std::string> leaves() {
         "snapshot.scale", "snapshot.area_light_samples", "snapshot.blur_radius", "snapshot.noise_floor",
         "snapshot.gain", "snapshot.map", "shading.area_light_samples", "shading.mode", "shading.max_depth",
         "shading.russian_roulette", "shading.roulette_depth", "shading.max_specular_depth", "shading.light_selection",
+        "shading.cache.bounces", "shading.cache.divisions", "shading.cache.supersamples", "shading.cache.accuracy",
+        "shading.cache.resolution", "shading.cache.grid_step",
         "light_file",
         "renders.#.name", "renders.#.series", "renders.#.strategy", "renders.#.rpp",
         "reference.type", "reference.rpp", "reference.mode", "reference.path",
@@ -112,7 +114,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
 
     MapReader shading(ctx, top.node("shading"), "shading",
                       {"area_light_samples", "mode", "max_depth", "russian_roulette", "roulette_depth",
-                       "max_specular_depth", "light_selection"});
+                       "max_specular_depth", "light_selection", "cache"});
     shading.getInt("area_light_samples", c.shading.areaLightSamples, 1, 4096);
     shading.getString("mode", c.shading.mode);
     detail::checkShadingMode(ctx, shading.node("mode"), "shading.mode", c.shading.mode);
@@ -123,6 +125,15 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     shading.getString("light_selection", c.shading.lightSelection);
     detail::checkOneOf(ctx, shading.node("light_selection"), "shading.light_selection", c.shading.lightSelection,
                        {"contribution", "power"});
+    MapReader cache(ctx, shading.node("cache"), "shading.cache",
+                    {"bounces", "divisions", "supersamples", "accuracy", "resolution", "grid_step"});
+    ShadingConfig::Cache& ic = c.shading.cache;
+    cache.getInt("bounces", ic.bounces, 0, 16);
+    cache.getInt("divisions", ic.divisions, 4, 1 << 16);
+    cache.getInt("supersamples", ic.supersamples, 0, 1 << 16);
+    cache.getDouble("accuracy", ic.accuracy, 0.0, 1.0, true);
+    cache.getInt("resolution", ic.resolution, 0, 1 << 16);
+    cache.getInt("grid_step", ic.gridStep, 1, 64);
 
     c.renders = detail::readRenders(ctx, top.node("renders"));
     c.reference = detail::readReference(ctx, top.node("reference"), c.renders);
@@ -210,9 +221,15 @@ Json snapshotJson(const ExperimentConfig& c) {
 // What every image of the experiment depends on, with paths resolved.
 Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = "") {
     const ShadingConfig& s = c.shading;
-    return {{"area_light_samples", s.areaLightSamples}, {"mode", modeOverride.empty() ? s.mode : modeOverride},
+    Json j = {{"area_light_samples", s.areaLightSamples}, {"mode", modeOverride.empty() ? s.mode : modeOverride},
             {"max_depth", s.maxDepth}, {"russian_roulette", s.russianRoulette}, {"roulette_depth", s.rouletteDepth},
             {"max_specular_depth", s.maxSpecularDepth}, {"light_selection", s.lightSelection}};
+    // The cache's settings only when they differ from the defaults: other configs keep their keys.
+    if (!(s.cache == ShadingConfig::Cache{}))
+        j["cache"] = {{"bounces", s.cache.bounces}, {"divisions", s.cache.divisions},
+                      {"supersamples", s.cache.supersamples}, {"accuracy", s.cache.accuracy},
+                      {"resolution", s.cache.resolution}, {"grid_step", s.cache.gridStep}};
+    return j;
 }
 
 Json cameraJson(const CameraConfig& cam) {

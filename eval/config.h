@@ -54,6 +54,16 @@ struct ShadingConfig {
     int rouletteDepth = 5;        // path: roulette from this segment on
     int maxSpecularDepth = 8;     // direct/cache: mirror and glass bounces
     std::string lightSelection = "contribution";  // contribution | power: which light a shadow ray goes to
+    // cache: the irradiance cache (docs/irradiance-cache.md); Radiance's -ab -ad -as -aa -ar.
+    struct Cache {
+        int bounces = 1;          // diffuse bounces through the cache; 0: shades as direct
+        int divisions = 512;      // hemisphere samples of a record
+        int supersamples = 128;   // extra samples to the cells with the largest differences
+        double accuracy = 0.2;    // a record is used where its error is below this
+        int resolution = 64;      // minimum record radius = scene size / resolution (0: none)
+        int gridStep = 4;         // the pre-pass takes one camera ray per grid_step x grid_step pixels
+        bool operator==(const Cache&) const = default;
+    } cache;
 };
 
 // One concrete render, after sweep expansion (a renders[] entry with list values becomes the

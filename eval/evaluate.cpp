@@ -133,21 +133,24 @@ Json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageG
             {"image", "aliasing.png"}};
 }
 
-Json evaluateRenderCauses(const PixelFacts& facts, const ImageGrey& flipError, const ImageGrey& oneRayError,
-                          const Image<std::uint16_t>& rays, float threshold, const fs::path& outDir,
-                          const std::string& name, std::vector<std::string>& outputs) {
+Json evaluateRenderCauses(const PixelFacts& facts, const ImageRGB& reference, const ImageRGB& test, float exposure,
+                          const ImageGrey& flipError, const ImageGrey& oneRayError, const Image<std::uint16_t>& rays,
+                          float threshold, const fs::path& outDir, const std::string& name,
+                          std::vector<std::string>& outputs) {
     ImageRGB8 image;
-    const metrics::CauseCounts c = metrics::renderCauses(facts, flipError, oneRayError, rays, threshold, &image);
+    const Image<std::uint8_t> own = metrics::ownDisplayDifference(test, reference, exposure);
+    const metrics::CauseCounts c = metrics::renderCauses(facts, flipError, oneRayError, rays, &own, threshold, &image);
     const std::string file = name + ".causes.png";
     writePng(outDir / file, image);
     outputs.push_back(file);
     return causesJson(c, file);
 }
 
-Json evaluateMapCauses(const PixelFacts& facts, const ImageGrey& oneRayError, const ImageGrey& aamap, float threshold,
-                       const fs::path& outDir) {
+Json evaluateMapCauses(const PixelFacts& facts, const ImageRGB& reference, const ImageRGB& oneRay, float exposure,
+                       const ImageGrey& oneRayError, const ImageGrey& aamap, float threshold, const fs::path& outDir) {
     ImageRGB8 image;
-    const metrics::CauseCounts c = metrics::mapCauses(facts, oneRayError, aamap, threshold, &image);
+    const Image<std::uint8_t> own = metrics::ownDisplayDifference(oneRay, reference, exposure);
+    const metrics::CauseCounts c = metrics::mapCauses(facts, oneRayError, aamap, &own, threshold, &image);
     writePng(outDir / "causes.png", image);
     return causesJson(c, "causes.png");
 }

@@ -38,13 +38,15 @@ nlohmann::ordered_json evaluateMap(const ImageRGB& oneRay, const ImageRGB& refer
 // Why a render's error pixels were missed and its extra rays wasted (eval/metrics/pixel_causes.h):
 // {missed: {cause: pixels}, wasted: {...}, missed_total, wasted_total, image}. Writes
 // NAME.causes.png and appends it to outputs.
-nlohmann::ordered_json evaluateRenderCauses(const PixelFacts& facts, const ImageGrey& flipError,
-                                            const ImageGrey& oneRayError, const Image<std::uint16_t>& rays,
-                                            float threshold, const std::filesystem::path& outDir,
-                                            const std::string& name, std::vector<std::string>& outputs);
+nlohmann::ordered_json evaluateRenderCauses(const PixelFacts& facts, const ImageRGB& reference, const ImageRGB& test,
+                                            float exposure, const ImageGrey& flipError, const ImageGrey& oneRayError,
+                                            const Image<std::uint16_t>& rays, float threshold,
+                                            const std::filesystem::path& outDir, const std::string& name,
+                                            std::vector<std::string>& outputs);
 
 // The same for the aamap against true aliasing; writes causes.png.
-nlohmann::ordered_json evaluateMapCauses(const PixelFacts& facts, const ImageGrey& oneRayError, const ImageGrey& aamap,
+nlohmann::ordered_json evaluateMapCauses(const PixelFacts& facts, const ImageRGB& reference, const ImageRGB& oneRay,
+                                         float exposure, const ImageGrey& oneRayError, const ImageGrey& aamap,
                                          float threshold, const std::filesystem::path& outDir);
 
 // The red overlay: the display image greyed, with red mixed in by alpha = min(1, error / (2 t)),

@@ -485,7 +485,8 @@ Results Runner::run() {
             if (causes) {
                 facts = loadOrComputeFacts();
                 results.mapQuality["causes"] =
-                    evaluateMapCauses(*facts, oneRayError, *aamap_, static_cast<float>(c_.metrics.flipThreshold), out_);
+                    evaluateMapCauses(*facts, *reference, traced_.at(oneRayJob->key).image, exposure, oneRayError, *aamap_,
+                                      static_cast<float>(c_.metrics.flipThreshold), out_);
             }
         }
         for (std::size_t i = 0; i < listed; ++i) {
@@ -494,7 +495,7 @@ Results Runner::run() {
             ImageGrey flipError;
             rec.metrics = evaluateRender(*reference, t.image, c_.metrics, exposure, out_, rec.name, rec.outputs, &flipError);
             if (facts)
-                rec.metrics["causes"] = evaluateRenderCauses(*facts, flipError, oneRayError, t.rays,
+                rec.metrics["causes"] = evaluateRenderCauses(*facts, *reference, t.image, exposure, flipError, oneRayError, t.rays,
                                                              static_cast<float>(c_.metrics.flipThreshold), out_,
                                                              rec.name, rec.outputs);
         }

@@ -61,6 +61,14 @@ ShadingSettings toShadingSettings(const ExperimentConfig& c, const RenderConfig&
     s.rouletteDepth = c.shading.rouletteDepth;
     s.maxSpecularDepth = c.shading.maxSpecularDepth;
     s.lightSelection = c.shading.lightSelection == "power" ? LightSelection::Power : LightSelection::Contribution;
+    const ShadingConfig::Cache& ic = c.shading.cache;
+    s.cache.bounces = ic.bounces;
+    s.cache.divisions = ic.divisions;
+    s.cache.supersamples = ic.supersamples;
+    s.cache.accuracy = static_cast<float>(ic.accuracy);
+    s.cache.resolution = ic.resolution;
+    s.cacheGridStep = ic.gridStep;
+    s.cache.seed = c.seed;  // the cache's records, like every sample, follow the experiment's seed
     return s;
 }
 

@@ -18,6 +18,7 @@ struct CauseInfo {
 
 // In PixelCause order. Colours: distinct hues, readable on black.
 constexpr std::array<CauseInfo, kPixelCauses> kCauses = {{
+    {"beside an error", "beside_error", {90, 70, 60}},
     {"interpolated", "interpolated", {255, 255, 255}},
     {"emitter", "emitter", {255, 230, 0}},
     {"glass", "glass", {0, 220, 255}},
@@ -44,14 +45,16 @@ glm::u8vec3 darker(glm::u8vec3 c) { return {static_cast<std::uint8_t>(c.r / 3), 
 // Counts and paints one pixel set of each kind.
 template <class Missed, class Wasted>
 CauseCounts countCauses(const PixelFacts& facts, Missed&& missed, Wasted&& wasted, ImageRGB8* image,
-                        const Image<std::uint16_t>* rays) {
+                        const Image<std::uint16_t>* rays, const Image<std::uint8_t>* own) {
     CauseCounts counts;
     if (image) *image = ImageRGB8(facts.width(), facts.height());
     for (int y = 0; y < facts.height(); ++y)
         for (int x = 0; x < facts.width(); ++x) {
             const bool isMissed = missed(x, y), isWasted = !isMissed && wasted(x, y);
             if (!isMissed && !isWasted) continue;
-            const PixelCause cause = classify(facts.at(x, y), rays != nullptr && rays->at(x, y) == 0);
+            const PixelCause cause = isMissed && own != nullptr && own->at(x, y) == 0
+                                         ? PixelCause::BesideError
+                                         : classify(facts.at(x, y), rays != nullptr && rays->at(x, y) == 0);
             const auto i = static_cast<std::size_t>(cause);
             (isMissed ? counts.missed : counts.wasted)[i] += 1;
             if (image) image->at(x, y) = isMissed ? kCauses[i].colour : darker(kCauses[i].colour);
@@ -86,22 +89,25 @@ std::uint64_t CauseCounts::missedTotal() const { return std::accumulate(missed.b
 std::uint64_t CauseCounts::wastedTotal() const { return std::accumulate(wasted.begin(), wasted.end(), std::uint64_t{0}); }
 
 CauseCounts renderCauses(const PixelFacts& facts, const ImageGrey& error, const ImageGrey& oneRayError,
-                         const Image<std::uint16_t>& rays, float threshold, ImageRGB8* image) {
+                         const Image<std::uint16_t>& rays, const Image<std::uint8_t>* own, float threshold,
+                         ImageRGB8* image) {
     requireSizes(facts, error.width(), error.height(), "error map");
+    if (own) requireSizes(facts, own->width(), own->height(), "own-difference mask");
     requireSizes(facts, oneRayError.width(), oneRayError.height(), "1-ray error map");
     requireSizes(facts, rays.width(), rays.height(), "rays-per-pixel image");
     return countCauses(
         facts, [&](int x, int y) { return error.at(x, y) > threshold; },
-        [&](int x, int y) { return rays.at(x, y) > 1 && oneRayError.at(x, y) <= threshold; }, image, &rays);
+        [&](int x, int y) { return rays.at(x, y) > 1 && oneRayError.at(x, y) <= threshold; }, image, &rays, own);
 }
 
-CauseCounts mapCauses(const PixelFacts& facts, const ImageGrey& oneRayError, const ImageGrey& aamap, float threshold,
-                      ImageRGB8* image) {
+CauseCounts mapCauses(const PixelFacts& facts, const ImageGrey& oneRayError, const ImageGrey& aamap,
+                      const Image<std::uint8_t>* own, float threshold, ImageRGB8* image) {
+    if (own) requireSizes(facts, own->width(), own->height(), "own-difference mask");
     requireSizes(facts, oneRayError.width(), oneRayError.height(), "1-ray error map");
     requireSizes(facts, aamap.width(), aamap.height(), "aamap");
     return countCauses(
         facts, [&](int x, int y) { return oneRayError.at(x, y) > threshold && !(aamap.at(x, y) > 0.0f); },
-        [&](int x, int y) { return aamap.at(x, y) > 0.0f && oneRayError.at(x, y) <= threshold; }, image, nullptr);
+        [&](int x, int y) { return aamap.at(x, y) > 0.0f && oneRayError.at(x, y) <= threshold; }, image, nullptr, own);
 }
 
 }  // namespace aamap::metrics

@@ -2,6 +2,8 @@
 // Why a pixel is in error, or why rays were spent on it for nothing: the instrument for improving
 // the aamap (docs/experiments.md, "Causes"). Each pixel gets one cause from the tracer's pixel
 // facts (core/pixel_facts.h), by a fixed priority: the first that holds of
+//   beside an error (missed pixels only: the pixel's own display value equals the reference's;
+//   FLIP rose there from a neighbour's error, and no ray at this pixel can change it),
 //   interpolated (the render shot no ray there: a Space block filled it in), emitter, glass,
 //   planar mirror, curved mirror, silhouette, shadow boundary, penumbra, texture, highlight,
 //   crease, other.
@@ -22,6 +24,7 @@
 namespace aamap::metrics {
 
 enum class PixelCause : std::uint8_t {
+    BesideError,
     Interpolated,
     Emitter,
     Glass,
@@ -50,14 +53,17 @@ struct CauseCounts {
 };
 
 // One render: `error` its FLIP map against the reference, `oneRayError` the 1-ray image's,
-// `rays` its primary rays per pixel (0: interpolated). Fills `image` (if not null) with missed
-// pixels in their cause's colour, wasted ones in a darker shade of it, the rest black.
+// `rays` its primary rays per pixel (0: interpolated), `own` (may be null) 1 where the render's own
+// display value differs from the reference's (map_quality.h, ownDisplayDifference). Fills `image`
+// (if not null) with missed pixels in their cause's colour, wasted ones in a darker shade of it,
+// the rest black.
 CauseCounts renderCauses(const PixelFacts& facts, const ImageGrey& error, const ImageGrey& oneRayError,
-                         const Image<std::uint16_t>& rays, float threshold, ImageRGB8* image);
+                         const Image<std::uint16_t>& rays, const Image<std::uint8_t>* own, float threshold,
+                         ImageRGB8* image);
 
 // The aamap: missed = oneRayError > threshold and aamap == 0; wasted = aamap > 0 and
-// oneRayError <= threshold. `image` as above.
-CauseCounts mapCauses(const PixelFacts& facts, const ImageGrey& oneRayError, const ImageGrey& aamap, float threshold,
-                      ImageRGB8* image);
+// oneRayError <= threshold; `own` that of the 1-ray image. `image` as above.
+CauseCounts mapCauses(const PixelFacts& facts, const ImageGrey& oneRayError, const ImageGrey& aamap,
+                      const Image<std::uint8_t>* own, float threshold, ImageRGB8* image);
 
 }  // namespace aamap::metrics

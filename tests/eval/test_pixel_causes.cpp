@@ -23,6 +23,7 @@ using namespace pixel_fact;
 
 TEST(PixelCauses, OneCausePerPixelByPriority) {
     EXPECT_EQ(classify(0, false), PixelCause::Other);
+    EXPECT_NE(classify(0xffff, false), PixelCause::BesideError) << "facts alone never say 'beside an error'";
     EXPECT_EQ(classify(Silhouette | pixel_fact::Texture, true), PixelCause::Interpolated) << "no ray looked at it";
     EXPECT_EQ(classify(Silhouette | pixel_fact::Texture | ShadowBoundary, false), PixelCause::Silhouette);
     EXPECT_EQ(classify(Glass | Silhouette, false), PixelCause::Glass);
@@ -56,7 +57,8 @@ TEST(PixelCauses, RenderAndMapCountsFollowTheirDefinitions) {
     rays.at(2, 0) = 0;       // an interpolated pixel, in error
     error.at(2, 0) = 0.3f;
     ImageRGB8 image;
-    const CauseCounts r = renderCauses(facts, error, oneRay, rays, 0.1f, &image);
+    Image<std::uint8_t> own(4, 1, 1);
+    const CauseCounts r = renderCauses(facts, error, oneRay, rays, &own, 0.1f, &image);
     EXPECT_EQ(r.missed[static_cast<int>(PixelCause::Silhouette)], 1u);
     EXPECT_EQ(r.missed[static_cast<int>(PixelCause::Interpolated)], 1u);
     EXPECT_EQ(r.wasted[static_cast<int>(PixelCause::Texture)], 1u);
@@ -66,11 +68,17 @@ TEST(PixelCauses, RenderAndMapCountsFollowTheirDefinitions) {
     EXPECT_EQ(image.at(3, 0), glm::u8vec3(0)) << "neither missed nor wasted";
 
     aamap.at(1, 0) = 1.0f;  // flags the texture (not aliased) and misses the silhouette
-    const CauseCounts m = mapCauses(facts, oneRay, aamap, 0.1f, nullptr);
+    const CauseCounts m = mapCauses(facts, oneRay, aamap, nullptr, 0.1f, nullptr);
     EXPECT_EQ(m.missed[static_cast<int>(PixelCause::Silhouette)], 1u);
     EXPECT_EQ(m.wasted[static_cast<int>(PixelCause::Texture)], 1u);
     EXPECT_EQ(m.missedTotal() + m.wastedTotal(), 2u);
-    EXPECT_THROW(renderCauses(PixelFacts(3, 1, 0), error, oneRay, rays, 0.1f, nullptr), std::invalid_argument);
+    EXPECT_THROW(renderCauses(PixelFacts(3, 1, 0), error, oneRay, rays, nullptr, 0.1f, nullptr), std::invalid_argument);
+    // A missed pixel whose own display value equals the reference's is beside an error, whatever
+    // its facts: FLIP rose there from a neighbour.
+    own.at(0, 0) = 0;
+    const CauseCounts spread = renderCauses(facts, error, oneRay, rays, &own, 0.1f, nullptr);
+    EXPECT_EQ(spread.missed[static_cast<int>(PixelCause::BesideError)], 1u);
+    EXPECT_EQ(spread.missed[static_cast<int>(PixelCause::Silhouette)], 0u);
 }
 
 TEST(PixelCauses, RunnerReportsThemAndCachesTheFacts) {
@@ -96,6 +104,7 @@ TEST(PixelCauses, RunnerReportsThemAndCachesTheFacts) {
         for (const auto& [k, v] : missed.items()) sum += v.get<std::uint64_t>();
         EXPECT_EQ(sum, r.metrics["causes"]["missed_total"].get<std::uint64_t>());
         EXPECT_EQ(missed["interpolated"], 0);
+        EXPECT_EQ(missed["other"], 0) << "the fake's errors sit on its edge, or beside it";
     }
     EXPECT_TRUE(fs::exists(dir / "out" / "causes.png"));
     const std::string html = [&] {
