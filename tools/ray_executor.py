@@ -243,8 +243,8 @@ def main():
         start = time.monotonic()
         if args.address:
             ray.init(address=args.address, log_to_driver=False)
-        else:  # a cluster of this machine only, reachable from nowhere else
-            ray.init(include_dashboard=False, log_to_driver=False, _node_ip_address="127.0.0.1")
+        else:  # a cluster of this machine only, for this run
+            ray.init(include_dashboard=False, log_to_driver=False)
         try:
             failures = run_on_ray(ray, args.binary, work, max_retries)
         finally:

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`aamap run --executor ray` on clusters of this machine only (127.0.0.1).
+"""`aamap run --executor ray` on Ray clusters of this machine only.
 
 1. equal: a run through a local Ray that the executor starts and stops gives the cache entries
    (images, rays per pixel, aamap) bit for bit and the metrics of a plain local run.
@@ -10,13 +10,14 @@
    again computes only that render.
 4. resumed: the driver is killed (SIGKILL) mid-run; nothing half-written is left under a final
    name, and the same command again computes only what is missing.
-2-4 share one cluster that this script starts. Exit 77 (skipped) when the venv lacks ray.
+2-4 share one cluster that this script starts; every node of it is this machine. Exit 77 (skipped) when the venv lacks ray.
 """
 import argparse
 import json
 import os
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -37,10 +38,13 @@ failures = []
 KILLED = set()  # Ray workers this script killed
 
 
-def check(condition, message):
+def check(condition, message, detail=""):
+    """detail (a command's stderr, say) is printed only when the check fails."""
     print(f"  {'ok' if condition else 'FAILED'}: {message}", flush=True)
     if not condition:
         failures.append(message)
+        if detail:
+            print(detail[-2000:], flush=True)
     return condition
 
 
@@ -103,17 +107,29 @@ def kill_worker_of(key, proc):
     return True
 
 
+def raylet_count():
+    count = 0
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            count += open(f"/proc/{pid}/comm").read().strip() == "raylet"
+        except OSError:
+            pass
+    return count
+
+
 def scenario_equal():
     print("equal: a local Ray started by the executor against a plain run", flush=True)
     local, distributed = os.path.join(ARGS.work, "local"), os.path.join(ARGS.work, "equal")
     plain = aamap(["run", CONFIG_PATH, "-o", local])
-    check(plain.returncode == 0, f"the plain run succeeds ({plain.stderr[-300:]})")
+    check(plain.returncode == 0, "the plain run succeeds", plain.stderr)
     items = work_list(distributed)["items"]
     check([i["kind"] for i in items] == ["snapshot"] + ["render"] * 3, "--list-work: the Snapshot first, 3 renders")
+    raylets = raylet_count()
     ray_run = aamap(["run", CONFIG_PATH, "-o", distributed, "--executor", "ray"])
-    check(ray_run.returncode == 0, f"the Ray run succeeds ({ray_run.stderr[-600:]})")
+    check(ray_run.returncode == 0, "the Ray run succeeds", ray_run.stderr)
     check("4 of 4 item(s) computed" in ray_run.stderr, "the Ray run computed the 4 items")
     check(" 0 traced, " in ray_run.stderr, "the local run after it traced nothing")
+    check(raylet_count() == raylets, "the local Ray the executor started is stopped")
     same_images(entries(os.path.join(local, "cache")), entries(os.path.join(distributed, "cache")), "equal")
     a = json.load(open(os.path.join(local, "results.json")))
     b = json.load(open(os.path.join(distributed, "results.json")))
@@ -137,11 +153,11 @@ def scenario_retried(address):
     killed = kill_worker_of(key, proc)
     _, err = proc.communicate(timeout=300)
     check(killed, "a worker running the reference was killed")
-    check(proc.returncode == 0, f"the run succeeds after the retry ({err[-600:]})")
+    check(proc.returncode == 0, "the run succeeds after the retry", err)
     check("4 of 4 item(s) computed" in err, "every item computed")
     check_dir = os.path.join(ARGS.work, "retried_check")
     alone = aamap(["run", CONFIG_PATH, "-o", check_dir, *SLOW_REFERENCE, "--only", key])
-    check(alone.returncode == 0, f"the reference alone in this process ({alone.stderr[-300:]})")
+    check(alone.returncode == 0, "the reference alone in this process", alone.stderr)
     same_images({key: entries(os.path.join(out, "cache"))[key]}, entries(os.path.join(check_dir, "cache")),
                 "retried reference")
     return entries(os.path.join(out, "cache"))
@@ -162,7 +178,7 @@ def scenario_exhausted(address, retried):
     check(sorted(entries(os.path.join(out, "cache"))) == sorted(k for k in retried if k != key),
           "every other entry is committed")
     again = subprocess.run(command, stderr=subprocess.PIPE, text=True)
-    check(again.returncode == 0, f"the same command again succeeds ({again.stderr[-600:]})")
+    check(again.returncode == 0, "the same command again succeeds", again.stderr)
     check("1 of 1 item(s) computed" in again.stderr, "it computed only the reference")
     same_images(retried, entries(os.path.join(out, "cache")), "exhausted then rerun")
 
@@ -184,7 +200,7 @@ def scenario_resumed(address, retried):
     before = entries(cache)
     check(0 < len(before) < 4, f"the killed driver had committed some items, not all ({len(before)})")
     again = subprocess.run(command, stderr=subprocess.PIPE, text=True)
-    check(again.returncode == 0, f"the same command again succeeds ({again.stderr[-600:]})")
+    check(again.returncode == 0, "the same command again succeeds", again.stderr)
     missing = 4 - len(before)
     check(f"{missing} of {missing} item(s) computed" in again.stderr, f"it computed only the {missing} missing item(s)")
     check(not any(".tmp-" in e for e in os.listdir(cache)), "no temporaries left in the cache")
@@ -205,10 +221,19 @@ def main():
         f.write(CONFIG)
     start = time.monotonic()
     scenario_equal()
-    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False, _node_ip_address="127.0.0.1")
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
     try:
         address = ray.get_runtime_context().gcs_address
-        check(address.startswith("127.0.0.1:"), f"the shared cluster listens on 127.0.0.1 ({address})")
+        # Ray on Linux replaces 127.0.0.1 by the machine's own interface address: check that
+        # every node is this machine (an address a socket here can bind to).
+        for node in ray.nodes():
+            with socket.socket() as probe:
+                try:
+                    probe.bind((node["NodeManagerAddress"], 0))
+                    local = True
+                except OSError:
+                    local = False
+            check(local, f"the cluster's node {node['NodeManagerAddress']} is this machine")
         retried = scenario_retried(address)
         scenario_exhausted(address, retried)
         scenario_resumed(address, retried)
