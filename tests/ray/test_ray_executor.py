@@ -9,7 +9,8 @@
    reported by name, the others are committed, the exit status is non-zero; the same command
    again computes only that render.
 4. resumed: the driver is killed (SIGKILL) mid-run; nothing half-written is left under a final
-   name, and the same command again computes only what is missing.
+   name, and the same command again computes only what is missing (with timing.same_machine,
+   whose renders of one rpp are pinned to one node).
 2-4 share one cluster that this script starts; every node of it is this machine. Exit 77 (skipped) when the venv lacks ray.
 """
 import argparse
@@ -187,7 +188,10 @@ def scenario_resumed(address, retried):
     print("resumed: the driver is killed mid-run, then the same command runs again", flush=True)
     out = os.path.join(ARGS.work, "resumed")
     cache = os.path.join(out, "cache")
-    command = [ARGS.aamap, "run", CONFIG_PATH, "-o", out, *SLOW_REFERENCE, "--executor", "ray", "--ray-address", address]
+    # timing.same_machine pins each rpp's renders to one node (the cache keys do not depend on it)
+    command = [ARGS.aamap, "run", CONFIG_PATH, "-o", out, *SLOW_REFERENCE, "--set", "timing.same_machine=true",
+               "--executor", "ray", "--ray-address", address]
+    check(any(i["group"] for i in work_list(out, command[5:9])["items"]), "timing.same_machine: grouped items")
     proc = subprocess.Popen(command, stderr=subprocess.DEVNULL)
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and proc.poll() is None:  # until the first entry is committed
