@@ -99,10 +99,14 @@ def die_with_parent():
     ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
 
 
+class AamapKilled(Exception):
+    """The worker's aamap died of a signal (the kernel's OOM killer, say): retried like a dead worker."""
+
+
 def compute(item, binary, snapshot_entry):
     """One item on a worker: {"ok", "host", "cpu", "seconds", "entry" | "error"}. A failure of the
     binary is returned, not raised: it would fail again on any worker, so Ray must not retry it
-    (Ray retries the task only when its worker dies)."""
+    (Ray retries the task when its worker dies, or its aamap is killed: AamapKilled)."""
     import tempfile
 
     host = socket.gethostname()
@@ -126,6 +130,8 @@ def compute(item, binary, snapshot_entry):
             unpack(snapshot_entry["entry"], os.path.join(cache, item["needs_snapshot"]))
         proc = subprocess.run([binary, *item["args"], "--cache", cache], stdout=subprocess.PIPE,
                               stderr=subprocess.PIPE, text=True, preexec_fn=die_with_parent)
+        if proc.returncode < 0:
+            raise AamapKilled(f"{where}: aamap was killed by signal {-proc.returncode}")
         if proc.returncode != 0:
             lines = [l for l in proc.stderr.splitlines() if l.strip()]
             errors = [l for l in lines if l.startswith("aamap: error:")] or lines[-3:]
@@ -170,7 +176,7 @@ def run_on_ray(ray, binary, work, max_retries):
     submitted = {}
     cached_snapshots = {}
     for item in work["items"]:
-        options = {"name": f"aamap:{item['name']}", "max_retries": max_retries, "retry_exceptions": False}
+        options = {"name": f"aamap:{item['name']}", "max_retries": max_retries, "retry_exceptions": [AamapKilled]}
         if item["kind"] == "snapshot":
             # The Snapshot is a Vulkan render: on a GPU when the cluster has one, else lavapipe.
             options.update(num_cpus=1, num_gpus=1 if has_gpu else 0)
@@ -206,8 +212,9 @@ def run_on_ray(ray, binary, work, max_retries):
             try:
                 out = ray.get(ref)
             except Exception as e:  # the worker died more often than max_retries, or a dependency did
-                message = str(e).strip().splitlines()
-                failures.append(f"{item['name']} ({item['key']}): {type(e).__name__}: "
+                cause = getattr(e, "cause", None) or e  # a RayTaskError wraps what the task raised
+                message = str(cause).strip().splitlines()
+                failures.append(f"{item['name']} ({item['key']}): {type(cause).__name__}: "
                                 f"{message[0] if message else ''}")
                 log(f"{label}: failed: {failures[-1]}")
                 continue

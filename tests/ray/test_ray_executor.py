@@ -5,13 +5,15 @@
    (images, rays per pixel, aamap) bit for bit and the metrics of a plain local run.
 2. retried: the Ray worker running the reference is killed mid-task; Ray retries it and the
    result is the reference a local process computes.
-3. exhausted: the worker is killed more often than AAMAP_RAY_MAX_RETRIES allows; that render is
+3. exhausted: the worker, then the retry's aamap process, are killed, more often than
+   AAMAP_RAY_MAX_RETRIES=1 allows (both kinds of death are retried); that render is
    reported by name, the others are committed, the exit status is non-zero; the same command
    again computes only that render.
 4. resumed: the driver is killed (SIGKILL) mid-run; nothing half-written is left under a final
    name, and the same command again computes only what is missing (with timing.same_machine,
    whose renders of one rpp are pinned to one node).
-2-4 share one cluster that this script starts; every node of it is this machine. Exit 77 (skipped) when the venv lacks ray.
+2-4 share one cluster that this script starts; every node of it is this machine.
+Exit 77 (skipped) when the venv lacks ray.
 """
 import argparse
 import json
@@ -79,7 +81,7 @@ def same_images(a, b, what):
 
 
 def wait_for_task(key, proc, timeout=60):
-    """The pid of the Ray worker whose `aamap --only KEY` child is running."""
+    """(aamap, Ray worker): the pids of a running `aamap --only KEY` and of the worker that runs it."""
     deadline = time.monotonic() + timeout
     while time.monotonic() < deadline and proc.poll() is None:
         for pid in os.listdir("/proc"):
@@ -92,7 +94,7 @@ def wait_for_task(key, proc, timeout=60):
                     parent = int(stat[stat.rindex(")") + 2:].split()[1])  # the Ray worker
                     # Not a child that outlived a worker killed before (its parent is then another)
                     if parent not in KILLED and b"ray" in open(f"/proc/{parent}/cmdline", "rb").read():
-                        return parent
+                        return int(pid), parent
             except (OSError, ValueError):
                 continue
         time.sleep(0.005)
@@ -100,11 +102,22 @@ def wait_for_task(key, proc, timeout=60):
 
 
 def kill_worker_of(key, proc):
-    worker = wait_for_task(key, proc)
-    if worker is None:
+    """Kills the Ray worker running item KEY (its aamap dies with it)."""
+    found = wait_for_task(key, proc)
+    if found is None:
         return False
-    os.kill(worker, signal.SIGKILL)
-    KILLED.add(worker)
+    os.kill(found[1], signal.SIGKILL)
+    KILLED.add(found[1])
+    return True
+
+
+def kill_aamap_of(key, proc):
+    """Kills the aamap of item KEY, not its worker: as the kernel's OOM killer would."""
+    found = wait_for_task(key, proc)
+    if found is None:
+        return False
+    os.kill(found[0], signal.SIGKILL)
+    KILLED.add(found[0])
     return True
 
 
@@ -165,14 +178,14 @@ def scenario_retried(address):
 
 
 def scenario_exhausted(address, retried):
-    print("exhausted: the reference's worker is killed more often than the retries allow", flush=True)
+    print("exhausted: the reference is killed more often than the retries allow", flush=True)
     out = os.path.join(ARGS.work, "exhausted")
     key = reference_key(out, SLOW_REFERENCE)
     command = [ARGS.aamap, "run", CONFIG_PATH, "-o", out, *SLOW_REFERENCE, "--executor", "ray", "--ray-address", address]
     proc = subprocess.Popen(command, stderr=subprocess.PIPE, text=True, env={**os.environ, "AAMAP_RAY_MAX_RETRIES": "1"})
-    kills = sum(kill_worker_of(key, proc) for _ in range(2))
+    kills = kill_worker_of(key, proc) + kill_aamap_of(key, proc)
     _, err = proc.communicate(timeout=300)
-    check(kills == 2, "the reference's worker was killed twice (1 try + 1 retry)")
+    check(kills == 2, "the reference's worker, then the retry's aamap were killed (1 try + 1 retry)")
     check(proc.returncode != 0, "the run exits non-zero")
     check(f"aamap: error: reference ({key})" in err, "the failed render is named")
     check("3 of 4 item(s) computed" in err, "the other items completed")
