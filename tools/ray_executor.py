@@ -252,6 +252,7 @@ def main():
             ray.init(address=args.address, log_to_driver=False)
         else:  # a cluster of this machine only, for this run
             ray.init(include_dashboard=False, log_to_driver=False)
+        log(f"connected to Ray in {time.monotonic() - start:.1f} s")
         try:
             failures = run_on_ray(ray, args.binary, work, max_retries)
         finally:
