@@ -3,9 +3,11 @@
 // gives the same images. Plus the warning for speedups whose times come from different machines.
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
 #include "eval/config.h"
@@ -106,6 +108,29 @@ TEST_F(WorkItems, SameMachineGroupsTheRendersOfOneRpp) {
         EXPECT_FALSE(group.empty());
         EXPECT_EQ(names.size(), names.front() == "uniform1" ? 1u : 2u) << group;
     }
+}
+
+// The records of a distributed run keep each worker's machine; the run's warnings say when a
+// speedup mixes two of them.
+TEST_F(WorkItems, ARunWhoseRendersCameFromTwoMachinesWarns) {
+    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml");
+    FakeBackend first;
+    const Results one = runExperimentWith(c, dir_, first, RunnerOptions{"test-rev", false});
+    for (const std::string& w : one.warnings) EXPECT_EQ(w.find("different machines"), std::string::npos) << w;
+    const auto aamap4 = std::find_if(one.renders.begin(), one.renders.end(), [](const RenderRecord& r) { return r.name == "aamap4"; });
+    ASSERT_NE(aamap4, one.renders.end());
+    const fs::path record = dir_ / "cache" / aamap4->key / "record.json";
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(std::ifstream(record));
+    j["machine"]["hostname"] = "another-worker";  // as a worker elsewhere would have written it
+    std::ofstream(record) << j.dump(2);
+    FakeBackend second;
+    const Results two = runExperimentWith(c, dir_, second, RunnerOptions{"test-rev", false});
+    EXPECT_EQ(second.totalTraces(), 0);
+    const auto warned = std::find_if(two.warnings.begin(), two.warnings.end(), [](const std::string& w) {
+        return w.find("rpp 4 divide times traced on different machines") != std::string::npos &&
+               w.find("another-worker") != std::string::npos;
+    });
+    EXPECT_NE(warned, two.warnings.end());
 }
 
 RenderRecord record(const std::string& name, const std::string& series, const std::string& strategy, int rpp,
