@@ -227,6 +227,49 @@ def run_on_ray(ray, binary, work, max_retries):
     return failures
 
 
+def check_reachable(address):
+    """A HOST:PORT that accepts no connection fails at once (Ray itself would wait on it forever)."""
+    host, sep, port = address.rpartition(":")
+    if not sep or "://" in address or not port.isdigit():
+        return  # "auto", ray://...: Ray's own business
+    try:
+        socket.create_connection((host, int(port)), timeout=10).close()
+    except OSError as e:
+        fail(f"--ray-address {address}: no Ray cluster answers there ({e}); start one with "
+             f"`ray start --head --port={port}` or leave --ray-address out for a local one")
+
+
+def distribute(ray, args, command, work, max_retries):
+    """Every item of work on the cluster, committed; exits non-zero when some failed."""
+    start = time.monotonic()
+    if args.address:
+        check_reachable(args.address)
+    try:
+        if args.address:
+            ray.init(address=args.address, log_to_driver=False)
+        else:  # a cluster of this machine only, for this run
+            ray.init(include_dashboard=False, log_to_driver=False)
+    except Exception as e:  # Ray raises ConnectionError, ValueError, RuntimeError, ... here
+        where = f"the Ray cluster at {args.address}" if args.address else "a local Ray"
+        fail(f"--executor ray: cannot start or join {where}: {type(e).__name__}: {e}")
+    signal.signal(signal.SIGTERM, signal.default_int_handler)  # ray.init installs its own
+    log(f"connected to Ray in {time.monotonic() - start:.1f} s")
+    try:
+        failures = run_on_ray(ray, args.binary, work, max_retries)
+    finally:
+        ray.shutdown()
+    log(f"{len(work['items']) - len(failures)} of {len(work['items'])} item(s) computed in "
+        f"{time.monotonic() - start:.1f} s")
+    if failures:
+        for f in failures:
+            print(f"aamap: error: {f}", file=sys.stderr)
+        fail(f"{len(failures)} item(s) failed; the others are in {work['cache']}; run the same command "
+             f"again to compute only what is missing")
+    left = list_work(args.binary, command)["items"]
+    if left:
+        fail(f"still missing after the Ray run: {', '.join(i['name'] for i in left)}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--binary", required=True, help="the aamap binary (the same path on every worker)")
@@ -243,30 +286,16 @@ def main():
     except ImportError:
         fail(f"--executor ray needs the 'ray' package in {sys.executable}; run tools/python-env.sh")
 
-    # SIGTERM as SIGINT: the finally below stops a local cluster. Committed entries stay.
-    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
+    # SIGTERM as SIGINT: the finally below stops a local cluster; committed entries stay.
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
     work = list_work(args.binary, command)
     if work["items"]:
-        start = time.monotonic()
-        if args.address:
-            ray.init(address=args.address, log_to_driver=False)
-        else:  # a cluster of this machine only, for this run
-            ray.init(include_dashboard=False, log_to_driver=False)
-        log(f"connected to Ray in {time.monotonic() - start:.1f} s")
         try:
-            failures = run_on_ray(ray, args.binary, work, max_retries)
-        finally:
-            ray.shutdown()
-        log(f"{len(work['items']) - len(failures)} of {len(work['items'])} item(s) computed in "
-            f"{time.monotonic() - start:.1f} s")
-        if failures:
-            for f in failures:
-                print(f"aamap: error: {f}", file=sys.stderr)
-            fail(f"{len(failures)} item(s) failed; the others are in {work['cache']}; run the same command "
-                 f"again to compute only what is missing")
-        left = list_work(args.binary, command)["items"]
-        if left:
-            fail(f"still missing after the Ray run: {', '.join(i['name'] for i in left)}")
+            distribute(ray, args, command, work, max_retries)
+        except KeyboardInterrupt:
+            print(f"\naamap: interrupted; finished renders are kept in {work['cache']}; run the same command "
+                  f"again to resume", file=sys.stderr)
+            sys.exit(130)
     else:
         log("every Snapshot and render is cached already")
     sys.stdout.flush()
