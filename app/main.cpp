@@ -16,6 +16,7 @@
 
 #include "aamap/git_revision.h"
 #include "app/diff_command.h"
+#include "app/executor.h"
 #include "app/snapshot_command.h"
 #include "app/view_command.h"
 #include "core/error.h"
@@ -152,8 +153,9 @@ int main(int argc, char** argv) {
     CLI::App* diff = aamap::app::addDiffCommand(app, diffOptions);
     std::string configPath, outDir, device = envString("AAMAP_DEVICE");
     std::vector<std::string> overrides;
-    bool validation = envFlag("AAMAP_VALIDATION"), listDevices = false, noPlots = false;
+    bool validation = envFlag("AAMAP_VALIDATION"), listDevices = false, noPlots = false, listWork = false;
     int threads = -1;
+    std::string executor = "local", rayAddress, onlyKey, cacheDir;
     run->add_option("CONFIG", configPath, "Experiment YAML file");
     run->add_option("-o,--out", outDir, "Output folder (default: out/<config stem>)")->type_name("OUTDIR");
     run->add_option("--set", overrides, "Override a config value: key.path=value (repeatable)")
@@ -167,6 +169,15 @@ int main(int argc, char** argv) {
     run->add_option("--threads", threads, "Tracer threads (overrides the config; 0 = all)")->check(CLI::NonNegativeNumber);
     run->add_flag("--list-devices", listDevices, "Print the Vulkan devices and exit");
     run->add_flag("--no-plots", noPlots, "Skip tools/report_plots.py (the report notes it)");
+    run->add_option("--executor", executor, "Where the renders run: local (this process) or ray (a Ray cluster; "
+                                            "docs/experiments.md)")
+        ->check(CLI::IsMember({"local", "ray"}));
+    run->add_option("--ray-address", rayAddress, "--executor ray: the cluster to join (default: start a local one)")
+        ->type_name("ADDR");
+    run->add_flag("--list-work", listWork, "Print the Snapshots and renders the cache lacks as JSON and exit");
+    run->add_option("--only", onlyKey, "Compute exactly the one Snapshot or render with this cache key, then exit")
+        ->type_name("KEY");
+    run->add_option("--cache", cacheDir, "The render cache (default: OUTDIR/cache)")->type_name("DIR");
     run->footer(runFooter());
 
     try {
@@ -207,6 +218,13 @@ int main(int argc, char** argv) {
             if (configPath.empty()) return 0;
         }
         if (configPath.empty()) return fail(kExitInput, "run: CONFIG is required\nRun 'aamap run --help' for usage.");
+        if (executor == "ray" && (listWork || !onlyKey.empty()))
+            return fail(kExitInput, "run: --executor ray cannot be combined with --list-work or --only");
+        if (!rayAddress.empty() && executor != "ray") return fail(kExitInput, "run: --ray-address needs --executor ray");
+        if (executor == "ray") {
+            aamap::loadExperiment(configPath, overrides);  // a bad config fails here, before any cluster starts
+            aamap::app::execRayExecutor(argc, argv, rayAddress);
+        }
         const aamap::Experiment experiment = aamap::loadExperiment(configPath, overrides);
         const std::filesystem::path out =
             outDir.empty() ? std::filesystem::path("out") / std::filesystem::path(configPath).stem() : std::filesystem::path(outDir);
@@ -216,6 +234,15 @@ int main(int argc, char** argv) {
         options.threads = threads;
         options.gitRevision = AAMAP_GIT_REVISION;
         options.plots = !noPlots;
+        options.cacheDir = cacheDir;
+        if (listWork) {
+            fmt::print("{}", aamap::app::workListJson(experiment, out, options, {configPath, overrides, threads, validation}));
+            return 0;
+        }
+        if (!onlyKey.empty()) {
+            aamap::computeExperimentItem(experiment, onlyKey, out, options);
+            return 0;
+        }
         if (experiment.sweptKeys.empty())
             spdlog::info("config {} (hash {}), output {}", configPath, experiment.variants.front().hash(), out.string());
         else

@@ -40,6 +40,7 @@ std::vector<std::string> leaves() {
         "reference.type", "reference.rpp", "reference.mode", "reference.path",
         "metrics.flip", "metrics.flip_hdr", "metrics.flip_threshold", "metrics.mse_threshold", "metrics.ppd",
         "metrics.map_quality", "metrics.causes", "report.plots", "timing.repeats", "timing.interleave",
+        "timing.same_machine",
     };
     for (const std::string& p : allStrategyParamNames()) l.push_back("renders.#." + p);
     for (const std::string& k : lightKeys()) l.push_back("lights.#." + k);
@@ -139,9 +140,10 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.reference = detail::readReference(ctx, top.node("reference"), c.renders);
     c.metrics = detail::readMetrics(ctx, top.node("metrics"));
     c.report = detail::readReport(ctx, top.node("report"));
-    MapReader timing(ctx, top.node("timing"), "timing", {"repeats", "interleave"});
+    MapReader timing(ctx, top.node("timing"), "timing", {"repeats", "interleave", "same_machine"});
     timing.getInt("repeats", c.timing.repeats, 1, 100);
     c.timing.interleave = detail::readBool(ctx, timing, "interleave", c.timing.interleave);
+    c.timing.sameMachine = detail::readBool(ctx, timing, "same_machine", c.timing.sameMachine);
     return c;
 }
 
@@ -310,6 +312,7 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     // Only when not the default: configs without it keep their hash.
     if (c.timing.repeats != 1 || !c.timing.interleave)
         j["timing"] = {{"repeats", c.timing.repeats}, {"interleave", c.timing.interleave}};
+    if (c.timing.sameMachine) j["timing"]["same_machine"] = true;
     return j;
 }
 

@@ -105,6 +105,9 @@ struct MetricsConfig {
 struct TimingConfig {
     int repeats = 1;         // timed runs of every trace; times_s.trace is their median
     bool interleave = true;  // round r times every render once before round r + 1
+    // An executor over several machines (--executor ray) traces the renders of one rpp (a speedup's
+    // numerator and denominator) on one worker. Ignored by a run on one machine.
+    bool sameMachine = false;
 };
 
 struct ReportConfig {

@@ -335,6 +335,38 @@ Results runExperiment(const ExperimentConfig& config, const std::filesystem::pat
     return runExperimentWith(config, outDir, backend, ro);
 }
 
+std::filesystem::path experimentCacheDir(const std::filesystem::path& outDir, const RunOptions& options) {
+    return options.cacheDir.empty() ? outDir / "cache" : options.cacheDir;
+}
+
+std::vector<WorkItem> listMissingWork(const Experiment& experiment, const std::filesystem::path& outDir,
+                                      const RunOptions& options) {
+    const std::filesystem::path cache = experimentCacheDir(outDir, options);
+    std::vector<WorkItem> items;
+    for (const ExperimentConfig& variant : experiment.variants)
+        for (WorkItem& w : missingWork(variant, cache, options.threads))
+            if (std::none_of(items.begin(), items.end(), [&](const WorkItem& i) { return i.key == w.key; }))
+                items.push_back(std::move(w));
+    // Snapshots first: the renders driven by their aamaps wait for them.
+    std::stable_partition(items.begin(), items.end(), [](const WorkItem& w) { return w.kind == "snapshot"; });
+    return items;
+}
+
+void computeExperimentItem(const Experiment& experiment, const std::string& key, const std::filesystem::path& outDir,
+                           const RunOptions& options) {
+    for (const ExperimentConfig& variant : experiment.variants) {
+        if (!hasWorkItem(variant, key)) continue;
+        TracerBackend backend(variant, options);
+        RunnerOptions ro;
+        ro.gitRevision = options.gitRevision;
+        ro.cacheDir = experimentCacheDir(outDir, options);
+        computeWorkItem(variant, key, backend, ro);
+        return;
+    }
+    throw InputError(experiment.variants.front().file,
+                     fmt::format("--only {}: no Snapshot or render of this experiment has that cache key (see --list-work)", key));
+}
+
 void runSweptExperiment(const Experiment& experiment, const std::filesystem::path& outDir, const RunOptions& options) {
     if (experiment.sweptKeys.empty()) {
         runExperiment(experiment.variants.front(), outDir, options);
@@ -343,6 +375,7 @@ void runSweptExperiment(const Experiment& experiment, const std::filesystem::pat
     RunnerOptions ro;
     ro.gitRevision = options.gitRevision;
     ro.plots = options.plots;
+    ro.cacheDir = options.cacheDir;
     runSweepWith(experiment, outDir,
                  [&](const ExperimentConfig& config) { return std::make_unique<TracerBackend>(config, options); }, ro);
 }

@@ -7,6 +7,7 @@
 
 #include "eval/config.h"
 #include "eval/results.h"
+#include "eval/runner.h"
 #include "passes/snapshot.h"
 #include "scene/scene.h"
 #include "tracer/tracer.h"
@@ -38,6 +39,19 @@ Results runExperiment(const ExperimentConfig& config, const std::filesystem::pat
 // Every variant of a swept experiment with the real backend (eval/sweep_runner.h); one variant
 // without sweeps runs as runExperiment.
 void runSweptExperiment(const Experiment& experiment, const std::filesystem::path& outDir, const RunOptions& options);
+
+// The render cache every variant of the experiment shares: options.cacheDir, else OUTDIR/cache.
+std::filesystem::path experimentCacheDir(const std::filesystem::path& outDir, const RunOptions& options);
+
+// `aamap run --list-work`: every Snapshot and render of every variant that the cache lacks, each
+// key once (work an executor spreads over machines, eval/runner.h WorkItem).
+std::vector<WorkItem> listMissingWork(const Experiment& experiment, const std::filesystem::path& outDir,
+                                      const RunOptions& options);
+
+// `aamap run --only KEY`: computes the one item KEY, of whichever variant has it, into the cache
+// (experimentCacheDir) with the real backend. InputError when no variant has it.
+void computeExperimentItem(const Experiment& experiment, const std::string& key, const std::filesystem::path& outDir,
+                           const RunOptions& options);
 
 // The setup `aamap run` and `aamap view` share, so both render exactly the same thing: the scene
 // with the config's lights, the chosen view, and the render size that view fits into image.*.

@@ -19,6 +19,7 @@
 #include "eval/render_cache.h"
 #include "eval/report.h"
 #include "eval/strategies.h"
+#include "eval/timing_machines.h"
 
 namespace aamap {
 namespace fs = std::filesystem;
@@ -31,6 +32,37 @@ struct Job {
     RenderConfig render;
     std::string key;
 };
+
+bool usesAamap(const RenderConfig& render) {
+    const StrategyInfo* info = findStrategy(render.strategy);
+    return info != nullptr && info->usesAamap;
+}
+
+// Every render an experiment needs, with the order and names run() reports them under.
+struct JobList {
+    std::vector<Job> jobs;  // the listed renders, then the reference and the 1-ray probe
+    std::size_t listed = 0;
+    std::optional<Job> reference, oneRay;
+    bool mapQuality = false;
+};
+
+JobList jobsOf(const ExperimentConfig& c) {
+    JobList list;
+    for (const RenderConfig& r : c.renders) list.jobs.push_back({r, renderKey(c, r)});
+    list.listed = list.jobs.size();
+    if (c.reference.type == "uniform") {
+        RenderConfig r{"reference", "reference", "uniform", c.reference.rpp, {}, c.reference.mode};
+        list.reference = Job{r, renderKey(c, r)};
+        list.jobs.push_back(*list.reference);
+    }
+    list.mapQuality = c.metrics.mapQuality && c.usesAamap() && c.reference.type != "none";
+    if (list.mapQuality) {  // true aliasing is what a 1-ray image gets wrong
+        RenderConfig r{"one_ray", "one_ray", "uniform", 1, {}, ""};
+        list.oneRay = Job{r, renderKey(c, r)};
+        list.jobs.push_back(*list.oneRay);
+    }
+    return list;
+}
 
 struct Traced {
     RenderRecord record;  // as cached (name of whichever job computed it first)
@@ -64,6 +96,7 @@ public:
           machine_(currentMachine()) {}
 
     Results run();
+    void computeOnly(const std::string& key);
 
 private:
     // The scene is loaded on first need only: a run whose work is all cached never loads it.
@@ -78,7 +111,7 @@ private:
         spdlog::warn("{}", message);
         warnings_.push_back(message);
     }
-    void loadOrRenderSnapshot();
+    void loadOrRenderSnapshot(bool writeOutputs = true);
     PixelFacts loadOrComputeFacts();
     const Traced& loadOrTrace(const Job& job, int index, int count);
     RenderRecord recordFor(const Job& job, const Traced& t, bool cached) const;
@@ -105,7 +138,7 @@ private:
     std::vector<std::string> warnings_;  // for the top of the report
 };
 
-void Runner::loadOrRenderSnapshot() {
+void Runner::loadOrRenderSnapshot(bool writeOutputs) {
     const std::string key = snapshotKey(c_);
     if (!cache_.has(key)) {
         const SceneInfo& s = scene();
@@ -117,6 +150,7 @@ void Runner::loadOrRenderSnapshot() {
                              {"total_s", snap.totalSeconds}, {"readback_s", snap.readbackSeconds},
                              {"setup_s", snap.setupSeconds},
                              {"passes_gpu_ms", passes}, {"vulkan_device", snap.device},
+                             {"machine", {{"hostname", machine_.hostname}, {"cpu_model", machine_.cpuModel}}},
                              {"git_revision", options_.gitRevision}};
         const float exposure = static_cast<float>(c_.image.exposure);
         cache_.commit(key, [&](const fs::path& dir) {
@@ -133,6 +167,7 @@ void Runner::loadOrRenderSnapshot() {
         snapshotRecord_["cached"] = true;
     }
     aamap_ = readExrGrey(cache_.entry(key) / "aamap.exr");
+    if (!writeOutputs) return;
     for (const char* f : {"snapshot.png", "laplacian.png", "aamap.exr"})
         if (fs::exists(cache_.entry(key) / f)) copyFileAtomically(cache_.entry(key) / f, out_ / f);
     writePng(out_ / "aamap.png", quantise(*aamap_));
@@ -404,21 +439,12 @@ Results Runner::run() {
     results.configHash = c_.hash();
     results.configJson = c_.canonicalJson();
 
-    std::vector<Job> jobs;
-    for (const RenderConfig& r : c_.renders) jobs.push_back({r, renderKey(c_, r)});
-    const std::size_t listed = jobs.size();
-    std::optional<Job> refJob, oneRayJob;
-    if (c_.reference.type == "uniform") {
-        RenderConfig r{"reference", "reference", "uniform", c_.reference.rpp, {}, c_.reference.mode};
-        refJob = Job{r, renderKey(c_, r)};
-        jobs.push_back(*refJob);
-    }
-    const bool mapQuality = c_.metrics.mapQuality && c_.usesAamap() && c_.reference.type != "none";
-    if (mapQuality) {  // true aliasing is what a 1-ray image gets wrong
-        RenderConfig r{"one_ray", "one_ray", "uniform", 1, {}, ""};
-        oneRayJob = Job{r, renderKey(c_, r)};
-        jobs.push_back(*oneRayJob);
-    }
+    const JobList list = jobsOf(c_);
+    const std::vector<Job>& jobs = list.jobs;
+    const std::size_t listed = list.listed;
+    const std::optional<Job>& refJob = list.reference;
+    const std::optional<Job>& oneRayJob = list.oneRay;
+    const bool mapQuality = list.mapQuality;
 
     // Every input file is read before any work, so a bad one leaves the output folder as it was.
     std::optional<ImageRGB> fileReference;
@@ -507,13 +533,77 @@ Results Runner::run() {
     } else {
         results.warnings.push_back("reference.type is 'none': no error metrics, Table 3 is empty");
     }
+    for (const std::string& w : mixedMachineWarnings(results)) warn(w);
     results.warnings.insert(results.warnings.begin(), warnings_.begin(), warnings_.end());
     writeResults(out_ / "results.json", results);
     writeReport(out_, toJson(results), options_.plots && c_.report.plots);
     return results;
 }
 
+void Runner::computeOnly(const std::string& key) {
+    if (c_.usesAamap() && key == snapshotKey(c_)) {
+        loadOrRenderSnapshot(false);
+        return;
+    }
+    const JobList list = jobsOf(c_);
+    const auto job = std::find_if(list.jobs.begin(), list.jobs.end(), [&](const Job& j) { return j.key == key; });
+    if (job == list.jobs.end())
+        throw InputError(c_.file, fmt::format("no Snapshot or render of this config has the cache key {}", key));
+    if (usesAamap(job->render)) {
+        if (!cache_.has(snapshotKey(c_)))
+            throw EnvironmentError(fmt::format("{}: render '{}' needs the Snapshot {}, which is not in the cache",
+                                               cache_.dir().string(), job->render.name, snapshotKey(c_)));
+        loadOrRenderSnapshot(false);
+    }
+    loadOrTrace(*job, 1, 1);
+    repeatTraces({*job});
+}
+
+// A cached render lacks work when it has fewer timed runs than timing.repeats asks for.
+bool complete(const RenderCache& cache, const std::string& key, int repeats) {
+    if (!cache.has(key)) return false;
+    if (repeats <= 1) return true;
+    try {
+        return static_cast<int>(recordFromJson(readJson(cache.record(key))).times.traceRuns.size()) >= repeats;
+    } catch (const std::exception&) {
+        return false;  // unreadable: the run traces it again
+    }
+}
+
 }  // namespace
+
+std::vector<WorkItem> missingWork(const ExperimentConfig& config, const fs::path& cacheDir, int threads) {
+    const RenderCache cache(cacheDir);
+    std::vector<WorkItem> items;
+    const std::string snapKey = config.usesAamap() ? snapshotKey(config) : "";
+    if (!snapKey.empty() && !cache.has(snapKey)) items.push_back({"snapshot", snapKey, "snapshot", 1, "", ""});
+    const JobList list = jobsOf(config);
+    for (std::size_t i = 0; i < list.jobs.size(); ++i) {
+        const Job& job = list.jobs[i];
+        if (complete(cache, job.key, config.timing.repeats) ||
+            std::any_of(items.begin(), items.end(), [&](const WorkItem& w) { return w.key == job.key; }))
+            continue;
+        WorkItem w{"render", job.key, job.render.name, threads >= 0 ? threads : config.threads, "", ""};
+        if (usesAamap(job.render)) w.needsSnapshot = snapKey;
+        // A speedup divides the time of one listed render by another's at the same rpp.
+        if (config.timing.sameMachine && i < list.listed) w.group = fmt::format("{}:rpp={}", config.hash(), job.render.rpp);
+        items.push_back(std::move(w));
+    }
+    return items;
+}
+
+bool hasWorkItem(const ExperimentConfig& config, const std::string& key) {
+    if (config.usesAamap() && key == snapshotKey(config)) return true;
+    const JobList list = jobsOf(config);
+    return std::any_of(list.jobs.begin(), list.jobs.end(), [&](const Job& j) { return j.key == key; });
+}
+
+void computeWorkItem(const ExperimentConfig& config, const std::string& key, RenderBackend& backend,
+                     const RunnerOptions& options) {
+    if (options.cacheDir.empty()) throw EnvironmentError("computeWorkItem needs the cache folder");
+    Runner runner(config, {}, backend, options);
+    runner.computeOnly(key);
+}
 
 Results runExperimentWith(const ExperimentConfig& config, const fs::path& outDir, RenderBackend& backend,
                           const RunnerOptions& options) {

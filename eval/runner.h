@@ -74,4 +74,30 @@ struct RunnerOptions {
 Results runExperimentWith(const ExperimentConfig& config, const std::filesystem::path& outDir, RenderBackend& backend,
                           const RunnerOptions& options);
 
+// A Snapshot or render the experiment needs and the cache lacks: what an executor that spreads
+// the work over machines (tools/ray_executor.py) hands to one worker.
+struct WorkItem {
+    std::string kind;          // "snapshot" or "render"
+    std::string key;           // its cache entry, OUTDIR/cache/KEY
+    std::string name;          // the render's name ("snapshot" for the Snapshot)
+    int threads = 0;           // tracer threads (0: all of the worker's)
+    std::string needsSnapshot; // a render driven by the aamap: the Snapshot's key; else ""
+    // timing.same_machine: the renders of one speedup (one rpp of one variant) share a group and
+    // run on one worker; "" when free to go anywhere.
+    std::string group;
+};
+
+// What runExperimentWith would compute: every missing item, the Snapshot first, each key once.
+// threads >= 0 overrides the config's. Reads the cache only; loads no scene.
+std::vector<WorkItem> missingWork(const ExperimentConfig& config, const std::filesystem::path& cacheDir, int threads);
+
+// Whether KEY is the Snapshot or a render of this config.
+bool hasWorkItem(const ExperimentConfig& config, const std::string& key);
+
+// Computes exactly the item KEY into cacheDir (its timed repeats included) and nothing else: no
+// metrics, no report, no output folder. A render driven by the aamap needs the Snapshot's entry
+// in cacheDir already. Throws InputError when KEY is not an item of this config.
+void computeWorkItem(const ExperimentConfig& config, const std::string& key, RenderBackend& backend,
+                     const RunnerOptions& options);
+
 }  // namespace aamap

@@ -34,7 +34,7 @@ Json readJsonFile(const fs::path& file) {
 void runSweepWith(const Experiment& experiment, const fs::path& outDir, const BackendFactory& backend,
                   const RunnerOptions& options) {
     RunnerOptions ro = options;
-    ro.cacheDir = outDir / "cache";
+    if (ro.cacheDir.empty()) ro.cacheDir = outDir / "cache";
     Json sweep = {{"format", "aamap-sweep-1"}, {"swept_keys", experiment.sweptKeys}, {"variants", Json::array()}};
     std::vector<fs::path> dirs;
     for (std::size_t i = 0; i < experiment.variants.size(); ++i) {
