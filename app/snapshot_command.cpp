@@ -68,12 +68,12 @@ std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
     const bool map = scene.environment && !scene.environment->map.empty();
     const int fromMap = map ? s.environmentLights : 0;  // at most: a dark map may give fewer
     const int samples = static_cast<int>(scene.pointLights.size()) + areas * s.areaLightSamples + directional + fromMap;
+    std::string atInfinity = directional > 0 ? fmt::format(", {} directional", directional) : std::string();
+    if (map) atInfinity += fmt::format(", up to {} from the environment map", fromMap);
     std::string text = fmt::format("scene: {} triangles; lights: {} point, {} cosine-lobe point, {} spot, {} area "
-                                   "(x {} point samples each), {} directional{} -> {} light samples in the raster\n",
+                                   "(x {} point samples each){} -> {} light samples in the raster\n",
                                    scene.mesh.triangles.size(), points, lobes, spots, areas, s.areaLightSamples,
-                                   directional,
-                                   map ? fmt::format(", up to {} from the environment map", fromMap) : std::string(),
-                                   samples);
+                                   atInfinity, samples);
     if (scene.environment)
         text += fmt::format("  environment: {}; the rest as an SH ambient term (unshadowed)\n",
                             map ? fmt::format("a {}x{} map, its {} brightest region(s) as directional lights",

@@ -268,6 +268,9 @@ std::vector<std::string> snapshotLimitations(const Scene& scene) {
         notes.push_back(fmt::format("{} glass triangle(s): the Snapshot sees through glass, so its silhouettes and "
                                     "what it refracts are not in the aamap",
                                     glass));
+    if (scene.environment)
+        notes.push_back("an environment: the Snapshot draws no sky (its background stays black where the renders "
+                        "see it), so edges against the sky are judged against black");
     return notes;
 }
 
