@@ -17,6 +17,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr float kRegionFraction = 0.25f;      // of the seed pixel's luminance
 constexpr double kRegionRadiusDeg = 15.0;     // from the seed pixel's direction
+constexpr float kPeakOverMean = 8.0f;         // a region's seed must be this much brighter than the mean
 
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
@@ -57,10 +58,16 @@ EnvironmentLighting prepareEnvironmentLighting(const EnvironmentLight& env, int 
     }
     const int w = env.mapWidth, h = env.mapHeight;
     const glm::mat3 toWorld = glm::transpose(env.toLocal);
+    // World direction of a pixel centre, computed where needed: a large map's directions would
+    // take 12 bytes a pixel.
+    const auto direction = [&](std::size_t i) {
+        const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
+        return glm::normalize(toWorld * latlong::toDirection({(x + 0.5f) / w, (y + 0.5f) / h}));
+    };
     std::vector<glm::vec3> radiance(env.map.size());
     std::vector<float> lum(env.map.size());
-    std::vector<glm::vec3> direction(env.map.size());  // world, pixel centres
     std::vector<float> solidAngle(static_cast<std::size_t>(h));
+    double lumTotal = 0.0;  // luminance x solid angle over the sphere
     for (int y = 0; y < h; ++y) {
         solidAngle[static_cast<std::size_t>(y)] = static_cast<float>(latlong::pixelSolidAngle(y, w, h));
         for (int x = 0; x < w; ++x) {
@@ -70,15 +77,19 @@ EnvironmentLighting prepareEnvironmentLighting(const EnvironmentLight& env, int 
                                     std::isfinite(c.y) ? std::max(c.y, 0.0f) : 0.0f,
                                     std::isfinite(c.z) ? std::max(c.z, 0.0f) : 0.0f);
             lum[i] = luminance(radiance[i]);
-            direction[i] = glm::normalize(toWorld * latlong::toDirection({(x + 0.5f) / w, (y + 0.5f) / h}));
+            lumTotal += static_cast<double>(lum[i]) * solidAngle[static_cast<std::size_t>(y)];
         }
     }
+    const float meanLum = static_cast<float>(lumTotal / (4.0 * kPi));
 
     const float cosRadius = static_cast<float>(std::cos(kRegionRadiusDeg * kPi / 180.0));
     std::vector<std::uint8_t> taken(radiance.size(), 0);
     for (int k = 0; k < maxLights; ++k) {
         const auto seed = static_cast<std::size_t>(std::max_element(lum.begin(), lum.end()) - lum.begin());
-        if (!(lum[seed] > 0.0f)) break;
+        // Only what stands out of the sky: an overcast map's brightest patch is no sun, and a
+        // hard shadow from it would be wrong; it stays in the ambient term.
+        if (!(lum[seed] > kPeakOverMean * meanLum)) break;
+        const glm::vec3 seedDirection = direction(seed);
         const float floor = kRegionFraction * lum[seed];
         std::vector<std::size_t> stack{seed};
         taken[seed] = 1;
@@ -88,7 +99,7 @@ EnvironmentLighting prepareEnvironmentLighting(const EnvironmentLight& env, int 
             stack.pop_back();
             const double omega = solidAngle[i / static_cast<std::size_t>(w)];
             irradiance += glm::dvec3(radiance[i]) * omega;
-            weighted += glm::dvec3(direction[i]) * (static_cast<double>(lum[i]) * omega);
+            weighted += glm::dvec3(direction(i)) * (static_cast<double>(lum[i]) * omega);
             radiance[i] = glm::vec3(0.0f);  // taken by the light: not in the ambient term
             lum[i] = 0.0f;
             const int x = static_cast<int>(i % static_cast<std::size_t>(w)), y = static_cast<int>(i / static_cast<std::size_t>(w));
@@ -98,7 +109,7 @@ EnvironmentLighting prepareEnvironmentLighting(const EnvironmentLight& env, int 
                     if (ny < 0 || ny >= h) continue;
                     const int nx = (x + dx + w) % w;
                     const std::size_t j = static_cast<std::size_t>(ny) * w + nx;
-                    if (taken[j] || lum[j] < floor || glm::dot(direction[j], direction[seed]) < cosRadius) continue;
+                    if (taken[j] || lum[j] < floor || glm::dot(direction(j), seedDirection) < cosRadius) continue;
                     taken[j] = 1;
                     stack.push_back(j);
                 }
@@ -113,9 +124,9 @@ EnvironmentLighting prepareEnvironmentLighting(const EnvironmentLight& env, int 
     // The residual's SH projection, then the cosine convolution.
     std::array<glm::dvec3, 9> lm{};
     for (std::size_t i = 0; i < radiance.size(); ++i) {
-        if (!(lum[i] > 0.0f) && radiance[i] == glm::vec3(0.0f)) continue;
+        if (radiance[i] == glm::vec3(0.0f)) continue;
         const double omega = solidAngle[i / static_cast<std::size_t>(w)];
-        const std::array<float, 9> y = shBasis(direction[i]);
+        const std::array<float, 9> y = shBasis(direction(i));
         for (std::size_t c = 0; c < 9; ++c) lm[c] += glm::dvec3(radiance[i]) * (static_cast<double>(y[c]) * omega);
     }
     for (std::size_t c = 0; c < 9; ++c) out.irradianceSH[c] = glm::vec3(lm[c]) * band[c];

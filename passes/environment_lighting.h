@@ -28,11 +28,12 @@ struct EnvironmentLighting {
 // (2,2) with the usual constants (mirrored in glsl/gbuffer.glsl).
 std::array<float, 9> shBasis(const glm::vec3& n);
 
-// Up to `maxLights` (>= 0) regions: each grows from the brightest remaining pixel over its
-// 8-neighbours (wrapping around in longitude) while they are at least a quarter of that pixel's
-// luminance and within 15 degrees of it; its light has the region's irradiance (sum of radiance
-// times pixel solid angle) from its luminance-weighted mean direction. A constant environment
-// gives no lights and E = pi L.
+// Up to `maxLights` (>= 0) regions: each grows from the brightest remaining pixel, if that is at
+// least 8 times the map's mean luminance (an overcast sky's brightest patch casts no sharp
+// shadow, so it stays ambient), over its 8-neighbours (wrapping around in longitude) while they
+// are at least a quarter of that pixel's luminance and within 15 degrees of it; its light has the
+// region's irradiance (sum of radiance times pixel solid angle) from its luminance-weighted mean
+// direction. A constant environment gives no lights and E = pi L.
 EnvironmentLighting prepareEnvironmentLighting(const EnvironmentLight& env, int maxLights);
 
 // The ambient irradiance E(n) of the coefficients (the CPU twin of the shader's evaluation).

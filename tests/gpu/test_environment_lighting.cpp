@@ -43,7 +43,8 @@ TEST(EnvironmentLighting, LinearSkyGivesItsExactIrradiance) {
             const glm::vec3 d = toWorld * latlong::toDirection({(x + 0.5f) / w, (y + 0.5f) / h});
             env.map.push_back(glm::vec3(c0 + glm::dot(c, d)));
         }
-    const EnvironmentLighting e = prepareEnvironmentLighting(env, 0);
+    // Its brightest patch does not stand out (2.7 over a mean of 2): no light even when asked.
+    const EnvironmentLighting e = prepareEnvironmentLighting(env, 4);
     EXPECT_TRUE(e.lights.empty());
     for (const glm::vec3 n : {glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::normalize(glm::vec3(-1, 2, -3))}) {
         const float want = kPi * c0 + (2.0f * kPi / 3.0f) * glm::dot(c, n);
