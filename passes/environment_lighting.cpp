@@ -54,6 +54,7 @@ EnvironmentLighting prepareEnvironmentLighting(const EnvironmentLight& env, int 
     if (env.map.empty()) {
         // Only Y_0 has a non-zero integral over the sphere: 4 pi Y_0 = 2 sqrt(pi).
         out.irradianceSH[0] = env.scale * static_cast<float>(2.0 * std::sqrt(kPi)) * band[0];
+        out.background = env.scale;
         return out;
     }
     const int w = env.mapWidth, h = env.mapHeight;
@@ -130,6 +131,7 @@ EnvironmentLighting prepareEnvironmentLighting(const EnvironmentLight& env, int 
         for (std::size_t c = 0; c < 9; ++c) lm[c] += glm::dvec3(radiance[i]) * (static_cast<double>(y[c]) * omega);
     }
     for (std::size_t c = 0; c < 9; ++c) out.irradianceSH[c] = glm::vec3(lm[c]) * band[c];
+    out.background = glm::vec3(lm[0] * (1.0 / (2.0 * std::sqrt(kPi))));  // L_00 Y_0: the mean over 4 pi
     return out;
 }
 

@@ -22,6 +22,9 @@ namespace aamap::passes {
 struct EnvironmentLighting {
     std::array<glm::vec3, 9> irradianceSH{};  // E(n) = sum_i irradianceSH[i] * Y_i(n), in shYlm order
     std::vector<DirectionalLight> lights;     // the extracted regions, brightest first
+    // The ambient part's mean radiance (the SH's Y_0 term): the Snapshot's background where no
+    // surface is drawn, a flat stand-in for the sky the renders see (exact for a constant one).
+    glm::vec3 background{0.0f};
 };
 
 // The real SH basis Y_0..Y_8 at unit n: (0,0), (1,-1), (1,0), (1,1), (2,-2), (2,-1), (2,0), (2,1),

@@ -15,7 +15,9 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/image_io.h"
 #include "engine/vk/context.h"
+#include "glsl/shared/aamap_filter.h"
 #include "glsl/shared/snapshot_interface.h"
 #include "passes/gbuffer_textures.h"
 #include "passes/mirror.h"
@@ -471,9 +473,17 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
     const vk::Image& target = pc.image(colour);
     const vk::Image& z = pc.image(depth);
     const VkExtent2D extent{target.info().width, target.info().height};
-    // Black background, whose grey is 0.
-    std::vector<VkRenderingAttachmentInfo> colourInfos{vk::clearedColourAttachment(target.view())};
-    if (!grey.empty()) colourInfos.push_back(vk::clearedColourAttachment(pc.image(grey).view()));
+    // The background (black unless the scene has a sky), and its grey as glsl/display_luma.glsl
+    // computes it.
+    const VkClearColorValue sky{{background_.r, background_.g, background_.b, 0.0f}};
+    std::vector<VkRenderingAttachmentInfo> colourInfos{vk::clearedColourAttachment(target.view(), sky)};
+    if (!grey.empty()) {
+        const float e = draws[0].exposure;
+        const float g = static_cast<float>(AAMAP_LUMA_R) * srgbEncode(e * background_.r) +
+                        static_cast<float>(AAMAP_LUMA_G) * srgbEncode(e * background_.g) +
+                        static_cast<float>(AAMAP_LUMA_B) * srgbEncode(e * background_.b);
+        colourInfos.push_back(vk::clearedColourAttachment(pc.image(grey).view(), VkClearColorValue{{g, 0.0f, 0.0f, 0.0f}}));
+    }
     VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depthInfo.imageView = z.view();
     depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;

@@ -106,6 +106,9 @@ public:
     bool alphaMasked() const { return alphaMasked_; }  // some texel can be cut out (shadows test it)
     const vk::Image& atlas() const { return atlas_; }  // valid only when textured()
     std::string atlasSummary() const;                  // for --explain
+    // Radiance of the background (where no surface is drawn), and its grey; black by default.
+    // Passes declared before must be declared again, as after setLights.
+    void setBackground(const glm::vec3& radiance) { background_ = radiance; }
     std::uint32_t lightCount() const { return lightCount_; }
     bool ambient() const { return ambient_; }  // the environment's SH term is shaded
     // The LIGHTING_SPEC_* specialisation constants of a lit fragment shader drawing these lights
@@ -165,6 +168,7 @@ private:
     glm::vec3 coverCentre_{0.0f};  // the sphere every directional shadow map covers
     float coverRadius_ = 1.0f;
     bool ambient_ = false;
+    glm::vec3 background_{0.0f};
     std::array<glm::vec3, 9> ambientSH_{};
     std::uint64_t lightsVersion_ = 0;
     bool textured_ = false, alphaMasked_ = false;

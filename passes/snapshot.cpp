@@ -132,6 +132,7 @@ struct SnapshotRenderer::Impl {
             directionals.insert(directionals.end(), env->lights.begin(), env->lights.end());
         }
         gbuffer.setLights(lights, directionals, env ? &env->irradianceSH : nullptr);
+        gbuffer.setBackground(env ? env->background : glm::vec3(0.0f));
         lightNames.clear();
         for (const PointLight& l : lights) lightNames.push_back(l.name);
         for (const DirectionalLight& d : directionals)
@@ -268,9 +269,9 @@ std::vector<std::string> snapshotLimitations(const Scene& scene) {
         notes.push_back(fmt::format("{} glass triangle(s): the Snapshot sees through glass, so its silhouettes and "
                                     "what it refracts are not in the aamap",
                                     glass));
-    if (scene.environment)
-        notes.push_back("an environment: the Snapshot draws no sky (its background stays black where the renders "
-                        "see it), so edges against the sky are judged against black");
+    if (scene.environment && !scene.environment->map.empty())
+        notes.push_back("an environment map: the Snapshot's background is the sky's mean radiance, not the map, so "
+                        "edges against the sky are judged against that flat colour");
     return notes;
 }
 

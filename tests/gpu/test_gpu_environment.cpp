@@ -1,6 +1,7 @@
 // The Snapshot's lights at infinity against the tracer (passes/environment_lighting.h, the
 // directional light kind of glsl/lights.glsl and its orthographic shadow map):
-// - a constant sky on a convex white box: the SH ambient term gives a L, as the tracer does;
+// - a constant sky on a convex white box: the SH ambient term gives a L, as the tracer does, and
+//   the background is the sky's radiance;
 // - a sky map black but for one small bright cell, over a floor with a box floating above it:
 //   the Snapshot extracts the cell as a shadowed directional light, and its image shows the
 //   tracer's shadow (the map importance-sampled, Direct mode): the same pixels shadowed and lit,
@@ -110,14 +111,19 @@ TEST_F(SnapshotEnvironment, ConstantSkyOnAConvexBoxIsAlbedoTimesSky) {
     settings.scale = 1.0f;
     const SnapshotResult r = renderer.render(view, kSize, kSize, settings);
     const Traced t = trace(scene, view);
-    int surface = 0;
+    int surface = 0, background = 0;
     for (int i = 0; i < kSize * kSize; ++i) {
-        if (!t.hit[static_cast<std::size_t>(i)]) continue;  // the Snapshot draws no sky
+        if (!t.hit[static_cast<std::size_t>(i)]) {  // the background is the constant sky, exactly
+            ++background;
+            ASSERT_EQ(r.snapshot.at(i % kSize, i / kSize), t.radiance[static_cast<std::size_t>(i)]) << "pixel " << i;
+            continue;
+        }
         ++surface;
         const glm::vec3 got = r.snapshot.at(i % kSize, i / kSize), want = t.radiance[static_cast<std::size_t>(i)];
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(got[c], want[c], 1e-3f * want[c]) << "pixel " << i << " channel " << c;
     }
     EXPECT_GT(surface, kSize * kSize / 8);
+    EXPECT_GT(background, kSize * kSize / 8);
     EXPECT_EQ(r.shadowCubeMaps, 0);  // no lights to shadow: the ambient term alone, no shadow pass
 }
 
