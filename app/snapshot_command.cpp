@@ -64,10 +64,21 @@ std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
     }
     const int points = static_cast<int>(scene.pointLights.size()) - spots - lobes;
     const int areas = static_cast<int>(scene.areaLights.size());
-    const int samples = static_cast<int>(scene.pointLights.size()) + areas * s.areaLightSamples;
+    const int directional = static_cast<int>(scene.directionalLights.size());
+    const bool map = scene.environment && !scene.environment->map.empty();
+    const int fromMap = map ? s.environmentLights : 0;  // at most: a dark map may give fewer
+    const int samples = static_cast<int>(scene.pointLights.size()) + areas * s.areaLightSamples + directional + fromMap;
+    std::string atInfinity = directional > 0 ? fmt::format(", {} directional", directional) : std::string();
+    if (map) atInfinity += fmt::format(", up to {} from the environment map", fromMap);
     std::string text = fmt::format("scene: {} triangles; lights: {} point, {} cosine-lobe point, {} spot, {} area "
-                                   "(x {} point samples each) -> {} light samples in the raster\n",
-                                   scene.mesh.triangles.size(), points, lobes, spots, areas, s.areaLightSamples, samples);
+                                   "(x {} point samples each){} -> {} light samples in the raster\n",
+                                   scene.mesh.triangles.size(), points, lobes, spots, areas, s.areaLightSamples,
+                                   atInfinity, samples);
+    if (scene.environment)
+        text += fmt::format("  environment: {}; the rest as an SH ambient term (unshadowed)\n",
+                            map ? fmt::format("a {}x{} map, its {} brightest region(s) as directional lights",
+                                              scene.environment->mapWidth, scene.environment->mapHeight, fromMap)
+                                : std::string("constant"));
     if (samples == 0)
         text += "  shadow pass: not declared: the scene has no lights (unlit: emission only)\n";
     else if (!s.shadows.enabled)
@@ -75,8 +86,9 @@ std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
     else if (scene.mesh.triangles.empty())
         text += "  shadow pass: not declared: no geometry to cast shadows\n";
     else
-        text += fmt::format("  shadow pass: {} cube map(s) of {}^2 per face, one per light sample{}\n", samples,
-                            s.shadows.resolution, spots > 0 ? " (spots too: a cube map, not a 2D map)" : "");
+        text += fmt::format("  shadow pass: {} cube map(s) of {}^2 per face, one per light sample{}{}\n", samples,
+                            s.shadows.resolution, spots > 0 ? " (spots too: a cube map, not a 2D map)" : "",
+                            directional + fromMap > 0 ? " (a directional light's orthographic map takes one face)" : "");
     return text;
 }
 
@@ -105,6 +117,9 @@ CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
         ->capture_default_str();
     cmd->add_option("--area-light-samples", o.areaLightSamples, "Point samples per area light")
         ->check(CLI::Range(1, 64))->capture_default_str();
+    cmd->add_option("--environment-lights", o.environmentLights,
+                    "The environment map's brightest regions as this many shadowed directional lights (0: SH ambient only)")
+        ->check(CLI::Range(0, 16))->capture_default_str();
     cmd->add_option("--exposure", o.exposure, "Exposure of snapshot.png and of the aamap's greyscale")
         ->check(CLI::PositiveNumber)->capture_default_str();
     cmd->add_option("--shadow-resolution", o.shadowResolution, "Shadow cube-face size in texels")
@@ -129,6 +144,7 @@ int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::str
     SnapshotSettings settings;
     settings.scale = o.scale;
     settings.areaLightSamples = o.areaLightSamples;
+    settings.environmentLights = o.environmentLights;
     settings.filter.exposure = o.exposure;
     settings.shadows.enabled = !o.noShadows;
     settings.shadows.resolution = o.shadowResolution;

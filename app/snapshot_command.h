@@ -14,6 +14,7 @@ struct SnapshotOptions {
     int width = 0, height = 0;
     float scale = 1.5f;             // snapshot resolution / render resolution
     int areaLightSamples = 5;
+    int environmentLights = 1;  // SnapshotSettings::environmentLights
     float exposure = 1.0f;
     int shadowResolution = 256;
     bool noShadows = false;

@@ -30,7 +30,7 @@ std::vector<std::string> leaves() {
         "scene", "view", "view_index", "seed", "threads",
         "camera.position", "camera.look_at", "camera.up", "camera.fov",
         "image.width", "image.height", "image.exposure",
-        "snapshot.scale", "snapshot.area_light_samples", "snapshot.blur_radius", "snapshot.noise_floor",
+        "snapshot.scale", "snapshot.area_light_samples", "snapshot.environment_lights", "snapshot.blur_radius", "snapshot.noise_floor",
         "snapshot.gain", "snapshot.map", "shading.area_light_samples", "shading.mode", "shading.max_depth",
         "shading.russian_roulette", "shading.roulette_depth", "shading.max_specular_depth", "shading.light_selection",
         "shading.cache.bounces", "shading.cache.divisions", "shading.cache.supersamples", "shading.cache.accuracy",
@@ -95,7 +95,15 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
             throw InputError(at.file, at.line, at.column, fmt::format("light_file '{}': {}", lightFile, e.what()));
         }
     }
-    for (LightSpec& l : readLightList(ctx, top.node("lights"), "lights")) c.lights.push_back(std::move(l));
+    const bool fileHasEnvironment = std::any_of(c.lights.begin(), c.lights.end(),
+                                                [](const LightSpec& l) { return l.type == LightType::Environment; });
+    for (LightSpec& l : readLightList(ctx, top.node("lights"), "lights")) {
+        if (fileHasEnvironment && l.type == LightType::Environment)
+            ctx.fail(top.node("lights"), "lights",
+                     fmt::format("lights: environment '{}' would be a second one (the light file has one); a scene has "
+                                 "at most one", l.name));
+        c.lights.push_back(std::move(l));
+    }
 
     MapReader image(ctx, top.node("image"), "image", {"width", "height", "exposure"});
     c.image.sizeGiven = image.has("width") || image.has("height");
@@ -104,9 +112,10 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     image.getDouble("exposure", c.image.exposure, 0.0, 1e6, true);
 
     MapReader snap(ctx, top.node("snapshot"), "snapshot",
-                   {"scale", "area_light_samples", "blur_radius", "noise_floor", "gain", "map"});
+                   {"scale", "area_light_samples", "environment_lights", "blur_radius", "noise_floor", "gain", "map"});
     snap.getDouble("scale", c.snapshot.scale, 1.0, 4.0);
     snap.getInt("area_light_samples", c.snapshot.areaLightSamples, 1, 64);
+    snap.getInt("environment_lights", c.snapshot.environmentLights, 0, 16);
     snap.getInt("blur_radius", c.snapshot.blurRadius, 0, 16);
     snap.getDouble("noise_floor", c.snapshot.noiseFloor, 0.0, 1.0);
     snap.getDouble("gain", c.snapshot.gain, 0.0, 1e6, true);
@@ -217,6 +226,7 @@ Json snapshotJson(const ExperimentConfig& c) {
               {"blur_radius", c.snapshot.blurRadius}, {"noise_floor", c.snapshot.noiseFloor},
               {"gain", c.snapshot.gain}};
     if (c.snapshot.map != "luminance") j["map"] = c.snapshot.map;  // keeps the keys of luminance runs
+    if (c.snapshot.environmentLights != 1) j["environment_lights"] = c.snapshot.environmentLights;  // likewise
     return j;
 }
 

@@ -44,6 +44,9 @@ struct SnapshotConfig {
     double noiseFloor = 0.02;
     double gain = 1.0;
     std::string map = "luminance";  // luminance | geometric | combined (passes/geometric_aamap.h)
+    // The environment map's brightest regions as this many shadowed directional lights, 0..16
+    // (0: all of it in the SH ambient term); no effect without an environment map.
+    int environmentLights = 1;
 };
 
 struct ShadingConfig {

@@ -109,6 +109,7 @@ SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
     SnapshotSettings s;
     s.scale = static_cast<float>(c.snapshot.scale);
     s.areaLightSamples = c.snapshot.areaLightSamples;
+    s.environmentLights = c.snapshot.environmentLights;
     s.filter.exposure = static_cast<float>(c.image.exposure);  // edges as the viewer will see them
     s.filter.blurRadius = c.snapshot.blurRadius;
     s.filter.noiseFloor = static_cast<float>(c.snapshot.noiseFloor);

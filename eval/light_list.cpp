@@ -20,9 +20,11 @@ constexpr double kBig = 1e30;
 struct TypeInfo {
     LightType type;
     const char* name;
-    const char* nativeUnit;  // the emission key besides "power"
+    const char* nativeUnit;  // the emission key besides "power" (the lights at infinity: the only one)
     std::vector<std::string> keys;
 };
+
+bool atInfinity(LightType t) { return t == LightType::Directional || t == LightType::Environment; }
 
 const std::vector<TypeInfo>& types() {
     static const std::vector<TypeInfo> t = {
@@ -32,6 +34,8 @@ const std::vector<TypeInfo>& types() {
         {LightType::Quad, "quad", "radiance", {"type", "name", "position", "radiance", "power", "normal", "up", "size"}},
         {LightType::Disk, "disk", "radiance",
          {"type", "name", "position", "radiance", "power", "normal", "radius", "segments"}},
+        {LightType::Directional, "directional", "irradiance", {"type", "name", "direction", "irradiance"}},
+        {LightType::Environment, "environment", "radiance", {"type", "name", "radiance", "map", "scale", "rotation", "up"}},
     };
     return t;
 }
@@ -56,6 +60,54 @@ void getPositive2(const yaml::Context& ctx, MapReader& m, const std::string& key
     }
 }
 
+// directional: a direction and an irradiance. environment: a constant radiance, or a map with its
+// scale and orientation (both only with a map).
+void readAtInfinity(const yaml::Context& ctx, MapReader& m, LightSpec& light) {
+    if (light.type == LightType::Directional) {
+        m.require("direction");
+        m.require("irradiance");
+        m.getVec3("direction", light.direction, -kBig, kBig);
+        requireNonZero(ctx, m, "direction", light.direction);
+        light.unit = EmissionUnit::Irradiance;
+        m.getVec3("irradiance", light.emission, 0.0, kBig);
+        return;
+    }
+    const bool hasRadiance = m.has("radiance"), hasMap = m.has("map");
+    if (hasRadiance == hasMap)
+        ctx.fail(hasMap ? m.node("map") : m.self(), hasMap ? m.childPath("map") : m.path(),
+                 fmt::format("{}: give exactly one of 'radiance' (a constant sky) and 'map' (a lat-long EXR or HDR "
+                             "image) for an environment", m.path()));
+    light.unit = EmissionUnit::Radiance;
+    if (hasRadiance) {
+        for (const char* key : {"scale", "rotation", "up"})
+            if (m.has(key))
+                ctx.fail(m.node(key), m.childPath(key),
+                         fmt::format("{}: only an environment with a 'map' has a {}", m.childPath(key), key));
+        m.getVec3("radiance", light.emission, 0.0, kBig);
+        return;
+    }
+    const YAML::Node mapNode = m.node("map");
+    std::string map;
+    m.getString("map", map);
+    std::filesystem::path file(map);
+    if (file.is_relative()) file = ctx.file().parent_path() / file;
+    std::string ext = file.extension().string();
+    for (char& c : ext) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+    if (ext != ".exr" && ext != ".hdr")
+        ctx.fail(mapNode, m.childPath("map"),
+                 fmt::format("{}: '{}' is not an EXR or Radiance HDR image (8-bit images hold no radiance)",
+                             m.childPath("map"), map));
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error))
+        ctx.fail(mapNode, m.childPath("map"), fmt::format("{}: environment map '{}' not found", m.childPath("map"),
+                                                          file.string()));
+    light.map = file.string();
+    m.getDouble("scale", light.scale, 0.0, kBig);
+    m.getDouble("rotation", light.rotation, -360.0, 360.0);
+    m.getVec3("up", light.up, -kBig, kBig);
+    if (m.has("up")) requireNonZero(ctx, m, "up", light.up);
+}
+
 LightSpec readLight(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, std::size_t index) {
     if (!node.IsMap())
         ctx.fail(node, path, fmt::format("{}: expected a mapping (a light), found {}", path, yaml::describe(node)));
@@ -69,13 +121,19 @@ LightSpec readLight(const yaml::Context& ctx, const YAML::Node& node, const std:
     const TypeInfo* info = nullptr;
     for (const TypeInfo& t : types())
         if (typeName == t.name) info = &t;
-    if (info == nullptr)
+    if (info == nullptr) {
+        std::vector<std::string> names;
+        for (const TypeInfo& t : types()) names.push_back(t.name);
+        const std::string hint = yaml::closest(typeName, names);
         ctx.fail(constNode["type"], path + ".type",
-                 fmt::format("{}.type: unknown light type '{}' (supported: point, spot, quad, disk)", path, typeName));
+                 fmt::format("{}.type: unknown light type '{}'{} (supported: point, spot, quad, disk, directional, "
+                             "environment)", path, typeName, hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint)));
+    }
 
-    // The other kind of light's emission key is a likely slip; say what this type takes instead.
+    // A point or spot light given radiance (or an area light given intensity) is a likely slip; say
+    // what this type takes instead.
     const char* otherUnit = std::string(info->nativeUnit) == "intensity" ? "radiance" : "intensity";
-    if (const YAML::Node k = constNode[otherUnit]; k.IsDefined())
+    if (const YAML::Node k = constNode[otherUnit]; k.IsDefined() && !atInfinity(info->type))
         ctx.fail(k, path + "." + otherUnit,
                  fmt::format("{}: a {} light is given by exactly one of '{}' and 'power', not '{}'", path, typeName,
                              info->nativeUnit, otherUnit));
@@ -84,6 +142,10 @@ LightSpec readLight(const yaml::Context& ctx, const YAML::Node& node, const std:
     light.type = info->type;
     light.name = fmt::format("light{}", index);
     m.getString("name", light.name);
+    if (atInfinity(info->type)) {
+        readAtInfinity(ctx, m, light);
+        return light;
+    }
     m.require("position");
     m.getVec3("position", light.position, -kBig, kBig);
 
@@ -129,6 +191,9 @@ LightSpec readLight(const yaml::Context& ctx, const YAML::Node& node, const std:
             m.getDouble("radius", light.radius, 0.0, kBig, true);
             m.getInt("segments", light.segments, 3, 4096);
             break;
+        case LightType::Directional:
+        case LightType::Environment:
+            break;  // read above
     }
     return light;
 }
@@ -140,8 +205,16 @@ std::vector<LightSpec> readLightList(const yaml::Context& ctx, const YAML::Node&
     if (!node.IsDefined() || node.IsNull()) return lights;
     if (!node.IsSequence())
         ctx.fail(node, path, fmt::format("{}: expected a list of lights, found {}", path, yaml::describe(node)));
-    for (std::size_t i = 0; i < node.size(); ++i)
-        lights.push_back(readLight(ctx, node[i], fmt::format("{}.{}", path, i), i));
+    std::size_t environment = node.size();  // index of the first environment entry
+    for (std::size_t i = 0; i < node.size(); ++i) {
+        const std::string entry = fmt::format("{}.{}", path, i);
+        lights.push_back(readLight(ctx, node[i], entry, i));
+        if (lights.back().type != LightType::Environment) continue;
+        if (environment < node.size())
+            ctx.fail(node[i], entry, fmt::format("{}: a second environment (the first is {}.{}); a scene has at most one",
+                                                 entry, path, environment));
+        environment = i;
+    }
     return lights;
 }
 
@@ -174,6 +247,13 @@ std::vector<std::string> lightKeys() {
 }
 
 nlohmann::ordered_json lightJson(const LightSpec& l) {
+    if (l.type == LightType::Directional)
+        return {{"type", toString(l.type)}, {"name", l.name}, {"direction", l.direction}, {"irradiance", l.emission}};
+    if (l.type == LightType::Environment) {
+        if (l.map.empty()) return {{"type", toString(l.type)}, {"name", l.name}, {"radiance", l.emission}};
+        return {{"type", toString(l.type)}, {"name", l.name}, {"map", l.map}, {"scale", l.scale},
+                {"rotation", l.rotation}, {"up", l.up}};
+    }
     nlohmann::ordered_json j{{"type", toString(l.type)}, {"name", l.name}, {"position", l.position},
                              {toString(l.unit), l.emission}};
     switch (l.type) {
@@ -193,6 +273,8 @@ nlohmann::ordered_json lightJson(const LightSpec& l) {
             j["radius"] = l.radius;
             j["segments"] = l.segments;
             break;
+        case LightType::Directional:
+        case LightType::Environment: break;  // returned above
     }
     return j;
 }

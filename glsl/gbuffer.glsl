@@ -7,7 +7,9 @@
 // a scene without lights or textures has no binding to fill for them.
 //
 // Local illumination as the paper's snapshot: Lambert from point lights (cosine lobes for the
-// point samples of area lights) plus the emission of emissive surfaces, in linear radiance.
+// point samples of area lights) and directional lights (the scene's and the environment's
+// brightest regions), the environment's SH ambient term, plus the emission of emissive
+// surfaces, in linear radiance.
 // Surfaces are two-sided: the normal is flipped towards the camera, as the tracer does.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_samplerless_texture_functions : require
@@ -60,6 +62,14 @@ float visibility(uint light, vec3 r, vec3 n) {
 
 // Lambert from light i (its shadow-map layers are 6i..6i+5), emission excluded.
 vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
+    if (isDirectional(light)) {  // irradiance E from direction normal.xyz
+        float weight = max(dot(n, light.normal.xyz), 0.0);
+#ifdef GBUFFER_SHADOWS
+        if (weight > 0.0)
+            weight *= directionalShadowVisibility(shadowCubes, i, light, worldPosition, n, shadowParams, int(kShadowPcf));
+#endif
+        return kd * kInvPi * light.intensity.rgb * weight;
+    }
     const vec3 toLight = light.position.xyz - worldPosition;
     const float d2 = dot(toLight, toLight);
     if (d2 <= 0.0) return vec3(0.0);
@@ -103,6 +113,7 @@ void main() {
     if (uint(k) < kLightCount) colour += lightContribution(INLINE_LIGHT(k), uint(k), n, kd);
     FOR_EACH_INLINE_LIGHT(ADD_INLINE_LIGHT)
     for (uint i = LIGHTING_INLINE_LIGHTS; i < kLightCount; ++i) colour += lightContribution(lights[i], i, n, kd);
+    colour += kd * kInvPi * ambientIrradiance(n);  // the environment's remainder (unshadowed)
     outColour = vec4(colour, 1.0);
 #ifdef GBUFFER_GREY
     outGrey = displayLuma(colour, pc.exposure);

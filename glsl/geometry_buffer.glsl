@@ -38,6 +38,9 @@ layout(binding = GEOMETRY_BINDING_SHADOW) uniform texture2DArray shadowCubes;
 // cone: the G-buffer's weight > 0) but the shadow maps block at least half of its PCF kernel.
 // Unlit sides never set a bit, so a terminator on a curved surface is no edge.
 bool occludes(GpuLight light, uint i, vec3 n, vec4 shadow) {
+    if (isDirectional(light))
+        return dot(n, light.normal.xyz) > 0.0 &&
+               directionalShadowVisibility(shadowCubes, i, light, worldPosition, n, shadow, int(kShadowPcf)) < 0.5;
     const vec3 toLight = light.position.xyz - worldPosition;
     const float d2 = dot(toLight, toLight);
     if (d2 <= 0.0) return false;

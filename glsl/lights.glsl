@@ -26,6 +26,30 @@ layout(constant_id = LIGHTING_SPEC_LIGHT_KINDS) const uint kLightKinds =
 #define FOR_EACH_INLINE_LIGHT(APPLY) APPLY(0) APPLY(1) APPLY(2) APPLY(3) APPLY(4) APPLY(5) APPLY(6) APPLY(7)
 FOR_EACH_INLINE_LIGHT(DECLARE_INLINE_LIGHT)
 
+// The ambient SH irradiance (LIGHTING_SPEC_AMBIENT_SH): coefficient i as kAmbient<i>.
+layout(constant_id = LIGHTING_SPEC_AMBIENT) const uint kAmbient = 0u;
+#define AMBIENT_CONSTANT(i, c) layout(constant_id = LIGHTING_SPEC_AMBIENT_SH + 3 * i + c) const float kAmbient##i##_##c = 0.0;
+#define AMBIENT_COEFFICIENT(i) AMBIENT_CONSTANT(i, 0) AMBIENT_CONSTANT(i, 1) AMBIENT_CONSTANT(i, 2)
+AMBIENT_COEFFICIENT(0) AMBIENT_COEFFICIENT(1) AMBIENT_COEFFICIENT(2) AMBIENT_COEFFICIENT(3) AMBIENT_COEFFICIENT(4)
+AMBIENT_COEFFICIENT(5) AMBIENT_COEFFICIENT(6) AMBIENT_COEFFICIENT(7) AMBIENT_COEFFICIENT(8)
+#define AMBIENT_RGB(i) vec3(kAmbient##i##_0, kAmbient##i##_1, kAmbient##i##_2)
+
+// Irradiance of the environment's ambient part on a surface with unit normal n (passes/
+// environment_lighting.cpp shBasis and ambientIrradiance are the CPU twins).
+vec3 ambientIrradiance(vec3 n) {
+    if (kAmbient == 0u) return vec3(0.0);
+    const float x = n.x, y = n.y, z = n.z;
+    return AMBIENT_RGB(0) * 0.282095 + AMBIENT_RGB(1) * (0.488603 * y) + AMBIENT_RGB(2) * (0.488603 * z) +
+           AMBIENT_RGB(3) * (0.488603 * x) + AMBIENT_RGB(4) * (1.092548 * x * y) + AMBIENT_RGB(5) * (1.092548 * y * z) +
+           AMBIENT_RGB(6) * (0.315392 * (3.0 * z * z - 1.0)) + AMBIENT_RGB(7) * (1.092548 * x * z) +
+           AMBIENT_RGB(8) * (0.546274 * (x * x - y * y));
+}
+
+// Whether light `light` of the list is directional; folds to false without directional lights.
+bool isDirectional(GpuLight light) {
+    return (kLightKinds & LIGHT_KIND_DIRECTIONAL) != 0u && light.cone.z > 1.5;
+}
+
 // scene/lights.h spotFalloff: 1 inside the inner cone, 0 outside the outer, t^2 between with t
 // linear in the cosine (glTF's recommended falloff).
 float spotFalloff(float cosAngle, float cosInner, float cosOuter) {

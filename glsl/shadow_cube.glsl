@@ -35,3 +35,18 @@ vec3 cubeLookup(vec3 r, out uint face) {
     const vec3 fz = vec3(s.z * r.x, -r.y, a.z);
     return xMajor ? fx : (yMajor ? fy : fz);
 }
+
+// The orthographic shadow map of a directional light (GpuLight: toLight in normal, the covered
+// sphere's centre in position and radius in cone.x): x, y in [-1, 1] across the map and z the
+// reversed depth 1 - (R - dot(p - c, toLight)) / (2R), larger nearer the light as near/ma is for
+// the cube faces. The basis is Duff et al. 2017's, a pure function of the direction, so the
+// raster and every receiver agree.
+vec3 directionalMapCoords(vec3 p, vec3 toLight, vec3 centre, float radius) {
+    const float s = toLight.z >= 0.0 ? 1.0 : -1.0;
+    const float a = -1.0 / (s + toLight.z);
+    const float c = toLight.x * toLight.y * a;
+    const vec3 t = vec3(1.0 + s * toLight.x * toLight.x * a, s * c, -s * toLight.x);
+    const vec3 b = vec3(c, s + toLight.y * toLight.y * a, -toLight.y);
+    const vec3 q = p - centre;
+    return vec3(dot(q, t) / radius, dot(q, b) / radius, 1.0 - (radius - dot(q, toLight)) / (2.0 * radius));
+}

@@ -35,3 +35,32 @@ float shadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 n, v
     }
     return float(lit) / float(pcf * pcf);
 }
+
+// The same for directional light `light` (its orthographic map in layer 6 light) at world point p
+// with unit normal n: the bias grows with the slope to the light's direction as above, in units
+// of the map's texels (2 radius / size in world units).
+float directionalShadowVisibility(texture2DArray shadowCubes, uint light, GpuLight l, vec3 p, vec3 n, vec4 shadow,
+                                  int pcf) {
+    const vec3 o = directionalMapCoords(p, l.normal.xyz, l.position.xyz, l.cone.x);
+    const int size = int(shadow.w);
+    const float cosAxis = abs(dot(n, l.normal.xyz));
+    const float tanTheta = min(sqrt(max(1.0 - cosAxis * cosAxis, 0.0)) / max(cosAxis, 1e-4), 10.0);
+    // One texel is 2R / size wide; depth runs over 2R: a texel of bias is 1 / size in depth.
+    const float bias = (shadow.y + shadow.z * tanTheta * 0.5 * float(pcf + 1)) / float(size);
+    const float threshold = o.z + bias;
+    const vec2 st = (o.xy * 0.5 + 0.5) * float(size);
+    const int layer = int(light * 6u);
+    if (pcf == 1) {
+        const ivec2 t = clamp(ivec2(st), ivec2(0), ivec2(size - 1));
+        return texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0.0 : 1.0;
+    }
+    const ivec2 lo = ivec2(floor(st - 0.5 * float(pcf - 1)));
+    int lit = 0;
+    for (int y = 0; y < pcf; ++y) {
+        for (int x = 0; x < pcf; ++x) {
+            const ivec2 t = clamp(lo + ivec2(x, y), ivec2(0), ivec2(size - 1));
+            lit += texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0 : 1;
+        }
+    }
+    return float(lit) / float(pcf * pcf);
+}

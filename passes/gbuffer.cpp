@@ -12,9 +12,12 @@
 
 #include <aamap/spirv.h>
 #include <fmt/format.h>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "core/image_io.h"
 #include "engine/vk/context.h"
+#include "glsl/shared/aamap_filter.h"
 #include "glsl/shared/snapshot_interface.h"
 #include "passes/gbuffer_textures.h"
 #include "passes/mirror.h"
@@ -307,10 +310,21 @@ GBufferPass::GBufferPass(VulkanContext& context, const Scene& scene) : context_(
         reversedTriangles_ = vk::uploadBuffer(context, bytesOf(reversed), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
         depthPipeline_ = makeDepthPipeline(context);
     }
+    if (!positions_.empty()) {
+        glm::vec3 lo = positions_.front(), hi = positions_.front();
+        for (const glm::vec3& p : positions_) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        coverCentre_ = 0.5f * (lo + hi);
+        // 1% slack: vertices on the sphere stay inside the map and its depth range.
+        coverRadius_ = std::max(0.505f * glm::length(hi - lo), 1e-6f * std::max(glm::length(coverCentre_), 1.0f));
+    }
     setLights({});
 }
 
-void GBufferPass::setLights(std::span<const PointLight> lights) {
+void GBufferPass::setLights(std::span<const PointLight> lights, std::span<const DirectionalLight> directionals,
+                            const std::array<glm::vec3, 9>* ambientSH) {
     std::vector<gpu::GpuLight> gpuLights;
     for (const PointLight& l : lights) {
         // A lobe wins over a spot cone, as in the tracer (tracer/lights.cpp).
@@ -319,21 +333,34 @@ void GBufferPass::setLights(std::span<const PointLight> lights) {
                              glm::vec4(spot ? glm::normalize(l.spotDirection) : l.normal, 0.0f),
                              glm::vec4(l.cosInner, std::min(l.cosOuter, l.cosInner), spot ? 1.0f : 0.0f, 0.0f)});
     }
+    for (const DirectionalLight& d : directionals) {
+        const float len = glm::length(d.direction);
+        if (!(len > 0.0f)) continue;
+        gpuLights.push_back({glm::vec4(coverCentre_, 1.0f), glm::vec4(d.irradiance, 0.0f),
+                             glm::vec4(-d.direction / len, 0.0f),
+                             glm::vec4(coverRadius_, 0.0f, LIGHT_CONE_DIRECTIONAL, 0.0f)});
+    }
     if (gpuLights.size() > GBUFFER_MAX_LIGHTS)
-        throw std::invalid_argument(fmt::format("the Snapshot raster takes at most {} point lights, the scene gives {} "
-                                                "(point lights plus areaLightSamples per area light)",
+        throw std::invalid_argument(fmt::format("the Snapshot raster takes at most {} lights, the scene gives {} "
+                                                "(point lights plus areaLightSamples per area light, plus directional "
+                                                "lights)",
                                                 GBUFFER_MAX_LIGHTS, gpuLights.size()));
+    ambient_ = ambientSH != nullptr;
+    ambientSH_ = ambient_ ? *ambientSH : std::array<glm::vec3, 9>{};
     lightCount_ = static_cast<std::uint32_t>(gpuLights.size());
     const std::size_t inlined = std::min<std::size_t>(gpuLights.size(), LIGHTING_INLINE_LIGHTS);
     inlineLights_.assign(gpuLights.begin(), gpuLights.begin() + static_cast<std::ptrdiff_t>(inlined));
     lightKinds_ = 0;
+    lightDirectional_.clear();
     for (const gpu::GpuLight& l : gpuLights) {
-        if (l.cone.z > 0.0f) lightKinds_ |= LIGHT_KIND_SPOT;
+        lightDirectional_.push_back(l.cone.z == LIGHT_CONE_DIRECTIONAL ? 1 : 0);
+        if (l.cone.z == LIGHT_CONE_DIRECTIONAL) lightKinds_ |= LIGHT_KIND_DIRECTIONAL;
+        else if (l.cone.z > 0.0f) lightKinds_ |= LIGHT_KIND_SPOT;
         else if (glm::dot(l.normal, l.normal) > 0.0f) lightKinds_ |= LIGHT_KIND_LOBE;
         else lightKinds_ |= LIGHT_KIND_ISOTROPIC;
     }
     lightPositions_.clear();
-    for (const PointLight& l : lights) lightPositions_.push_back(l.position);
+    for (const gpu::GpuLight& l : gpuLights) lightPositions_.push_back(glm::vec3(l.position));
     ++lightsVersion_;
     // Pipelines specialised for the old list: only recordings made before this call use them, and
     // those must be declared again anyway (the light buffer is replaced below).
@@ -375,8 +402,7 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
 }
 
 std::vector<std::uint32_t> GBufferPass::lightingConstants(std::uint32_t pcf) const {
-    std::vector<std::uint32_t> constants(LIGHTING_SPEC_LIGHT_DATA +
-                                         LIGHTING_SPEC_FLOATS_PER_LIGHT * LIGHTING_INLINE_LIGHTS);
+    std::vector<std::uint32_t> constants(LIGHTING_SPEC_COUNT);
     constants[LIGHTING_SPEC_LIGHT_COUNT] = lightCount_;
     constants[LIGHTING_SPEC_SHADOW_PCF] = std::max(pcf, 1u);
     constants[LIGHTING_SPEC_LIGHT_KINDS] = lightKinds_;
@@ -389,6 +415,10 @@ std::vector<std::uint32_t> GBufferPass::lightingConstants(std::uint32_t pcf) con
                 constants[LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * k + 3 * f + c] =
                     std::bit_cast<std::uint32_t>(fields[f][c]);
     }
+    constants[LIGHTING_SPEC_AMBIENT] = ambient_ ? 1u : 0u;
+    for (int i = 0; i < 9; ++i)
+        for (int c = 0; c < 3; ++c)
+            constants[LIGHTING_SPEC_AMBIENT_SH + 3 * i + c] = std::bit_cast<std::uint32_t>(ambientSH_[i][c]);
     return constants;
 }
 
@@ -443,9 +473,17 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
     const vk::Image& target = pc.image(colour);
     const vk::Image& z = pc.image(depth);
     const VkExtent2D extent{target.info().width, target.info().height};
-    // Black background, whose grey is 0.
-    std::vector<VkRenderingAttachmentInfo> colourInfos{vk::clearedColourAttachment(target.view())};
-    if (!grey.empty()) colourInfos.push_back(vk::clearedColourAttachment(pc.image(grey).view()));
+    // The background (black unless the scene has a sky), and its grey as glsl/display_luma.glsl
+    // computes it.
+    const VkClearColorValue sky{{background_.r, background_.g, background_.b, 0.0f}};
+    std::vector<VkRenderingAttachmentInfo> colourInfos{vk::clearedColourAttachment(target.view(), sky)};
+    if (!grey.empty()) {
+        const float e = draws[0].exposure;
+        const float g = static_cast<float>(AAMAP_LUMA_R) * srgbEncode(e * background_.r) +
+                        static_cast<float>(AAMAP_LUMA_G) * srgbEncode(e * background_.g) +
+                        static_cast<float>(AAMAP_LUMA_B) * srgbEncode(e * background_.b);
+        colourInfos.push_back(vk::clearedColourAttachment(pc.image(grey).view(), VkClearColorValue{{g, 0.0f, 0.0f, 0.0f}}));
+    }
     VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depthInfo.imageView = z.view();
     depthInfo.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;

@@ -22,6 +22,7 @@
 // gets the textured pipeline variants (uv and atlas entry per vertex, one atlas binding); other
 // scenes bind no texture at all. Alpha-tested materials with constant coverage need no texture:
 // their triangles are either dropped (alpha < cutoff) or opaque.
+#include <array>
 #include <compare>
 #include <map>
 #include <span>
@@ -71,9 +72,13 @@ public:
     static constexpr graph::Format kGreyFormat = graph::Format::R32Float;  // GBufferGrey
 
     GBufferPass(VulkanContext& context, const Scene& scene);  // uploads the mesh with its materials
-    // Uploads the light list; throws std::invalid_argument past GBUFFER_MAX_LIGHTS (256). Passes
-    // declared before must be declared again (add, addReflected) before they execute.
-    void setLights(std::span<const PointLight> lights);
+    // Uploads the light list: the point lights, then the directional ones (each shadowed by an
+    // orthographic map over the bounding sphere of the mesh), and the ambient SH irradiance
+    // (passes/environment_lighting.h; null: none). Throws std::invalid_argument past
+    // GBUFFER_MAX_LIGHTS (256) lights. Passes declared before must be declared again (add,
+    // addReflected) before they execute.
+    void setLights(std::span<const PointLight> lights, std::span<const DirectionalLight> directionals = {},
+                   const std::array<glm::vec3, 9>* ambientSH = nullptr);
 
     // Declares the pass "gbuffer" (writes `colour` and `depth`, and grey.resource if not empty;
     // reads the shadow maps if any) and registers its recording for the camera with the given
@@ -101,7 +106,11 @@ public:
     bool alphaMasked() const { return alphaMasked_; }  // some texel can be cut out (shadows test it)
     const vk::Image& atlas() const { return atlas_; }  // valid only when textured()
     std::string atlasSummary() const;                  // for --explain
+    // Radiance of the background (where no surface is drawn), and its grey; black by default.
+    // Passes declared before must be declared again, as after setLights.
+    void setBackground(const glm::vec3& radiance) { background_ = radiance; }
     std::uint32_t lightCount() const { return lightCount_; }
+    bool ambient() const { return ambient_; }  // the environment's SH term is shaded
     // The LIGHTING_SPEC_* specialisation constants of a lit fragment shader drawing these lights
     // with this PCF side (glsl/lights.glsl), for the passes that share the G-buffer's lights.
     std::vector<std::uint32_t> lightingConstants(std::uint32_t pcf) const;
@@ -112,6 +121,8 @@ public:
     // triangle, in vertex-buffer order) and the lights' positions, with a counter of setLights.
     std::span<const glm::vec3> vertexPositions() const { return positions_; }
     std::span<const glm::vec3> lightPositions() const { return lightPositions_; }
+    // Per light: 1 if directional (its shadow map is one orthographic layer, face 0), else 0.
+    std::span<const std::uint8_t> lightDirectional() const { return lightDirectional_; }
     std::uint64_t lightsVersion() const { return lightsVersion_; }
     // The distinct positions (bit-equal corners merged) and, per vertex of vertexBuffer(), its
     // index among them: position-only passes (depth pre-pass, shadow cube maps) draw these, so
@@ -153,6 +164,12 @@ private:
     std::vector<std::uint32_t> positionIndex_;
     vk::Image atlas_;
     std::vector<glm::vec3> positions_, lightPositions_;
+    std::vector<std::uint8_t> lightDirectional_;
+    glm::vec3 coverCentre_{0.0f};  // the sphere every directional shadow map covers
+    float coverRadius_ = 1.0f;
+    bool ambient_ = false;
+    glm::vec3 background_{0.0f};
+    std::array<glm::vec3, 9> ambientSH_{};
     std::uint64_t lightsVersion_ = 0;
     bool textured_ = false, alphaMasked_ = false;
     std::uint32_t atlasEntries_ = 0;

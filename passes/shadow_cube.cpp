@@ -57,12 +57,21 @@ const vk::Pipeline& ShadowCubePass::pipelineFor(const GBufferPass& geometry) con
 }
 
 ShadowCubePass::FaceLists ShadowCubePass::cullPerFace(std::span<const glm::vec3> positions,
-                                                     std::span<const glm::vec3> lights, float nearPlane) {
+                                                     std::span<const glm::vec3> lights, float nearPlane,
+                                                     std::span<const std::uint8_t> directional) {
     FaceLists lists;
     const std::size_t triangles = positions.size() / 3;
-    for (const glm::vec3& light : lights) {
+    for (std::size_t l = 0; l < lights.size(); ++l) {
+        const glm::vec3& light = lights[l];
         std::vector<std::uint32_t> faces[6];
-        for (std::size_t t = 0; t < triangles; ++t) {
+        if (l < directional.size() && directional[l] != 0) {
+            // The orthographic map covers the whole mesh: every triangle, on face 0 only.
+            for (std::size_t t = 0; t < triangles; ++t) {
+                const auto first = static_cast<std::uint32_t>(3 * t);
+                faces[0].insert(faces[0].end(), {first, first + 1, first + 2});
+            }
+        }
+        for (std::size_t t = 0; t < triangles && !(l < directional.size() && directional[l] != 0); ++t) {
             glm::vec3 r[3];
             for (int k = 0; k < 3; ++k) r[k] = positions[3 * t + static_cast<std::size_t>(k)] - light;
             for (int f = 0; f < 6; ++f) {
@@ -95,7 +104,8 @@ ShadowCubePass::FaceLists ShadowCubePass::cullPerFace(std::span<const glm::vec3>
 
 void ShadowCubePass::updateFaceLists(const GBufferPass& geometry, float nearPlane) {
     if (listsGeometry_ == &geometry && listsVersion_ == geometry.lightsVersion() && listsNear_ == nearPlane) return;
-    FaceLists lists = cullPerFace(geometry.vertexPositions(), geometry.lightPositions(), nearPlane);
+    FaceLists lists =
+        cullPerFace(geometry.vertexPositions(), geometry.lightPositions(), nearPlane, geometry.lightDirectional());
     if (geometry.sharedPositions()) {
         const std::span<const std::uint32_t> shared = geometry.positionIndex();
         for (std::uint32_t& i : lists.indices) i = shared[i];
@@ -139,8 +149,8 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
     if (lights > 6) names += fmt::format(", ... ({} more)", lights - 6);
     const graph::PassId id = graph.addPass(
         {kShadowPass, graph::QueueKind::Graphics, {graph::writes(resource, graph::Usage::DepthAttachment)},
-         fmt::format("shadow cube maps ({}^2 per face, 6 layers each) for {} light{}: {}; per-face culling draws "
-                     "{:.1f}% of triangles x faces{}",
+         fmt::format("shadow cube maps ({}^2 per face, 6 layers each; a directional light's orthographic map fills "
+                     "the first) for {} light{}: {}; per-face culling draws {:.1f}% of triangles x faces{}",
                      faceSize, lights, lights == 1 ? "" : "s", names, 100.0 * keptShare,
                      geometry.alphaMasked() ? "; alpha test from the G-buffer's atlas (the scene has masks)" : "")});
 

@@ -65,8 +65,10 @@ public:
         std::vector<std::uint32_t> indices;
         std::vector<std::pair<std::uint32_t, std::uint32_t>> ranges;  // (first, count) per layer
     };
+    // directional[i] != 0: light i is directional, its one orthographic map (face 0) takes every
+    // triangle and faces 1..5 none; empty: all point lights.
     static FaceLists cullPerFace(std::span<const glm::vec3> positions, std::span<const glm::vec3> lights,
-                                 float nearPlane);
+                                 float nearPlane, std::span<const std::uint8_t> directional = {});
 
 private:
     const vk::Pipeline& pipelineFor(const GBufferPass& geometry) const;

@@ -13,6 +13,7 @@
 
 #include "engine/vk/context.h"
 #include "engine/vk/graph_executor.h"
+#include "passes/environment_lighting.h"
 #include "passes/gbuffer.h"
 #include "passes/mirror.h"
 #include "passes/gpu_aamap.h"
@@ -40,6 +41,8 @@ Scene lightingCopy(const Scene& scene) {
     s.materials = scene.materials;
     s.pointLights = scene.pointLights;
     s.areaLights = scene.areaLights;
+    s.directionalLights = scene.directionalLights;
+    s.environment = scene.environment;
     return s;
 }
 
@@ -92,6 +95,7 @@ struct SnapshotRenderer::Impl {
     passes::GeometricEdgePass geometricEdges;
     vk::GraphExecutor executor;
     int lightSamples = -1;  // k the light buffer was built for
+    int environmentLights = -1;  // and the environment's extracted lights
     std::vector<std::string> lightNames;     // of the light buffer, in order
     std::optional<passes::ShadowCubePass> shadows;  // built on first use (needs a light)
 
@@ -108,20 +112,33 @@ struct SnapshotRenderer::Impl {
           geometricEdges(c),
           executor(c) {}
 
-    void updateLights(int k) {
-        if (k == lightSamples) return;
+    void updateLights(int k, int fromEnvironment) {
+        if (k == lightSamples && fromEnvironment == environmentLights) return;
         if (k < 1 && !lighting.areaLights.empty())
             throw std::invalid_argument("SnapshotSettings::areaLightSamples must be at least 1, got " +
                                         std::to_string(k));
+        if (fromEnvironment < 0 || fromEnvironment > 16)
+            throw std::invalid_argument("SnapshotSettings::environmentLights must be in [0, 16], got " +
+                                        std::to_string(fromEnvironment));
         std::vector<PointLight> lights = lighting.pointLights;
         for (const AreaLight& area : lighting.areaLights) {
             const std::vector<PointLight> samples = approximateAreaLight(lighting, area, k);
             lights.insert(lights.end(), samples.begin(), samples.end());
         }
-        gbuffer.setLights(lights);
+        std::vector<DirectionalLight> directionals = lighting.directionalLights;
+        std::optional<passes::EnvironmentLighting> env;
+        if (lighting.environment) {
+            env = passes::prepareEnvironmentLighting(*lighting.environment, fromEnvironment);
+            directionals.insert(directionals.end(), env->lights.begin(), env->lights.end());
+        }
+        gbuffer.setLights(lights, directionals, env ? &env->irradianceSH : nullptr);
+        gbuffer.setBackground(env ? env->background : glm::vec3(0.0f));
         lightNames.clear();
         for (const PointLight& l : lights) lightNames.push_back(l.name);
+        for (const DirectionalLight& d : directionals)
+            if (glm::length(d.direction) > 0.0f) lightNames.push_back(d.name);
         lightSamples = k;
+        environmentLights = fromEnvironment;
     }
 };
 
@@ -138,7 +155,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         throw std::invalid_argument("SnapshotSettings::scale must be positive");
     validate(settings.shadows);
     Impl& s = *impl_;
-    s.updateLights(settings.areaLightSamples);
+    s.updateLights(settings.areaLightSamples, settings.environmentLights);
 
     auto scaled = [&](int v) {
         return static_cast<std::uint32_t>(std::max(1L, std::lround(settings.scale * static_cast<float>(v))));
@@ -252,6 +269,9 @@ std::vector<std::string> snapshotLimitations(const Scene& scene) {
         notes.push_back(fmt::format("{} glass triangle(s): the Snapshot sees through glass, so its silhouettes and "
                                     "what it refracts are not in the aamap",
                                     glass));
+    if (scene.environment && !scene.environment->map.empty())
+        notes.push_back("an environment map: the Snapshot's background is the sky's mean radiance, not the map, so "
+                        "edges against the sky are judged against that flat colour");
     return notes;
 }
 

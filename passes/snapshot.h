@@ -27,6 +27,9 @@ struct ShadowSettings {
 struct SnapshotSettings {
     float scale = 1.5f;          // snapshot resolution / render resolution (768 for 512)
     int areaLightSamples = 5;    // point samples per area light (the paper used 5)
+    // The environment map's brightest regions shaded as this many shadowed directional lights
+    // (0..16; 0: the whole map goes to the SH ambient term). passes/environment_lighting.h.
+    int environmentLights = 1;
     FilterParams filter;
     bool keepDebugImages = true;  // also read back snapshot colour and laplacian
     // Also build and read back the aamap's block-sum tables (passes/block_sums.h) for adaptive
@@ -56,6 +59,7 @@ struct SnapshotResult {
     std::string explain;  // the compiled graph, CompiledGraph::explain(), and each kept pass's purpose
     std::string dot;      // the compiled graph as Graphviz DOT (CompiledGraph::toDot())
     int shadowCubeMaps = 0;  // cube maps rendered: one per shadowed point light / area-light sample
+                             // (and per directional light: its orthographic map takes a cube's layers)
 };
 
 // What of the scene the Snapshot cannot show the way the tracer will, one sentence each (curved

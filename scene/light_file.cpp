@@ -7,8 +7,12 @@
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/error.h"
+#include "scene/environment_map.h"
 #include "scene/lights.h"
 #include "scene/scene.h"
 
@@ -83,6 +87,18 @@ double diskRimRadius(double radius, int segments) {
     return radius * std::sqrt(2.0 * kPi / (n * std::sin(2.0 * kPi / n)));
 }
 
+glm::mat3 environmentToLocal(const std::array<double, 3>& up, double rotationDeg) {
+    const glm::dvec3 u = toDvec3(up);
+    const glm::dvec3 y = glm::length(u) > 0.0 ? glm::normalize(u) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 z = perpendicular(y, glm::dvec3(0, 0, 1));  // +Z stays +Z for the default up
+    const glm::dvec3 x = glm::cross(y, z);
+    const double a = glm::radians(rotationDeg), c = std::cos(a), s = std::sin(a);
+    // World from map: the up frame after a right-handed turn by `a` about its Y.
+    const glm::dmat3 frame(x, y, z);
+    const glm::dmat3 turn(glm::dvec3(c, 0, -s), glm::dvec3(0, 1, 0), glm::dvec3(s, 0, c));
+    return glm::mat3(glm::transpose(frame * turn));
+}
+
 void addLights(Scene& scene, std::span<const LightSpec> lights) {
     for (const LightSpec& spec : lights) {
         const glm::dvec3 position = toDvec3(spec.position);
@@ -142,6 +158,32 @@ void addLights(Scene& scene, std::span<const LightSpec> lights) {
                 }
                 const glm::dvec3 radiance = spec.unit == EmissionUnit::Power ? emission / (kPi * area) : emission;
                 addEmitter(scene, spec.name, points, triangles, n, toVec3(radiance));
+                break;
+            }
+            case LightType::Directional: {
+                DirectionalLight d;
+                d.name = spec.name;
+                d.direction = toVec3(unit(spec.direction, spec, "direction"));
+                d.irradiance = toVec3(emission);
+                scene.directionalLights.push_back(std::move(d));
+                break;
+            }
+            case LightType::Environment: {
+                if (scene.environment)
+                    throw std::invalid_argument(fmt::format("light '{}': the scene already has an environment ('{}'); "
+                                                            "a scene has at most one", spec.name, scene.environment->name));
+                EnvironmentLight env;
+                env.name = spec.name;
+                if (spec.map.empty()) {
+                    env.scale = toVec3(emission);
+                } else {
+                    env.scale = glm::vec3(static_cast<float>(spec.scale));
+                    std::string error;
+                    if (!loadEnvironmentMap(spec.map, env, error))
+                        throw InputError(spec.map, fmt::format("light '{}': {}", spec.name, error));
+                    env.toLocal = environmentToLocal(spec.up, spec.rotation);
+                }
+                scene.environment = std::move(env);
                 break;
             }
         }

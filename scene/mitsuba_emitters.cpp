@@ -8,10 +8,10 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/error.h"
-#include "core/image_io.h"
+#include "scene/environment_map.h"
 #include "scene/mitsuba_transform.h"
 #include "scene/text_util.h"
-#include "scene/texture_loader.h"
+#include "scene/texture_loader.h"  // resolveCaseInsensitive
 
 namespace aamap::mitsuba {
 namespace fs = std::filesystem;
@@ -27,33 +27,8 @@ void loadMap(const Element& emitter, EnvironmentLight& env) {
     if (name.empty()) fail(emitter, "envmap has no filename");
     const auto path = resolveCaseInsensitive(emitter.file.parent_path(), name);
     if (!path) fail(emitter, fmt::format("environment map '{}' not found", (emitter.file.parent_path() / name).string()));
-    env.mapPath = *path;
-    const std::string ext = text::toLower(path->extension().string());
-    try {
-        if (ext == ".exr") {
-            const ImageRGB image = readExr(*path);
-            env.mapWidth = image.width();
-            env.mapHeight = image.height();
-            env.map.resize(image.size());
-            for (int y = 0; y < image.height(); ++y)
-                for (int x = 0; x < image.width(); ++x) env.map[static_cast<std::size_t>(y) * image.width() + x] = image.at(x, y);
-            return;
-        }
-    } catch (const std::exception& e) {
-        fail(emitter, fmt::format("cannot read environment map '{}': {}", path->string(), e.what()));
-    }
     std::string error;
-    const auto texture = loadTexture(*path, &error);
-    if (!texture) fail(emitter, fmt::format("cannot read environment map '{}': {}", path->string(), error));
-    if (ext != ".hdr") {
-        fail(emitter, fmt::format("environment map '{}' is not EXR or Radiance HDR (8-bit images hold no radiance)",
-                                  path->string()));
-    }
-    env.mapWidth = texture->width;
-    env.mapHeight = texture->height;
-    env.map.resize(static_cast<std::size_t>(texture->width) * texture->height);
-    for (std::size_t i = 0; i < env.map.size(); ++i)
-        env.map[i] = {texture->rgba[4 * i], texture->rgba[4 * i + 1], texture->rgba[4 * i + 2]};
+    if (!loadEnvironmentMap(*path, env, error)) fail(emitter, error);
 }
 
 void setEnvironment(const Element& emitter, Scene& scene, EnvironmentLight env) {

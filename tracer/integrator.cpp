@@ -79,7 +79,7 @@ bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, Surfac
     RTCRayHit rh = makeRayHit(origin, dir);
     rtcIntersect1(scene_, &context, &rh);
     ++counter;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;  // misses are black
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     fillHit(rh, dir, hit);
     return true;
 }
@@ -87,7 +87,7 @@ bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, Surfac
 glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler,
                               RayCounts& rays) const {
     SurfaceHit hit;
-    if (!intersect(origin, dir, hit, rays.primary)) return glm::vec3(0.0f);
+    if (!intersect(origin, dir, hit, rays.primary)) return escaped(dir);
     if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
     return shadeDirect(hit, sampler, 0, 0, 1.0f, rays);
 }
@@ -95,7 +95,7 @@ glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, con
 glm::vec3 Integrator::primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler,
                                      RayCounts& rays) const {
     ++rays.primary;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return glm::vec3(0.0f);  // misses are black
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return escaped(dir);
     SurfaceHit hit;
     fillHit(rh, dir, hit);
     if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
@@ -105,7 +105,7 @@ glm::vec3 Integrator::primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, 
 glm::vec3 Integrator::radianceDirect(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
                                      RayCounts& rays) const {
     SurfaceHit hit;
-    if (!intersect(origin, dir, hit, rays.other)) return glm::vec3(0.0f);
+    if (!intersect(origin, dir, hit, rays.other)) return escaped(dir);
     // weight 0 marks "not under a primary ray": no cache lookup (the cache's own rays land here).
     return shadeDirect(hit, sampler, depth, 0, 0.0f, rays);
 }
@@ -113,7 +113,7 @@ glm::vec3 Integrator::radianceDirect(const glm::vec3& origin, const glm::vec3& d
 glm::vec3 Integrator::traceSpecular(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
                                     int specular, float weight, RayCounts& rays) const {
     SurfaceHit hit;
-    if (!intersect(origin, dir, hit, rays.other)) return glm::vec3(0.0f);
+    if (!intersect(origin, dir, hit, rays.other)) return escaped(dir);
     return shadeDirect(hit, sampler, depth, specular, weight, rays);
 }
 
@@ -143,7 +143,73 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
 }
 
 glm::vec3 Integrator::directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
-    return lights_.many() ? directManyLights(hit, sampler, depth, rays) : directFewLights(hit, sampler, depth, rays);
+    glm::vec3 L = lights_.count() == 0 ? glm::vec3(0.0f)
+                  : lights_.many()     ? directManyLights(hit, sampler, depth, rays)
+                                       : directFewLights(hit, sampler, depth, rays);
+    if (!lights_.directionals.empty() || lights_.environment) L += directInfinite(hit, sampler, depth, rays);
+    return L;
+}
+
+glm::vec3 Integrator::smoothBrdf(const SurfaceHit& hit, const glm::vec3& wi) const {
+    const ShadingMaterial& mat = *hit.material;
+    glm::vec3 f = hit.albedo * bsdf::kInvPi;
+    if (mat.glossy) f += mat.ks * (mat.phongNorm * bsdf::phongLobe(mat, hit.wo, hit.shading, wi));
+    return f;
+}
+
+glm::vec3 Integrator::directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
+    const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
+    glm::vec3 L(0.0f);
+    for (const DirectionalSource& d : lights_.directionals) {
+        // As for point lights: the geometric normal decides the side, the shading normal weights.
+        if (glm::dot(hit.geometric, d.toLight) <= 0.0f) continue;
+        const float cosSurface = glm::dot(hit.shading, d.toLight);
+        if (cosSurface <= 0.0f || !unoccludedToward(origin, d.toLight, rays)) continue;
+        L += smoothBrdf(hit, d.toLight) * d.irradiance * cosSurface;
+    }
+    if (lights_.environment) L += environmentDirect(hit, origin, sampler, depth, rays);
+    return L;
+}
+
+glm::vec3 Integrator::environmentDirect(const SurfaceHit& hit, const glm::vec3& origin, const Sampler& sampler,
+                                        int depth, RayCounts& rays) const {
+    // m x m stratified samples of each strategy, MIS-weighted with the power heuristic (equal
+    // counts, so the weights take the pdfs alone). A constant environment takes the BSDF samples
+    // only, with weight 1: they are its ideal importance (exact for an unoccluded Lambert hit).
+    const EnvironmentSampler& env = *lights_.environment;
+    const ShadingMaterial& mat = *hit.material;
+    const float diffusePick = mat.glossy ? mat.diffuseWeight : 1.0f;
+    const int m = lightGrid_;
+    const float invM = 1.0f / static_cast<float>(m);
+    const int count = m * m;
+    glm::vec3 sum(0.0f);
+    if (!env.constant()) {
+        for (int j = 0; j < count; ++j) {
+            const EnvironmentSampler::Sample s =
+                env.sample(sampler.jittered2D(dims::path(depth, dims::PathSlot::EnvLight, j), j % m, j / m, invM));
+            if (!(s.pdf > 0.0f) || glm::dot(hit.geometric, s.direction) <= 0.0f) continue;
+            const float cosSurface = glm::dot(hit.shading, s.direction);
+            if (cosSurface <= 0.0f || !(bsdf::maxComponent(s.radiance) > 0.0f)) continue;
+            const bsdf::Eval e = bsdf::evalSmooth(mat, hit.albedo, hit.shading, hit.wo, s.direction, cosSurface, diffusePick);
+            if (!(bsdf::maxComponent(e.f) > 0.0f) || !unoccludedToward(origin, s.direction, rays)) continue;
+            sum += e.f * s.radiance * (cosSurface * powerHeuristic(s.pdf, e.pdf) / s.pdf);
+        }
+    }
+    for (int j = 0; j < count; ++j) {
+        const float lobeU = sampler.get1D(dims::path(depth, dims::PathSlot::EnvLobe, j));
+        const glm::vec2 u = sampler.jittered2D(dims::path(depth, dims::PathSlot::EnvBsdf, j), j % m, j / m, invM);
+        glm::vec3 dir;
+        if (!bsdf::sampleSmooth(mat, hit.shading, hit.wo, lobeU, u, dir)) continue;
+        const float cosSurface = glm::dot(hit.shading, dir);
+        if (cosSurface <= 0.0f || glm::dot(hit.geometric, dir) <= 0.0f) continue;
+        const bsdf::Eval e = bsdf::evalSmooth(mat, hit.albedo, hit.shading, hit.wo, dir, cosSurface, diffusePick);
+        if (!(e.pdf > 0.0f)) continue;
+        const glm::vec3 Le = env.radiance(dir);
+        if (!(bsdf::maxComponent(Le) > 0.0f) || !unoccludedToward(origin, dir, rays)) continue;
+        const float w = env.constant() ? 1.0f : powerHeuristic(e.pdf, env.pdf(dir));
+        sum += e.f * Le * (cosSurface * w / e.pdf);
+    }
+    return sum * (invM * invM);
 }
 
 glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
@@ -311,16 +377,24 @@ glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin
 }
 
 bool Integrator::unoccluded(const glm::vec3& origin, const glm::vec3& target, float tfar, RayCounts& rays) const {
+    // Unnormalised: t = 1 is the target, so no square root is needed.
+    return !occluded(origin, target - origin, tfar, rays);
+}
+
+bool Integrator::unoccludedToward(const glm::vec3& origin, const glm::vec3& dir, RayCounts& rays) const {
+    return !occluded(origin, dir, std::numeric_limits<float>::infinity(), rays);
+}
+
+bool Integrator::occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar, RayCounts& rays) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray;
     ray.org_x = origin.x;
     ray.org_y = origin.y;
     ray.org_z = origin.z;
-    // Unnormalised: t = 1 is the target, so no square root is needed.
-    ray.dir_x = target.x - origin.x;
-    ray.dir_y = target.y - origin.y;
-    ray.dir_z = target.z - origin.z;
+    ray.dir_x = dir.x;
+    ray.dir_y = dir.y;
+    ray.dir_z = dir.z;
     ray.tnear = 0.0f;
     ray.tfar = tfar;
     ray.time = 0.0f;
@@ -329,7 +403,7 @@ bool Integrator::unoccluded(const glm::vec3& origin, const glm::vec3& target, fl
     ray.flags = 0;
     rtcOccluded1(scene_, &context, &ray);
     ++rays.shadow;
-    return ray.tfar >= 0.0f;  // Embree sets tfar to -inf on a hit
+    return !(ray.tfar >= 0.0f);  // Embree sets tfar to -inf on a hit
 }
 
 }  // namespace aamap

@@ -25,13 +25,24 @@ namespace aamap {
 
 // Random-number dimensions of the integrator beyond dims::areaLight (bit 63). Bit 62 marks these.
 namespace dims {
-enum class PathSlot : std::uint64_t { Light = 0, Bsdf = 1, Lobe = 2, Roulette = 3, ManyLights = 4 };
+// EnvLight, EnvBsdf, EnvLobe: the environment's light and BSDF samples (Direct/Cache: m x m each
+// per hit; Path: one light sample per vertex).
+enum class PathSlot : std::uint64_t {
+    Light = 0, Bsdf = 1, Lobe = 2, Roulette = 3, ManyLights = 4, EnvLight = 5, EnvBsdf = 6, EnvLobe = 7
+};
 // Slot `slot` at path vertex `depth` (< 2^20), sample `sample` (< 2^24) within the slot.
 constexpr std::uint64_t path(int depth, PathSlot slot, int sample = 0) {
     return (1ull << 62) | (static_cast<std::uint64_t>(depth) << 36) | (static_cast<std::uint64_t>(slot) << 28) |
            (2ull * static_cast<std::uint64_t>(sample));
 }
 }  // namespace dims
+
+// MIS weight of a sample from the strategy with pdf a against one with pdf b (Veach's power
+// heuristic, exponent 2).
+inline float powerHeuristic(float a, float b) {
+    const float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
 
 // A ray's first hit, with what shading needs. Normals face the side the ray came from.
 struct SurfaceHit {
@@ -114,6 +125,13 @@ public:
     // Reflected radiance towards hit.wo from direct light (all light types), smooth lobes only.
     glm::vec3 directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
 
+    // Radiance of the environment along a ray that leaves the scene in unit direction `dir`
+    // (black without one). Every mode returns it for escaping rays that are not hemisphere rays
+    // of the irradiance cache (the environment is sampled as direct light there).
+    glm::vec3 escaped(const glm::vec3& dir) const {
+        return lights_.environment ? lights_.environment->radiance(dir) : glm::vec3(0.0f);
+    }
+
     int areaLightGrid() const { return lightGrid_; }  // m: m x m samples per area light per hit
     const ShadingSettings& settings() const { return shading_; }
 
@@ -130,14 +148,33 @@ private:
     // One shadow sample of light l for the many-light paths, divided by its selection probability.
     glm::vec3 lightSample(const SurfaceHit& hit, const glm::vec3& origin, std::size_t l, glm::vec2 u, float pick,
                           RayCounts& rays) const;
+    // The lights at infinity (directional lights one shadow ray each, the environment m x m light
+    // and m x m BSDF samples with MIS; a constant environment BSDF samples only), for Direct/Cache.
+    glm::vec3 directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
+    glm::vec3 environmentDirect(const SurfaceHit& hit, const glm::vec3& origin, const Sampler& sampler, int depth,
+                                RayCounts& rays) const;
+    // The smooth lobes' BRDF (Lambert + Phong) towards unit wi, as the direct estimators weight it.
+    glm::vec3 smoothBrdf(const SurfaceHit& hit, const glm::vec3& wi) const;
     // Path mode (path_integrator.cpp): the whole path from a primary hit.
     glm::vec3 tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const;
     // One next-event sample for path mode, MIS-weighted against BSDF sampling.
     glm::vec3 nextEvent(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
                         RayCounts& rays) const;
+    // Its parts: one point or area light from the power CDF; every directional light and one
+    // environment-map sample (a constant environment is left to BSDF sampling).
+    glm::vec3 nextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                              RayCounts& rays) const;
+    glm::vec3 nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                                RayCounts& rays) const;
+    // What a BSDF-sampled ray that left the scene brings back, MIS-weighted against the
+    // environment's light samples (pdfBefore: the BSDF sample's solid-angle pdf).
+    glm::vec3 escapedPath(const glm::vec3& dir, bool specularBefore, float pdfBefore) const;
     // True if nothing blocks the segment from origin to target (shortened by `shorten` at the
     // target end). Traces one shadow ray.
     bool unoccluded(const glm::vec3& origin, const glm::vec3& target, float shorten, RayCounts& rays) const;
+    // True if nothing blocks the ray from origin along unit `dir` to infinity. One shadow ray.
+    bool unoccludedToward(const glm::vec3& origin, const glm::vec3& dir, RayCounts& rays) const;
+    bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar, RayCounts& rays) const;
     void fillHit(const RTCRayHit& rh, const glm::vec3& dir, SurfaceHit& hit) const;
 
     const EmbreeScene& geometry_;

@@ -116,6 +116,12 @@ LightSet buildLights(const Scene& scene, const EmbreeScene& geometry) {
         set.selectPdf.push_back(static_cast<float>(power[i] / total));
         set.selectCdf.push_back(i + 1 == power.size() ? 1.0f : static_cast<float>(running / total));
     }
+    for (const DirectionalLight& d : scene.directionalLights) {
+        const float len = glm::length(d.direction);
+        if (!(len > 0.0f) || !(std::max({d.irradiance.x, d.irradiance.y, d.irradiance.z}) > 0.0f)) continue;
+        set.directionals.push_back({-d.direction / len, d.irradiance});
+    }
+    if (scene.environment) set.environment.emplace(*scene.environment);
     if (!set.areas.empty()) {
         set.areaOfTriangle.assign(geometry.triangleCount(), -1);
         for (std::size_t k = 0; k < kept.size(); ++k)

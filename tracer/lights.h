@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -13,6 +14,7 @@
 
 #include "scene/lights.h"
 #include "scene/scene.h"
+#include "tracer/environment.h"
 
 namespace aamap {
 
@@ -96,11 +98,21 @@ struct PointLightSource {
     }
 };
 
+// A light infinitely far away in one direction (a sun): a delta light, one shadow ray to infinity.
+struct DirectionalSource {
+    glm::vec3 toLight;     // unit, from the receiver towards the light
+    glm::vec3 irradiance;  // on a surface facing it
+};
+
 // All lights, plus what light selection and MIS need. Light index l < points.size() is a point
-// light, the rest are areas[l - points.size()].
+// light, the rest are areas[l - points.size()]. The lights at infinity (directional lights, the
+// environment) are outside that numbering: every shading mode takes all of them at every hit, so
+// they never enter light selection.
 struct LightSet {
     std::vector<PointLightSource> points;
     std::vector<AreaLightSampler> areas;  // empty (zero-area) lights are dropped
+    std::vector<DirectionalSource> directionals;  // black ones are dropped
+    std::optional<EnvironmentSampler> environment;
 
     // Up to this many lights, direct lighting takes every light at every hit (the exact stratified
     // per-light estimator); beyond it, samples pick lights from the power CDF (docs/tracer.md).

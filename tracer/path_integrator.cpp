@@ -1,6 +1,7 @@
 // Path mode: unbiased path tracing, the ground truth for shading. Next-event estimation at every
-// non-delta vertex (one light sample, light picked on the power CDF), MIS with the power
-// heuristic between light and BSDF sampling, Russian roulette by throughput. Depth counts path
+// non-delta vertex (one light sample, light picked on the power CDF, plus every directional light
+// and one environment-map sample), MIS with the power heuristic between light and BSDF sampling,
+// Russian roulette by throughput. Rays that leave the scene bring back the environment. Depth counts path
 // segments as Mitsuba's max_depth does.
 #include <algorithm>
 #include <cmath>
@@ -11,17 +12,46 @@
 #include "tracer/integrator.h"
 
 namespace aamap {
-namespace {
-
-float powerHeuristic(float a, float b) {
-    const float a2 = a * a, b2 = b * b;
-    return a2 / (a2 + b2);
-}
-
-}  // namespace
 
 glm::vec3 Integrator::nextEvent(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
                                 RayCounts& rays) const {
+    glm::vec3 L = nextEventFinite(hit, sampler, depth, diffusePick, rays);
+    if (!lights_.directionals.empty() || lights_.environment) L += nextEventInfinite(hit, sampler, depth, diffusePick, rays);
+    return L;
+}
+
+glm::vec3 Integrator::nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                                        RayCounts& rays) const {
+    const ShadingMaterial& m = *hit.material;
+    const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
+    glm::vec3 L(0.0f);
+    for (const DirectionalSource& d : lights_.directionals) {  // delta lights: no MIS
+        const float cosSurface = glm::dot(hit.shading, d.toLight);
+        if (glm::dot(hit.geometric, d.toLight) <= 0.0f || cosSurface <= 0.0f) continue;
+        if (!unoccludedToward(origin, d.toLight, rays)) continue;
+        const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, d.toLight, cosSurface, diffusePick);
+        L += e.f * d.irradiance * cosSurface;
+    }
+    if (!lights_.environment || lights_.environment->constant()) return L;
+    const EnvironmentSampler::Sample s = lights_.environment->sample(sampler.get2D(dims::path(depth, dims::PathSlot::EnvLight)));
+    if (!(s.pdf > 0.0f)) return L;
+    const float cosSurface = glm::dot(hit.shading, s.direction);
+    if (glm::dot(hit.geometric, s.direction) <= 0.0f || cosSurface <= 0.0f) return L;
+    if (!unoccludedToward(origin, s.direction, rays)) return L;
+    const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, s.direction, cosSurface, diffusePick);
+    return L + e.f * s.radiance * (cosSurface * powerHeuristic(s.pdf, e.pdf) / s.pdf);
+}
+
+glm::vec3 Integrator::escapedPath(const glm::vec3& dir, bool specularBefore, float pdfBefore) const {
+    if (!lights_.environment) return glm::vec3(0.0f);
+    const EnvironmentSampler& env = *lights_.environment;
+    // Only a map is light-sampled (nextEventInfinite); a constant sky comes from here alone.
+    const float w = specularBefore || env.constant() ? 1.0f : powerHeuristic(pdfBefore, env.pdf(dir));
+    return env.radiance(dir) * w;
+}
+
+glm::vec3 Integrator::nextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                                      RayCounts& rays) const {
     if (lights_.selectCdf.empty()) return glm::vec3(0.0f);
     const ShadingMaterial& m = *hit.material;
     glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Light));
@@ -135,7 +165,10 @@ glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler,
             beta *= 1.0f / survive;
         }
         const glm::vec3 origin = hit.originFor(dir);
-        if (!intersect(origin, dir, hit, rays.other)) break;
+        if (!intersect(origin, dir, hit, rays.other)) {
+            L += beta * escapedPath(dir, specularBefore, pdfBefore);
+            break;
+        }
     }
     return L;
 }

@@ -244,13 +244,13 @@ void setFullViewport(VkCommandBuffer cmd, VkExtent2D extent) {
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-VkRenderingAttachmentInfo clearedColourAttachment(VkImageView view) {
+VkRenderingAttachmentInfo clearedColourAttachment(VkImageView view, VkClearColorValue clear) {
     VkRenderingAttachmentInfo info{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     info.imageView = view;
     info.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     info.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     info.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    info.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    info.clearValue.color = clear;
     return info;
 }
 

@@ -102,7 +102,7 @@ void setFullViewport(VkCommandBuffer cmd, VkExtent2D extent);
 // A dynamic-rendering colour attachment on `view`, cleared to 0 and stored: what every raster
 // pass of the Snapshot starts from (black, as rays that miss; 0 also means "nothing here" in the
 // id and mask targets).
-VkRenderingAttachmentInfo clearedColourAttachment(VkImageView view);
+VkRenderingAttachmentInfo clearedColourAttachment(VkImageView view, VkClearColorValue clear = {});
 
 // Dispatches enough workgroups of size groupX x groupY to cover width x height.
 void dispatch2D(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height, std::uint32_t groupX,

@@ -38,12 +38,17 @@ using uint = std::uint32_t;
 #define GBUFFER_BINDING_ATLAS_UNSHADOWED 1  // texture2DArray, RGBA8 sRGB
 #define GBUFFER_BINDING_ATLAS_SHADOWED 2
 
+// A directional light (LIGHT_KIND_DIRECTIONAL, cone.z = 2) reuses the fields: intensity holds its
+// irradiance (W/m^2), normal the unit direction towards it, position the centre and cone.x the
+// radius of the sphere its orthographic shadow map covers (the scene's bounds): layer 6i of the
+// shadow array holds that map, layers 6i+1..6i+5 stay empty.
 struct GpuLight {
     vec4 position;   // xyz
     vec4 intensity;  // rgb, W/sr
     vec4 normal;     // xyz: lobe or spot-cone axis (unit), or 0 for an isotropic light
     vec4 cone;       // x: cos inner, y: cos outer half-angle; z: 1 for a spot (axis in normal), else 0
 };
+#define LIGHT_CONE_DIRECTIONAL 2.0  // GpuLight::cone.z of a directional light
 
 // Specialisation constants of the lit fragment shaders (gbuffer*.frag, geometry_buffer.shadowed*
 // .frag; glsl/lights.glsl): the light list's length and kinds, the PCF side and the first
@@ -65,6 +70,13 @@ struct GpuLight {
 #define LIGHT_KIND_ISOTROPIC 1u      // GpuLight::normal is 0
 #define LIGHT_KIND_LOBE 2u           // cosine lobe about GpuLight::normal (area-light samples)
 #define LIGHT_KIND_SPOT 4u           // spot cone about GpuLight::normal (GpuLight::cone.z = 1)
+#define LIGHT_KIND_DIRECTIONAL 8u    // at infinity along GpuLight::normal (cone.z = 2), orthographic shadow map
+// The environment's ambient term (passes/environment_lighting.h): a uint flag (0: none, the code
+// folds away), then its 9 order-2 SH irradiance coefficients as 27 floats (rgb of Y_0..Y_8), so
+// that E(n) = sum_i c_i Y_i(n). After the inline lights.
+#define LIGHTING_SPEC_AMBIENT (LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * LIGHTING_INLINE_LIGHTS)
+#define LIGHTING_SPEC_AMBIENT_SH (LIGHTING_SPEC_AMBIENT + 1)
+#define LIGHTING_SPEC_COUNT (LIGHTING_SPEC_AMBIENT_SH + 27)
 
 struct GBufferPush {
     mat4 viewProj;   // world -> Vulkan clip space

@@ -95,7 +95,8 @@ TEST_F(LightFile, ReadsEveryTypeWithDefaults) {
 }
 
 TEST_F(LightFile, ErrorsNameFileLineAndColumn) {
-    expectError("- {type: tube, position: [0, 0, 0]}\n", 1, 10, "unknown light type 'tube' (supported: point, spot, quad, disk)");
+    expectError("- {type: tube, position: [0, 0, 0]}\n", 1, 10,
+                "unknown light type 'tube' (supported: point, spot, quad, disk, directional, environment)");
     expectError("- {position: [0, 0, 0], intensity: [1, 1, 1]}\n- {type: spot, position: [0, 0, 0], intensity: [1, 1, 1],\n"
                 "   direction: [0, -1, 0], radius: 2}\n",
                 3, 27, "unknown key 'radius' in 'lights.1'");
@@ -118,6 +119,65 @@ TEST_F(LightFile, ErrorsNameFileLineAndColumn) {
     expectError("lights: []\n", 1, 1, "a light file is a YAML list of lights");
     expectError("- {position: [0, 0, 0]\n", 2, 1, "invalid YAML");
     expectError("- 3\n", 1, 3, "lights.0: expected a mapping (a light)");
+}
+
+// The lights at infinity: a directional light (direction and irradiance, no position) and an
+// environment (a constant radiance, or a map named relative to the light file with its scale,
+// rotation and up).
+TEST_F(LightFile, ReadsDirectionalAndEnvironmentLights) {
+    write("maps/sky.exr", "not parsed here: only its name and presence are checked");
+    const auto lights = loadLightFile(write("lights.yaml",
+                                            "- {type: directional, name: sun, direction: [0.2, -1, 0.1], irradiance: [3, 2, 1]}\n"
+                                            "- {type: environment, name: sky, map: maps/sky.exr, scale: 2.5, rotation: -30,\n"
+                                            "   up: [0, 0, 1]}\n"));
+    ASSERT_EQ(lights.size(), 2u);
+    EXPECT_EQ(lights[0].type, LightType::Directional);
+    EXPECT_EQ(lights[0].direction, (std::array<double, 3>{0.2, -1, 0.1}));
+    EXPECT_EQ(lights[0].unit, EmissionUnit::Irradiance);
+    EXPECT_EQ(lights[0].emission, (std::array<double, 3>{3, 2, 1}));
+    EXPECT_EQ(lights[1].type, LightType::Environment);
+    EXPECT_EQ(std::filesystem::path(lights[1].map), dir_ / "maps/sky.exr");
+    EXPECT_EQ(lights[1].scale, 2.5);
+    EXPECT_EQ(lights[1].rotation, -30.0);
+    EXPECT_EQ(lights[1].up, (std::array<double, 3>{0, 0, 1}));
+    EXPECT_EQ(lightJson(lights[0]).dump(),
+              R"({"type":"directional","name":"sun","direction":[0.2,-1.0,0.1],"irradiance":[3.0,2.0,1.0]})");
+    const auto constant = loadLightFile(write("sky.yaml", "- {type: environment, radiance: [0.1, 0.2, 0.3]}\n"));
+    ASSERT_EQ(constant.size(), 1u);
+    EXPECT_EQ(constant[0].name, "light0");
+    EXPECT_TRUE(constant[0].map.empty());
+    EXPECT_EQ(constant[0].unit, EmissionUnit::Radiance);
+    EXPECT_EQ(constant[0].emission, (std::array<double, 3>{0.1, 0.2, 0.3}));
+    EXPECT_EQ(lightJson(constant[0]).dump(), R"({"type":"environment","name":"light0","radiance":[0.1,0.2,0.3]})");
+}
+
+TEST_F(LightFile, DirectionalAndEnvironmentErrorsNameFileLineAndColumn) {
+    write("sky.png", "8-bit");
+    expectError("- {type: directonal, direction: [0, -1, 0], irradiance: [1, 1, 1]}\n", 1, 10,
+                "unknown light type 'directonal'; did you mean 'directional'?");
+    expectError("- {type: directional, direction: [0, -1, 0], irradiance: [1, 1, 1], directoin: [0, 1, 0]}\n", 1, 69,
+                "unknown key 'directoin' in 'lights.0'; did you mean 'direction'?");
+    expectError("- {type: directional, irradiance: [1, 1, 1]}\n", 1, 3, "missing required key 'lights.0.direction'");
+    expectError("- {type: directional, direction: [0, 0, 0], irradiance: [1, 1, 1]}\n", 1, 34,
+                "lights.0.direction: must not be the zero vector");
+    expectError("- {type: directional, position: [0, 1, 0], direction: [0, -1, 0], irradiance: [1, 1, 1]}\n", 1, 23,
+                "unknown key 'position' in 'lights.0'");
+    expectError("- {type: directional, direction: [0, -1, 0], irradiance: [1, 1, 1], power: [1, 1, 1]}\n", 1, 69,
+                "unknown key 'power'");
+    expectError("- {type: environment}\n", 1, 3, "give exactly one of 'radiance' (a constant sky) and 'map'");
+    expectError("- {type: environment, radiance: [1, 1, 1], map: sky.exr}\n", 1, 49, "give exactly one of 'radiance'");
+    expectError("- {type: environment, map: nowhere.hdr}\n", 1, 28, "lights.0.map: environment map '");
+    expectError("- {type: environment, map: sky.png}\n", 1, 28,
+                "lights.0.map: 'sky.png' is not an EXR or Radiance HDR image (8-bit images hold no radiance)");
+    expectError("- {type: environment, radiance: [1, 1, 1], scale: 2}\n", 1, 51,
+                "lights.0.scale: only an environment with a 'map' has a scale");
+    expectError("- {type: environment, radiance: [1, -1, 1]}\n", 1, 37, "lights.0.radiance[1]: -1 is out of range");
+    write("sky.hdr", "");
+    expectError("- {type: environment, map: sky.hdr, rotation: 400}\n", 1, 47, "lights.0.rotation: 400 is out of range");
+    expectError("- {type: environment, map: sky.hdr, up: [0, 0, 0]}\n", 1, 41, "lights.0.up: must not be the zero vector");
+    expectError("- {type: environment, map: sky.hdr, scael: 2}\n", 1, 37, "did you mean 'scale'?");
+    expectError("- {type: environment, radiance: [1, 1, 1]}\n- {type: environment, map: sky.hdr}\n", 2, 3,
+                "lights.1: a second environment (the first is lights.0); a scene has at most one");
 }
 
 TEST_F(LightFile, ConfigMergesTheLightFileWithTheInlineList) {

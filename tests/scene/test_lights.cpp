@@ -4,6 +4,10 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "core/error.h"
+#include "core/image_io.h"
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "tests/common/temp_dir.h"
@@ -221,6 +225,63 @@ TEST(LightFileLights, RadianceIsKeptAsGivenAndPointsAndSpotsGetIntensity) {
     LightSpec bad = quadSpec();
     bad.normal = {0, 0, 0};
     EXPECT_THROW(addLights(s, std::span(&bad, 1)), std::invalid_argument);
+}
+
+// The lights at infinity from a light file: a DirectionalLight with a unit direction, and the
+// environment: constant (the radiance is the scale, no map) or an EXR map with its scale and
+// orientation; a second environment is refused.
+TEST(LightFileLights, DirectionalAndEnvironmentBecomeTheScenesLightsAtInfinity) {
+    test::TempDir dir;
+    ImageRGB map(4, 2, glm::vec3(0.5f));
+    map.at(3, 1) = glm::vec3(8.0f, 4.0f, 2.0f);
+    writeExr(dir.path() / "sky.exr", map);
+
+    std::vector<LightSpec> specs(2);
+    specs[0].type = LightType::Directional;
+    specs[0].name = "sun";
+    specs[0].direction = {0, -2, 0};
+    specs[0].unit = EmissionUnit::Irradiance;
+    specs[0].emission = {3, 2, 1};
+    specs[1].type = LightType::Environment;
+    specs[1].name = "sky";
+    specs[1].map = (dir.path() / "sky.exr").string();
+    specs[1].scale = 2.0;
+    specs[1].rotation = 90.0;
+    Scene s;
+    addLights(s, specs);
+    ASSERT_EQ(s.directionalLights.size(), 1u);
+    EXPECT_EQ(s.directionalLights[0].direction, glm::vec3(0, -1, 0));
+    EXPECT_EQ(s.directionalLights[0].irradiance, glm::vec3(3, 2, 1));
+    ASSERT_TRUE(s.environment.has_value());
+    const EnvironmentLight& env = *s.environment;
+    EXPECT_EQ(env.name, "sky");
+    EXPECT_EQ(env.scale, glm::vec3(2.0f));
+    ASSERT_EQ(env.mapWidth, 4);
+    ASSERT_EQ(env.mapHeight, 2);
+    EXPECT_EQ(env.map[7], glm::vec3(8.0f, 4.0f, 2.0f));
+    EXPECT_EQ(env.map[0], glm::vec3(0.5f));
+    // 90 degrees about +Y (right-handed): world -Z is the map's +X.
+    const glm::vec3 local = env.toLocal * glm::vec3(0, 0, -1);
+    EXPECT_NEAR(glm::length(local - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
+
+    // A second environment, and a map that is not an image.
+    LightSpec constant;
+    constant.type = LightType::Environment;
+    constant.name = "grey";
+    constant.unit = EmissionUnit::Radiance;
+    constant.emission = {0.2, 0.2, 0.2};
+    EXPECT_THROW(addLights(s, std::span<const LightSpec>(&constant, 1)), std::invalid_argument);
+    Scene fresh;
+    addLights(fresh, std::span<const LightSpec>(&constant, 1));
+    ASSERT_TRUE(fresh.environment.has_value());
+    EXPECT_EQ(fresh.environment->scale, glm::vec3(0.2f));
+    EXPECT_TRUE(fresh.environment->map.empty());
+    LightSpec broken = specs[1];
+    std::ofstream(dir.path() / "broken.exr") << "not an EXR";
+    broken.map = (dir.path() / "broken.exr").string();
+    Scene other;
+    EXPECT_THROW(addLights(other, std::span<const LightSpec>(&broken, 1)), InputError);
+    EXPECT_FALSE(other.environment.has_value());  // nothing half-added
 }
 
 TEST(GltfSpotLight, KeepsItsConeAlongTheNodesMinusZ) {

@@ -1,0 +1,38 @@
+#pragma once
+// The equirectangular (latitude-longitude) map convention of EnvironmentLight (scene/scene.h),
+// Mitsuba's `envmap`: in the map's frame (+Y up), u = 0.5 + atan2(x, -z) / (2 pi) (wrapping) and
+// v = acos(y) / pi, row 0 at the top. Inline and header-only: the tracer and the Snapshot both use
+// it without linking the scene library.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace aamap::latlong {
+
+// (u, v) in [0,1]^2 of a unit direction in the map's frame.
+inline glm::vec2 fromDirection(const glm::vec3& d) {
+    constexpr float kPi = std::numbers::pi_v<float>;
+    float u = 0.5f + std::atan2(d.x, -d.z) * (0.5f / kPi);
+    u -= std::floor(u);
+    return {u, std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi};
+}
+
+// The unit direction in the map's frame at (u, v).
+inline glm::vec3 toDirection(glm::vec2 uv) {
+    constexpr float kPi = std::numbers::pi_v<float>;
+    const float phi = (uv.x - 0.5f) * 2.0f * kPi, theta = uv.y * kPi;
+    const float sinTheta = std::sin(theta);
+    return glm::normalize(glm::vec3(sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)));
+}
+
+// Solid angle of row `row` of a width x height map's pixels (each pixel of the row has this).
+inline double pixelSolidAngle(int row, int width, int height) {
+    constexpr double kPi = std::numbers::pi;
+    return (2.0 * kPi / width) * (std::cos(row * kPi / height) - std::cos((row + 1) * kPi / height));
+}
+
+}  // namespace aamap::latlong
