@@ -2,6 +2,25 @@
 // geometric aamap's raster (geometry_buffer.glsl), so both see the same shadows. Include after
 // shadow_cube.glsl; needs GL_EXT_samplerless_texture_functions.
 
+// Fraction of the pcf x pcf texels around map position st (texels) of `layer` whose stored depth
+// is not above `threshold`: lit. pcf is a specialisation constant at every call, so the other path
+// is compiled out.
+float litFraction(texture2DArray shadowCubes, vec2 st, int layer, int size, float threshold, int pcf) {
+    if (pcf == 1) {
+        const ivec2 t = clamp(ivec2(st), ivec2(0), ivec2(size - 1));
+        return texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0.0 : 1.0;
+    }
+    const ivec2 lo = ivec2(floor(st - 0.5 * float(pcf - 1)));
+    int lit = 0;
+    for (int y = 0; y < pcf; ++y) {
+        for (int x = 0; x < pcf; ++x) {
+            const ivec2 t = clamp(lo + ivec2(x, y), ivec2(0), ivec2(size - 1));
+            lit += texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0 : 1;
+        }
+    }
+    return float(lit) / float(pcf * pcf);
+}
+
 // Fraction of the PCF kernel (pcf x pcf nearest texels of the light's cube face) that sees no
 // occluder nearer than the receiver. `r` runs from the light to the surface. shadow: x cube-map
 // near plane, y depth bias, z slope bias (texels), w face size (GBufferPush::shadow).
@@ -21,19 +40,7 @@ float shadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 n, v
     const float threshold = shadow.x / max(ma - bias, shadow.x);
     const vec2 st = (f.xy / ma * 0.5 + 0.5) * float(size);
     const int layer = int(light * 6u + face);
-    if (pcf == 1) {  // callers pass a specialisation constant: the other path is compiled out
-        const ivec2 t = clamp(ivec2(st), ivec2(0), ivec2(size - 1));
-        return texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0.0 : 1.0;
-    }
-    const ivec2 lo = ivec2(floor(st - 0.5 * float(pcf - 1)));
-    int lit = 0;
-    for (int y = 0; y < pcf; ++y) {
-        for (int x = 0; x < pcf; ++x) {
-            const ivec2 t = clamp(lo + ivec2(x, y), ivec2(0), ivec2(size - 1));
-            lit += texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0 : 1;
-        }
-    }
-    return float(lit) / float(pcf * pcf);
+    return litFraction(shadowCubes, st, layer, size, threshold, pcf);
 }
 
 // The same for directional light `light` (its orthographic map in layer 6 light) at world point p
@@ -50,17 +57,5 @@ float directionalShadowVisibility(texture2DArray shadowCubes, uint light, GpuLig
     const float threshold = o.z + bias;
     const vec2 st = (o.xy * 0.5 + 0.5) * float(size);
     const int layer = int(light * 6u);
-    if (pcf == 1) {
-        const ivec2 t = clamp(ivec2(st), ivec2(0), ivec2(size - 1));
-        return texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0.0 : 1.0;
-    }
-    const ivec2 lo = ivec2(floor(st - 0.5 * float(pcf - 1)));
-    int lit = 0;
-    for (int y = 0; y < pcf; ++y) {
-        for (int x = 0; x < pcf; ++x) {
-            const ivec2 t = clamp(lo + ivec2(x, y), ivec2(0), ivec2(size - 1));
-            lit += texelFetch(shadowCubes, ivec3(t, layer), 0).r > threshold ? 0 : 1;
-        }
-    }
-    return float(lit) / float(pcf * pcf);
+    return litFraction(shadowCubes, st, layer, size, threshold, pcf);
 }
