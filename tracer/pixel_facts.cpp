@@ -88,7 +88,7 @@ PixelFacts tracePixelFacts(const EmbreeScene& geometry, const LightSet& lights, 
                 if (m.texture >= 0) bits |= pixel_fact::Texture;
                 if (m.glossy) bits |= Glossy;
                 if (m.kind != MaterialKind::Diffuse || m.emissive) continue;  // no direct-light shadow to speak of
-                float* vis = &visibility[static_cast<std::size_t>(s) * lightCount];
+                float* vis = visibility.data() + static_cast<std::size_t>(s) * lightCount;  // data(): no lights, no elements
                 for (std::size_t l = 0; l < lights.points.size(); ++l) {
                     const PointLightSource& p = lights.points[l];
                     const glm::vec3 toLight = p.position - hit.position;
