@@ -3,13 +3,16 @@
 // generated from the table below; inputs that live in files (a light file) are changed in place,
 // under the same path; a file of the same contents under another name is another input too
 // (the key cannot know the two are the same scene).
+#include <fstream>
 #include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "eval/config.h"
+#include "eval/render_cache.h"
 #include "tests/common/temp_dir.h"
 
 namespace aamap {
@@ -97,6 +100,8 @@ std::vector<KeyInput> inputs() {
     return v;
 }
 
+void PrintTo(const KeyInput& input, std::ostream* os) { *os << input.name; }
+
 class CacheKeyInputs : public ::testing::TestWithParam<KeyInput> {
 protected:
     void SetUp() override {
@@ -149,6 +154,19 @@ TEST(CacheKeys, LabelsThreadsAndMetricsLeaveEveryKeyAlone) {
             EXPECT_EQ(renderKey(before, before.renders[r]), renderKey(after, after.renders[r])) << o;
         EXPECT_EQ(snapshotKey(before), snapshotKey(after)) << o;
     }
+}
+
+// A folder under a key's name is an entry only once its record.json is there (the record is
+// written last): a folder without one, left by hand or by a crash, is traced again, not reused.
+TEST(RenderCache, AFolderWithoutItsRecordIsNoEntry) {
+    test::TempDir dir;
+    RenderCache cache(dir.path() / "cache");
+    std::filesystem::create_directories(cache.entry("0123456789abcdef"));
+    EXPECT_FALSE(cache.has("0123456789abcdef"));
+    cache.commit("0123456789abcdef", [](const std::filesystem::path& tmp) {
+        std::ofstream(tmp / "record.json") << "{}\n";
+    });
+    EXPECT_TRUE(cache.has("0123456789abcdef"));
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "eval/evaluate.h"
 #include "eval/metrics/flip.h"
 #include "eval/metrics/image_comparison.h"
+#include "eval/metrics/pixel_error.h"
 #include "tests/common/temp_dir.h"
 
 namespace aamap {
@@ -97,6 +98,20 @@ TEST(MetricSettings, MseThresholdIsWherePctErrorMseCounts) {
         EXPECT_DOUBLE_EQ(j["pct_error_mse"].get<double>(), c.percent) << "threshold " << c.threshold;
         EXPECT_NEAR(j["mse"].get<double>(), (16 * 1.0 + 16 * 0.25) / 64.0, 1e-6) << "the threshold only counts";
     }
+}
+
+// "At least the threshold": a pixel whose error equals it counts. A grey pixel of display value c
+// against black has the error c^2 exactly (the mean of three equal squares of a float).
+TEST(MetricSettings, APixelExactlyAtTheMseThresholdCounts) {
+    ImageRGB reference(4, 1, glm::vec3(0.0f)), test(4, 1, glm::vec3(0.0f));
+    test.at(0, 0) = glm::vec3(0.3f);
+    const double c = metrics::displayEncode(0.3f);
+    MetricsConfig m;
+    m.flip = false;
+    m.mseThreshold = c * c;
+    EXPECT_DOUBLE_EQ(figures(reference, test, m)["pct_error_mse"].get<double>(), 25.0);
+    m.mseThreshold = std::nextafter(c * c, 1.0);
+    EXPECT_DOUBLE_EQ(figures(reference, test, m)["pct_error_mse"].get<double>(), 0.0);
 }
 
 // A one-pixel checkerboard against its mean grey: evaluateRender gives FLIP the configured ppd,

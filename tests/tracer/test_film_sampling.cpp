@@ -3,6 +3,7 @@
 // strategy's way of asking for strata), not through the sampler alone. A cell is made visible by
 // an emitter whose image covers exactly that cell of that pixel, on a black background: the pixel
 // then reads (rays in the cell) / k^2 times the emission, so one ray per cell reads exactly 1 / k^2.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,30 @@ TEST(FilmSampling, QuadOverOneQuadrantCoversExactlyAQuarterForEvenK) {
             EXPECT_EQ(r.image.at(0, 0), glm::vec3(0.25f)) << "k = " << k << ", quadrant at (" << u0 << ", " << v0 << ")";
             EXPECT_EQ(r.primaryRays.at(0, 0), k * k);
         }
+    }
+}
+
+// Non-finite samples are dropped and the pixel is the mean of the finite ones: the top half of
+// the pixel shows a lit surface whose albedo is NaN, the bottom half an emitter of radiance 1, so
+// the pixel reads exactly 1 and half its k^2 samples are counted as non-finite.
+TEST(FilmSampling, NonFiniteStrataAreLeftOutOfThePixelMean) {
+    testing::SceneBuilder b;
+    addFilmRectangle(b, 0.0, 0.5, 1.0, 1.0);
+    const auto broken = b.material("broken", glm::vec3(std::numeric_limits<float>::quiet_NaN()));
+    const PinholeCamera camera = PinholeCamera::fromView(frontView());
+    const glm::vec3 topLeft = camera.direction(0.0f, 0.0f), middleRight = camera.direction(1.0f, 0.5f);
+    b.quad(glm::vec3(topLeft.x, middleRight.y, -1.0f), glm::vec3(middleRight.x - topLeft.x, 0, 0),
+           glm::vec3(0, topLeft.y - middleRight.y, 0), broken);
+    b.pointLight({0, 0.5f, -0.5f}, glm::vec3(1.0f));
+    const Tracer tracer(b.scene());
+    for (int k : {2, 4, 6}) {
+        TraceSettings settings;
+        settings.width = settings.height = 1;
+        StrategySettings uniform;
+        uniform.strata = k;
+        const TraceResult r = tracer.render(frontView(), settings, uniform);
+        EXPECT_EQ(r.nonFiniteSamples, static_cast<std::uint64_t>(k * k / 2)) << "k = " << k;
+        EXPECT_EQ(r.image.at(0, 0), glm::vec3(1.0f)) << "k = " << k;
     }
 }
 
