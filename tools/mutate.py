@@ -227,7 +227,8 @@ def sync_scratch(repo, scratch):
 
 
 def failed_tests(output):
-    names = re.findall(r"^\s*\d+ - (\S+) \(", output, re.MULTILINE)
+    # "  12 - suite.name (Failed)", parameterised ones with "  # GetParam() = ..." before the "(".
+    names = re.findall(r"^\s*\d+ - (\S+)", output, re.MULTILINE)
     return names
 
 
@@ -281,11 +282,17 @@ def main():
         if n != 1:
             sys.exit(f"mutant {x['id']}: the original snippet occurs {n} times in {x['file']}")
 
+    for x in mutants:
+        if not args.suite and not executables(x["tests"]):
+            sys.exit(f"mutant {x['id']}: no test executable known for {x['tests']} (add it to EXECUTABLES)")
     if not (build / "build.ninja").exists():
         rc, _ = run(["cmake", "--preset", "release"], tree, log, env=env)
         if rc:
             sys.exit(f"configure failed (see {log})")
-    rc, _ = run(["cmake", "--build", str(build), "-j", str(args.jobs)], tree, log, env=env)
+    # The test executables the run needs (all of them for --suite).
+    needed = [] if args.suite else sorted({t for x in mutants for t in executables(x["tests"])})
+    full_build = ["cmake", "--build", str(build), "-j", str(args.jobs)] + (["--target"] + needed if needed else [])
+    rc, _ = run(full_build, tree, log, env=env)
     if rc:
         sys.exit(f"the unmutated tree does not build (see {log})")
 
@@ -296,9 +303,6 @@ def main():
         return ["ctest", "--test-dir", str(build), "-R", x["tests"], "-j", str(args.jobs), "--timeout",
                 str(args.test_timeout)]
 
-    for x in mutants:
-        if not args.suite and not executables(x["tests"]):
-            sys.exit(f"mutant {x['id']}: no test executable known for {x['tests']} (add it to EXECUTABLES)")
     if not args.no_baseline:
         for cmd in {tuple(tests_for(x)) for x in mutants}:
             rc, out = run(list(cmd), tree, log, timeout=args.test_timeout * 4, env=env)
@@ -331,7 +335,7 @@ def main():
         results.append(dict(x, status=status, failing=failing, seconds=round(seconds, 1)))
         print(f"[{i}/{len(mutants)}] {x['id']:30} {status:26} {seconds:6.0f} s  {' '.join(failing[:3])}", flush=True)
     # Leave the build matching the restored tree.
-    run(["cmake", "--build", str(build), "-j", str(args.jobs)], tree, log, env=env)
+    run(full_build, tree, log, env=env)
 
     print()
     print(f"| mutant | area | file | what | tests | result | s |")
