@@ -10,13 +10,13 @@
 //    runner traces.
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
-#include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
