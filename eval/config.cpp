@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "eval/config_sections.h"
 #include "eval/config_sweeps.h"
+#include "eval/file_digest.h"
 #include "eval/light_list.h"
 #include "eval/strategies.h"
 #include "eval/yaml_reader.h"
@@ -255,6 +256,10 @@ Json sceneJson(const ExperimentConfig& c) {
               {"image", {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}}}};
     // Only when they apply, so that other configs keep their keys.
     if (c.camera) j["camera"] = cameraJson(*c.camera);
+    // The files' contents, not only their names: an edited scene or view file re-traces. (Files
+    // a scene refers to, such as an OBJ's .mtl and textures, are not followed.)
+    if (!c.scene.starts_with("builtin:")) j["scene_content"] = fileDigest(c.resolvedScene());
+    if (view) j["view_content"] = fileDigest(*view);
     if (!c.image.sizeGiven && !c.scene.starts_with("builtin:") && c.scene.ends_with(".xml"))
         j["image"]["size"] = "scene";  // the Mitsuba film's size, which the file decides
     return j;

@@ -134,6 +134,17 @@ TEST(ObjLoader, MaterialsKindsAndAreaLightsPerShape) {
     EXPECT_EQ(s.areaLights[1].radiance, glm::vec3(10.0f));
 }
 
+// Every colour of an MTL material keeps its three channels apart.
+TEST(ObjLoader, MaterialColoursKeepTheirChannels) {
+    TempDir dir;
+    dir.write("c.mtl", "newmtl lamp\nKd 0.1 0.2 0.3\nKs 0.4 0.5 0.6\nKe 7 8 9\n");
+    const Scene s = loadObj(dir.write("c.obj", std::string("mtllib c.mtl\n") + kQuad + "usemtl lamp\nf 1 2 3\n"));
+    ASSERT_EQ(s.materials.size(), 1u);
+    EXPECT_EQ(s.materials[0].kd, glm::vec3(0.1f, 0.2f, 0.3f));
+    EXPECT_EQ(s.materials[0].ks, glm::vec3(0.4f, 0.5f, 0.6f));
+    EXPECT_EQ(s.materials[0].ke, glm::vec3(7.0f, 8.0f, 9.0f));
+}
+
 TEST(ObjLoader, MissingTextureWarnsAndKeepsKd) {
     TempDir dir;
     dir.write("t.mtl", "newmtl tex\nKd 0.2 0.3 0.4\nmap_Kd nothere.png\n");

@@ -43,6 +43,38 @@ TEST(PathMode, FurnaceSphereGivesLeOverOneMinusRho) {
     EXPECT_EQ(r.nonFiniteSamples, 0u);
 }
 
+// roulette_depth is the first path segment that Russian roulette may end (Mitsuba's rr_depth).
+// Inside a closed sphere every bounce ray hits something, and roulette draws from its own
+// dimension, so the paths are the same with and without it until roulette ends one: from segment
+// maxDepth on (past the last one traced) it never acts, from segment maxDepth - 1 on it ends some
+// paths one bounce ray early, and starting earlier ends more.
+TEST(PathMode, RouletteDepthIsTheFirstSegmentRouletteMayEnd) {
+    testing::SceneBuilder b;
+    const auto mat = b.material("furnace", glm::vec3(0.5f), glm::vec3(1.0f));
+    AreaLight light;
+    light.name = "furnace";
+    light.radiance = glm::vec3(1.0f);
+    light.triangles = testing::sphere(b, {0.0f, 0.0f, 0.0f}, 1.0f, mat, /*inward=*/true, 12, 24);
+    b.scene().areaLights.push_back(light);
+    const int size = 8, strata = 2, maxDepth = 5;
+    const auto bounceRays = [&](bool roulette, int rouletteDepth) {
+        ShadingSettings sh;
+        sh.mode = ShadingMode::Path;
+        sh.maxDepth = maxDepth;
+        sh.russianRoulette = roulette;
+        sh.rouletteDepth = rouletteDepth;
+        return renderScene(b.scene(), lookAt({0, 0, 0}, {1, 0, 0}, 90), sh, size, strata).rays.other;
+    };
+    const std::uint64_t none = bounceRays(false, 1);
+    const std::uint64_t paths = size * size * strata * strata;
+    EXPECT_GE(none, paths * (maxDepth - 2)) << "nearly every path should bounce to the end";
+    EXPECT_EQ(bounceRays(true, maxDepth), none) << "roulette from past the last segment must not act";
+    const std::uint64_t last = bounceRays(true, maxDepth - 1);
+    EXPECT_LT(last, none) << "roulette from the last segment on ends none";
+    EXPECT_GE(last, none - paths) << "roulette from the last segment on can save at most one ray per path";
+    EXPECT_LT(bounceRays(true, maxDepth - 2), last);
+}
+
 // A plane under an area light and a point light sees nothing else, so it has no indirect light:
 // Path mode (NEE + MIS, BSDF samples that hit the light) must agree with Direct mode. Compared
 // per pixel (same pixel, same point): the mean difference within 4 standard errors of the

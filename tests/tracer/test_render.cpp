@@ -108,6 +108,17 @@ TEST(StrategyMapping, Stratification) {
     EXPECT_EQ(aamapStratification(std::numeric_limits<float>::infinity(), 4), 4);
 }
 
+// An unsure map value (NaN: the filter chain met a non-finite pixel) samples fully under either
+// mapping: when in doubt, trace every stratum.
+TEST(StrategyMapping, NanMapValueGetsAllStrata) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (int n : {1, 2, 5, 16}) {
+        EXPECT_EQ(aamapStratification(nan, n), n);
+        EXPECT_EQ(stratification(nan, n, StrataMapping::Paper), n);
+        EXPECT_EQ(stratification(nan, n, StrataMapping::LinearRays), n);
+    }
+}
+
 TEST(StrategyMapping, RejectsBadSettings) {
     EXPECT_THROW(makeStrategy(uniform(0), 8, 8), std::invalid_argument);
     EXPECT_THROW(makeStrategy(uniform(kMaxStrata + 1), 8, 8), std::invalid_argument);
