@@ -139,6 +139,15 @@ TEST(FilmSampling, SupersampleSubPixelsTileThePixelOneRayPerCell) {
     for (const StratifyingStrategy& s : supersampleStrategies()) expectOneRayPerCell(s);
 }
 
+// A one-pixel image, uniform k x k strata.
+TraceResult onePixelUniform(const Tracer& tracer, int k) {
+    TraceSettings settings;
+    settings.width = settings.height = 1;
+    StrategySettings uniform;
+    uniform.strata = k;
+    return tracer.render(frontView(), settings, uniform);
+}
+
 // A white quad over exactly the top-left quadrant of a one-pixel image: with k even, (k/2)^2 of
 // the k^2 strata lie inside it, so the coverage is exactly 1/4 (no sampling noise at all).
 TEST(FilmSampling, QuadOverOneQuadrantCoversExactlyAQuarterForEvenK) {
@@ -147,11 +156,7 @@ TEST(FilmSampling, QuadOverOneQuadrantCoversExactlyAQuarterForEvenK) {
         addFilmRectangle(b, u0, v0, u0 + 0.5, v0 + 0.5);
         const Tracer tracer(b.scene());
         for (int k : {2, 4, 6}) {
-            TraceSettings settings;
-            settings.width = settings.height = 1;
-            StrategySettings uniform;
-            uniform.strata = k;
-            const TraceResult r = tracer.render(frontView(), settings, uniform);
+            const TraceResult r = onePixelUniform(tracer, k);
             EXPECT_EQ(r.image.at(0, 0), glm::vec3(0.25f)) << "k = " << k << ", quadrant at (" << u0 << ", " << v0 << ")";
             EXPECT_EQ(r.primaryRays.at(0, 0), k * k);
         }
@@ -172,11 +177,7 @@ TEST(FilmSampling, NonFiniteStrataAreLeftOutOfThePixelMean) {
     b.pointLight({0, 0.5f, -0.5f}, glm::vec3(1.0f));
     const Tracer tracer(b.scene());
     for (int k : {2, 4, 6}) {
-        TraceSettings settings;
-        settings.width = settings.height = 1;
-        StrategySettings uniform;
-        uniform.strata = k;
-        const TraceResult r = tracer.render(frontView(), settings, uniform);
+        const TraceResult r = onePixelUniform(tracer, k);
         EXPECT_EQ(r.nonFiniteSamples, static_cast<std::uint64_t>(k * k / 2)) << "k = " << k;
         EXPECT_EQ(r.image.at(0, 0), glm::vec3(1.0f)) << "k = " << k;
     }
