@@ -25,8 +25,10 @@ namespace {
 
 using yaml::MapReader;
 
+}  // namespace
+
 // Every value --set can reach; '#' is a list index. Keep in step with the readers.
-std::vector<std::string> leaves() {
+std::vector<std::string> settableKeys() {
     std::vector<std::string> l = {
         "scene", "view", "view_index", "seed", "threads",
         "camera.position", "camera.look_at", "camera.up", "camera.fov",
@@ -47,6 +49,9 @@ std::vector<std::string> leaves() {
     for (const std::string& k : lightKeys()) l.push_back("lights.#." + k);
     return l;
 }
+
+namespace {
+
 constexpr int kMaxSide = 16384;
 
 SourceLocation locationOf(const yaml::Context& ctx, MapReader& map, const std::string& key) {
@@ -231,14 +236,16 @@ Json snapshotJson(const ExperimentConfig& c) {
     return j;
 }
 
-// What every image of the experiment depends on, with paths resolved.
-Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = "") {
+// What every image of the experiment depends on, with paths resolved. forKey: for one render's
+// cache key, which leaves out what its shading mode never reads (the cache outside cache mode).
+Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = "", bool forKey = false) {
     const ShadingConfig& s = c.shading;
-    Json j = {{"area_light_samples", s.areaLightSamples}, {"mode", modeOverride.empty() ? s.mode : modeOverride},
+    const std::string mode = modeOverride.empty() ? s.mode : modeOverride;
+    Json j = {{"area_light_samples", s.areaLightSamples}, {"mode", mode},
             {"max_depth", s.maxDepth}, {"russian_roulette", s.russianRoulette}, {"roulette_depth", s.rouletteDepth},
             {"max_specular_depth", s.maxSpecularDepth}, {"light_selection", s.lightSelection}};
     // The cache's settings only when they differ from the defaults: other configs keep their keys.
-    if (!(s.cache == ShadingConfig::Cache{}))
+    if (!(s.cache == ShadingConfig::Cache{}) && (!forKey || mode == "cache"))
         j["cache"] = {{"bounces", s.cache.bounces}, {"divisions", s.cache.divisions},
                       {"supersamples", s.cache.supersamples}, {"accuracy", s.cache.accuracy},
                       {"resolution", s.cache.resolution}, {"grid_step", s.cache.gridStep}};
@@ -260,6 +267,11 @@ Json sceneJson(const ExperimentConfig& c) {
     // a scene refers to, such as an OBJ's .mtl and textures, are not followed.)
     if (!c.scene.starts_with("builtin:")) j["scene_content"] = fileDigest(c.resolvedScene());
     if (view) j["view_content"] = fileDigest(*view);
+    // Environment maps likewise: an edited sky re-traces.
+    Json maps = Json::array();
+    for (const LightConfig& l : c.lights)
+        if (!l.map.empty()) maps.push_back(fileDigest(l.map));
+    if (!maps.empty()) j["light_map_content"] = maps;
     if (!c.image.sizeGiven && !c.scene.starts_with("builtin:") && c.scene.ends_with(".xml"))
         j["image"]["size"] = "scene";  // the Mitsuba film's size, which the file decides
     return j;
@@ -281,7 +293,7 @@ std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) {
     j["format"] = "aamap-render-1";  // bump when the tracer's output for the same settings changes
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
-    j["shading"] = shadingJson(c, r.shadingMode);
+    j["shading"] = shadingJson(c, r.shadingMode, true);
     j["strategy"] = r.strategy;
     j["rpp"] = r.rpp;
     j["params"] = paramsJson(r);
@@ -392,7 +404,7 @@ Experiment parseExperiment(const std::string& text, const std::filesystem::path&
     }
     if (!root.IsNull() && !root.IsMap())
         ctx.fail(root, "", fmt::format("expected a mapping of settings, found {}", yaml::describe(root)));
-    const std::vector<std::string> settable = leaves();
+    const std::vector<std::string> settable = settableKeys();
     for (const std::string& o : overrides) yaml::applyOverride(root, o, settable, ctx);
 
     const std::vector<detail::ConfigSweep> sweeps = detail::findConfigSweeps(ctx, root);

@@ -160,6 +160,8 @@ std::string renderKey(const ExperimentConfig& config, const RenderConfig& render
 std::string renderKeyJson(const ExperimentConfig& config, const RenderConfig& render);
 // The same for the Snapshot and its aamap.
 std::string snapshotKey(const ExperimentConfig& config);
+// Every key --set can reach, '#' standing for a list index ("renders.#.rpp").
+std::vector<std::string> settableKeys();
 std::string fnv1a64Hex(const std::string& text);
 
 // The --camera option of `aamap snapshot` and `aamap view`: the config's camera mapping as YAML

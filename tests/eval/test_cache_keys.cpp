@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/image_io.h"
 #include "eval/config.h"
 #include "eval/render_cache.h"
 #include "tests/common/temp_dir.h"
@@ -51,6 +52,22 @@ renders:
   - {strategy: uniform, rpp: 4}
   - {strategy: aamap, rpp: 4}
 )";
+
+// A sky from an environment map.
+const char* kSkyConfig = R"(scene: builtin:cornell
+lights:
+  - {type: environment, map: sky.exr}
+renders:
+  - {strategy: uniform, rpp: 4}
+  - {strategy: aamap, rpp: 4}
+)";
+
+ImageRGB skyImage(float brightness) {
+    ImageRGB sky(8, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x) sky.at(x, y) = glm::vec3(brightness * (1.0f + static_cast<float>(x + y)));
+    return sky;
+}
 
 const char* kRoom = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
@@ -97,6 +114,10 @@ std::vector<KeyInput> inputs() {
                      d.write("lights.yaml", std::string(kLights) + "- {type: point, position: [1, 1, 0], intensity: [1, 1, 1]}\n");
                  }});
     v.push_back({"ViewFile", kConfig, {"view=a.vf"}, {}});
+    v.push_back({"EnvironmentMapName", kSkyConfig, {"lights.0.map=other_sky.exr"}, {}});
+    v.push_back({"EnvironmentMapContent", kSkyConfig, {}, [](const test::TempDir& d) {
+                     writeExr(d.path() / "sky.exr", skyImage(0.6f));
+                 }});
     return v;
 }
 
@@ -111,6 +132,8 @@ protected:
         dir_.write("b.vf", "rview -vtv -vp 0 1 3.5 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\n");
         dir_.write("room.obj", kRoom);
         dir_.write("other.obj", kRoom);
+        writeExr(dir_.path() / "sky.exr", skyImage(0.5f));
+        writeExr(dir_.path() / "other_sky.exr", skyImage(0.5f));
     }
     ExperimentConfig parse(const std::vector<std::string>& overrides = {}) const {
         return parseConfig(GetParam().config, dir_.path() / "exp.yaml", overrides);

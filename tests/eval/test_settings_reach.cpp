@@ -20,10 +20,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/image_io.h"
 #include "eval/config.h"
 #include "eval/evaluate.h"
 #include "eval/experiment.h"
 #include "eval/light_list.h"
+#include "eval/runner.h"
 #include "eval/strategies.h"
 #include "eval/strategy_settings.h"
 #include "scene/light_file.h"
@@ -88,6 +90,17 @@ std::string sceneLights(const ExperimentConfig& c) {
     for (const AreaLight& a : scene.areaLights)
         s += fmt::format("area {} {} {} {} {} {};", a.name, a.radiance.x, a.radiance.y, a.radiance.z, a.area,
                          a.triangles.size());
+    for (const DirectionalLight& d : scene.directionalLights)
+        s += fmt::format("directional {} {} {} {} | {} {} {};", d.name, d.direction.x, d.direction.y, d.direction.z,
+                         d.irradiance.x, d.irradiance.y, d.irradiance.z);
+    if (const auto& e = scene.environment) {
+        s += fmt::format("environment {} {} {} {} | {}x{} |", e->name, e->scale.x, e->scale.y, e->scale.z, e->mapWidth,
+                         e->mapHeight);
+        for (const glm::vec3& texel : e->map) s += fmt::format(" {} {} {}", texel.x, texel.y, texel.z);
+        for (int col = 0; col < 3; ++col)
+            s += fmt::format(" | {} {} {}", e->toLocal[col].x, e->toLocal[col].y, e->toLocal[col].z);
+        s += ";";
+    }
     for (const glm::vec3& p : scene.mesh.positions) s += fmt::format("{} {} {},", p.x, p.y, p.z);
     return s;
 }
@@ -133,6 +146,23 @@ std::vector<std::string> tracedJobs(const ExperimentConfig& c) {
 }
 
 PreparedScene prepared(const ExperimentConfig& c) { return prepareScene(c); }
+
+// Whether a run (with a backend that knows what each pixel sees) reports the map's causes.
+bool causesReported(const ExperimentConfig& c) {
+    test::TempDir dir;
+    RecordingBackend backend;
+    backend.withFacts = true;
+    const Results results = runExperimentWith(c, dir.path() / "out", backend, RunnerOptions{"test", false});
+    return results.mapQuality.contains("causes");
+}
+
+// The work items an executor would be handed, with the groups that pin them to one machine.
+std::vector<std::string> workGroups(const ExperimentConfig& c) {
+    test::TempDir dir;
+    std::vector<std::string> groups;
+    for (const WorkItem& w : missingWork(c, dir.path(), 1)) groups.push_back(w.key + " " + w.group);
+    return groups;
+}
 
 // --- The table -------------------------------------------------------------------------------
 
@@ -200,6 +230,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.noiseFloor; }, 0.125f)};
     t["snapshot.gain"] = {{}, {"snapshot.gain=3.5"}, Renders::UsingAamap, true,
                           becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.gain; }, 3.5f)};
+    t["snapshot.environment_lights"] = {{}, {"snapshot.environment_lights=3"}, Renders::UsingAamap, true,
+                                        becomes([](const ExperimentConfig& c, int) { return snap(c, 0).environmentLights; }, 3)};
     t["snapshot.map"] = {{}, {"snapshot.map=geometric"}, Renders::UsingAamap, true,
                          becomes([](const ExperimentConfig& c, int) { return snap(c, 0).map; }, passes::AamapSource::Geometric)};
     // Shading: every traced image, never the Snapshot.
@@ -218,6 +250,17 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
     t["shading.light_selection"] = {{}, {"shading.light_selection=power"}, Renders::All, false,
                                     becomes([](const ExperimentConfig& c, int) { return shade(c, 0).lightSelection; },
                                             LightSelection::Power)};
+    // The irradiance cache (the base that has them shades in cache mode: every render reads it).
+    const auto cache = [&](const std::string& key, const std::string& value, auto get, auto expected) {
+        t["shading.cache." + key] = {{}, {"shading.cache." + key + "=" + value}, Renders::All, false,
+                                     becomes([get](const ExperimentConfig& c, int) { return get(shade(c, 0)); }, expected)};
+    };
+    cache("bounces", "3", [](const ShadingSettings& s) { return s.cache.bounces; }, 3);
+    cache("divisions", "100", [](const ShadingSettings& s) { return s.cache.divisions; }, 100);
+    cache("supersamples", "16", [](const ShadingSettings& s) { return s.cache.supersamples; }, 16);
+    cache("accuracy", "0.35", [](const ShadingSettings& s) { return s.cache.accuracy; }, 0.35f);
+    cache("resolution", "20", [](const ShadingSettings& s) { return s.cache.resolution; }, 20);
+    cache("grid_step", "6", [](const ShadingSettings& s) { return s.cacheGridStep; }, 6);
     // One render's entry: its own key only.
     t["renders.#.name"] = {{}, {"renders.#.name=renamed"}, Renders::None, false,
                            becomes([](const ExperimentConfig& c, int i) { return c.renders[i].name; }, std::string("renamed"))};
@@ -254,14 +297,18 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                         differs([](const ExperimentConfig& c, int) { return figures(c)["flip_mean"].get<double>(); })};
     t["metrics.map_quality"] = {{}, {"metrics.map_quality=false"}, Renders::None, false,
                                 differs([](const ExperimentConfig& c, int) { return tracedJobs(c); })};
+    t["metrics.causes"] = {{}, {"metrics.causes=true"}, Renders::None, false,
+                           differs([](const ExperimentConfig& c, int) { return causesReported(c); })};
+    t["timing.same_machine"] = {{}, {"timing.same_machine=false"}, Renders::None, false,
+                                differs([](const ExperimentConfig& c, int) { return workGroups(c); })};
     t["report.plots"] = {{}, {"report.plots=false"}, Renders::None, false,
                          becomes([](const ExperimentConfig& c, int) { return c.report.plots; }, false)};
     t["timing.repeats"] = {{}, {"timing.repeats=3"}, Renders::None, false,
                            differs([](const ExperimentConfig& c, int) { return tracedJobs(c).size(); })};
     t["timing.interleave"] = {{"timing.repeats=3"}, {"timing.interleave=false"}, Renders::None, false,
                               differs([](const ExperimentConfig& c, int) { return tracedJobs(c); })};
-    // Lights: every image and the Snapshot, through addLights. Index 0 is a point light, 1 a
-    // spot, 2 a quad, 3 a disk (the base config below).
+    // Lights: every image and the Snapshot, through addLights. In the "lists" base index 0 is a
+    // point light, 1 a spot, 2 a quad, 3 a disk; in "infinity" 0 is directional, 1 an environment map.
     const auto light = [&](const std::string& key, std::vector<std::string> set, Renders renders = Renders::All) {
         t["lights.#." + key] = {{}, std::move(set), renders, true,
                                 differs([](const ExperimentConfig& c, int) { return sceneLights(c); })};
@@ -280,6 +327,10 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
     light("size", {"lights.#.size=[0.3, 0.2]"});
     light("radius", {"lights.#.radius=0.2"});
     light("segments", {"lights.#.segments=12"});
+    light("irradiance", {"lights.#.irradiance=[3, 2, 1]"});
+    light("map", {"lights.#.map=" + (dir / "sky2.exr").string()});
+    light("scale", {"lights.#.scale=2.5"});
+    light("rotation", {"lights.#.rotation=45"});
     return t;
 }
 
@@ -353,6 +404,25 @@ protected:
                            "light_file: lights.yaml\n"
                            "timing: {repeats: 2}\n"
                            "renders:\n  - {strategy: uniform, rpp: 4}\n  - {strategy: aamap, rpp: 4}\n";
+        // Lights at infinity, and the keys that appear only when not at their defaults.
+        ImageRGB sky(8, 4), otherSky(8, 4);
+        for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 8; ++x) {
+                sky.at(x, y) = glm::vec3(0.2f + 0.1f * static_cast<float>(x), 0.5f, 1.0f - 0.2f * static_cast<float>(y));
+                otherSky.at(x, y) = sky.at(x, y) * 1.5f;
+            }
+        writeExr(dir_.path() / "sky.exr", sky);
+        writeExr(dir_.path() / "sky2.exr", otherSky);
+        bases_["infinity"] = "scene: builtin:cornell\n"
+                             "lights:\n"
+                             "  - {type: directional, name: sun, direction: [0.3, -1, 0.2], irradiance: [2, 2, 2]}\n"
+                             "  - {type: environment, name: sky, map: sky.exr, scale: 1.5, rotation: 30, up: [0, 1, 0]}\n"
+                             "snapshot: {environment_lights: 2}\n"
+                             "shading: {mode: cache, cache: {bounces: 2, divisions: 64, supersamples: 32, accuracy: 0.25,\n"
+                             "          resolution: 32, grid_step: 8}}\n"
+                             "metrics: {causes: false}\n"
+                             "timing: {same_machine: true}\n"
+                             "renders:\n  - {strategy: uniform, rpp: 4}\n  - {strategy: aamap, rpp: 4}\n";
     }
 
     ExperimentConfig parse(const std::string& base, const std::vector<std::string>& overrides) const {
@@ -382,7 +452,7 @@ TEST_F(SettingsReach, EveryKeyChangesItsRendersItsSnapshotAndItsConsumer) {
     // Every key, the first base (and list index) it appears in.
     std::vector<std::tuple<std::string, std::string, int>> keys;  // generic key, base, index
     std::set<std::string> seen;
-    for (const std::string base : {"lists", "camera"}) {
+    for (const std::string base : {"lists", "camera", "infinity"}) {
         std::vector<std::string> found;
         leaves(Json::parse(parse(base, {}).canonicalJson()), "", found);
         for (const std::string& key : found) {
@@ -393,13 +463,10 @@ TEST_F(SettingsReach, EveryKeyChangesItsRendersItsSnapshotAndItsConsumer) {
     // Every strategy parameter must have been found (the base runs every strategy).
     for (const std::string& p : allStrategyParamNames())
         EXPECT_TRUE(seen.contains("renders.#." + p)) << "parameter " << p << " missing from the canonical JSON";
-    // The keys only directional and environment lights have are not walked yet (their parsing and
-    // their effect are tested in test_light_list.cpp and tests/tracer/test_environment*.cpp); any
-    // other light key must be, so a new one cannot be forgotten.
-    const std::set<std::string> notWalkedYet = {"irradiance", "map", "scale", "rotation"};
-    for (const std::string& k : lightKeys())
-        if (!notWalkedYet.contains(k))
-            EXPECT_TRUE(seen.contains("lights.#." + k)) << "light key " << k << " missing from the canonical JSON";
+    // Every key --set accepts must be walked: one that the bases never write (a key present only
+    // when it is not at its default, say) needs a base that writes it.
+    for (const std::string& k : settableKeys())
+        EXPECT_TRUE(seen.contains(k)) << "the key " << k << " is in no base config's canonical JSON: walk it";
 
     for (const auto& [key, base, index] : keys) {
         SCOPED_TRACE(fmt::format("key {} (index {}, base '{}')", key, index, base));

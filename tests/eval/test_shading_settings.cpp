@@ -51,6 +51,18 @@ TEST(ShadingSettings, CacheKeysChangeRenderKeysOnlyWhenNotDefault) {
     }
 }
 
+// Only cache mode reads the cache: the renders of other modes (a path-traced reference, say)
+// keep their keys, so tightening the cache re-traces nothing else.
+TEST(ShadingSettings, CacheKeysLeaveOtherModesAlone) {
+    for (const char* mode : {"direct", "path"}) {
+        const std::string mode_ = std::string("shading.mode=") + mode;
+        const ExperimentConfig d = parseConfig(kBase, "exp.yaml", {mode_});
+        const ExperimentConfig c = parseConfig(kBase, "exp.yaml", {mode_, "shading.cache.bounces=3"});
+        EXPECT_EQ(renderKey(d, d.renders[0]), renderKey(c, c.renders[0])) << mode;
+        EXPECT_NE(d.hash(), c.hash()) << "the experiment itself still differs";
+    }
+}
+
 TEST(ShadingSettings, CacheKeysAreChecked) {
     EXPECT_THROW(parseConfig(kBase, "exp.yaml", {"shading.cache.bounces=-1"}), InputError);
     EXPECT_THROW(parseConfig(kBase, "exp.yaml", {"shading.cache.accuracy=0"}), InputError);
