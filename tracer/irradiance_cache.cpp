@@ -32,11 +32,17 @@ constexpr int kMinDivisions = 16;
 // reflectances); the callback does not report it, so a typical reflectance of 0.5 stands in.
 float levelWeight(int level) { return std::ldexp(1.0f, -level); }
 
-std::uint64_t pointSeed(const CachePoint& point, int level, std::uint64_t seed) {
+// A record's random numbers follow its place in the scene, not its world coordinates: the
+// position relative to the scene bounds, quantised to 2^-20 of the scene size, so a scene scaled by
+// 1e-3 or 1e4 gets the same records (up to the rare point that rounds to the next step).
+std::uint64_t pointSeed(const CachePoint& point, int level, std::uint64_t seed, const glm::vec3& origin,
+                        float sceneSize) {
     std::uint64_t h = mix64(seed ^ 0x243f6a8885a308d3ULL);
-    for (float f : {point.position.x, point.position.y, point.position.z, point.normal.x, point.normal.y,
-                    point.normal.z})
-        h = mix64(h ^ std::bit_cast<std::uint32_t>(f));
+    const glm::vec3 relative = (point.position - origin) / sceneSize;
+    for (float f : {relative.x, relative.y, relative.z})
+        h = mix64(h ^ static_cast<std::uint64_t>(std::llround(static_cast<double>(f) * 0x1p20)));
+    for (float f : {point.normal.x, point.normal.y, point.normal.z})
+        h = mix64(h ^ static_cast<std::uint64_t>(std::llround(static_cast<double>(f) * 0x1p20)));
     return mix64(h ^ static_cast<std::uint64_t>(level));
 }
 
@@ -194,7 +200,7 @@ IrradianceRecord IrradianceCache::computeRecordCounted(const CachePoint& point, 
     const int supersamples = static_cast<int>(std::lround(static_cast<float>(settings_.supersamples) * weight));
     const HemisphereEstimate est = sampleHemisphere(point.position, point.normal, rayOffset(point.position, offsetScale_),
                                                     divisions, supersamples, level + 1,
-                                                    pointSeed(point, level, settings_.seed), radiance_);
+                                                    pointSeed(point, level, settings_.seed, origin_, sceneSize_), radiance_);
     rays += est.rays;
 
     IrradianceRecord r;

@@ -46,7 +46,9 @@ std::vector<CachePoint> cameraCachePoints(const EmbreeScene& geometry, const Pin
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
         const Triangle& tri = geometry.triangle(rh.hit.primID);
         const bool front = glm::dot(tri.normal, dir) < 0.0f;
-        if (geometry.material(tri.material).emissive && front) continue;  // emitters show Ke, no cache
+        // An emitter that reflects nothing diffusely shows only Ke and direct light: no records.
+        const ShadingMaterial& m = geometry.material(tri.material);
+        if (m.emissive && front && !m.diffuse) continue;
         // As the integrator does: the point from the triangle, normals on the viewer's side.
         const glm::vec3 p = tri.v0 + rh.hit.u * tri.e1 + rh.hit.v * tri.e2;
         const glm::vec3 ng = front ? tri.normal : -tri.normal;

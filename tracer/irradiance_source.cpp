@@ -76,9 +76,9 @@ RadianceSample IrradianceSource::radiance(const glm::vec3& origin, const glm::ve
     if (!integrator_->intersect(origin, dir, hit, rays.other)) return s;
     s.distance = hit.distance;
     const ShadingMaterial& m = *hit.material;
-    // Hidden light sources: the front of an emitter is black to hemisphere rays, since every
-    // diffuse hit samples its direct light already (Radiance does the same to ambient rays).
-    if (m.emissive && hit.front) return s;
+    // Hidden light sources: an emitter's own emission is left out (L never adds Ke), since every
+    // diffuse hit samples its direct light already (Radiance does the same to ambient rays). What
+    // an emitter reflects is not hidden: a glowing wall with an albedo passes light on.
     const Sampler sampler(seed, 0, 0);
     glm::vec3 L(0.0f);
     if (m.kind != MaterialKind::Diffuse) L += specular(hit, sampler, depth, rays);

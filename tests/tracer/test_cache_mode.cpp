@@ -74,11 +74,14 @@ std::vector<int> patchPixels(const PinholeCamera& cam, int size, const Patch& pa
 // flat patches within 2%. The reference is two independent renders A, B (seeds 5, 6) of
 // strata^2 paths per pixel; its block mean's standard error is sqrt(sum (A_i - B_i)^2 / 4) / n
 // and must be under 1/6 of the tolerance, so a pass is not luck.
-void cacheMatchesPath(const Scene& scene, const View& view, int size, int strata, std::span<const Patch> patches) {
-    const TraceResult cache = renderScene(scene, view, cacheShading(), size, 1);
+// With `bounces` B the same holds against maxDepth B + 2.
+void cacheMatchesPath(const Scene& scene, const View& view, int size, int strata, std::span<const Patch> patches,
+                      int bounces = 1) {
+    const TraceResult cache = renderScene(scene, view, cacheShading(bounces), size, 1);
     ShadingSettings path;
     path.mode = ShadingMode::Path;
-    path.maxDepth = 3;
+    path.maxDepth = bounces + 2;
+    path.russianRoulette = false;  // the same truncated series as the cache's B levels
     const TraceResult refA = renderScene(scene, view, path, size, strata, 0, 5);
     const TraceResult refB = renderScene(scene, view, path, size, strata, 0, 6);
     EXPECT_TRUE(cache.cache.built);
@@ -122,6 +125,45 @@ TEST(CacheMode, CornellCeilingMatchesPathWithOneBounce) {
     up.horizontalFovDeg = up.verticalFovDeg = 50.0f;
     const Patch patches[] = {{"ceiling", 1, 0.5488f, {0.03f, 0.0f}, {0.53f, 0.2f}}};  // in front of the light
     cacheMatchesPath(scene, up, 32, 24, patches);
+}
+
+// Multi-bounce: each level's records gather from the next level's, so B bounces of cache are B
+// diffuse bounces of path tracing. The ceiling, lit only indirectly, with 3 bounces.
+TEST(CacheMode, CornellCeilingMatchesPathWithThreeBounces) {
+    const Scene scene = builtinScene("cornell");
+    View up;
+    up.position = {0.278f, 0.25f, 0.1f};
+    up.direction = {0.0f, 1.0f, 0.0f};
+    up.up = {0.0f, 0.0f, 1.0f};
+    up.horizontalFovDeg = up.verticalFovDeg = 50.0f;
+    const Patch patches[] = {{"ceiling", 1, 0.5488f, {0.03f, 0.0f}, {0.53f, 0.2f}}};
+    cacheMatchesPath(scene, up, 32, 24, patches, 3);
+}
+
+// A furnace: inside a closed sphere of albedo rho emitting Le everywhere, B cache bounces see
+// Le (1 + rho + ... + rho^(B+1)): emission, direct light, then one term per level. The field is
+// constant, so interpolation is exact and the only error is the records' hemisphere sampling.
+// As B grows it converges to path mode's Le / (1 - rho).
+TEST(CacheMode, FurnaceSphereSumsOneTermPerBounce) {
+    const float rho = 0.5f, le = 1.0f;
+    testing::SceneBuilder b;
+    const auto mat = b.material("furnace", glm::vec3(rho), glm::vec3(le));
+    AreaLight light;
+    light.name = "furnace";
+    light.radiance = glm::vec3(le);
+    light.triangles = testing::sphere(b, {0.1f, -0.2f, 0.3f}, 1.0f, mat, /*inward=*/true, 12, 24);
+    b.scene().areaLights.push_back(light);
+    for (int bounces : {1, 2, 4, 8}) {
+        const TraceResult r = renderScene(b.scene(), testing::lookAt({0.1f, -0.2f, 0.3f}, {1, 0, 0}, 90),
+                                          cacheShading(bounces), 16, 1);
+        double want = 0.0;
+        for (int i = 0; i <= bounces + 1; ++i) want += le * std::pow(rho, i);
+        double mean = 0.0;
+        for (const glm::vec3& c : r.image.pixels()) mean += c.y;
+        mean /= static_cast<double>(r.image.pixels().size());
+        EXPECT_NEAR(mean, want, 0.01 * want) << bounces << " bounces";
+        if (bounces == 8) EXPECT_NEAR(mean, le / (1.0 - rho), 0.01 * le / (1.0 - rho)) << "path mode's answer";
+    }
 }
 
 // The cache is frozen before the render and misses are not stored: any thread count gives the
