@@ -68,6 +68,17 @@ inline std::vector<std::uint32_t> sphere(SceneBuilder& b, glm::vec3 c, float r, 
     return tris;
 }
 
+// A furnace: a closed sphere (12 x 24 quads, fronts inward) of albedo rho emitting le everywhere,
+// one area light. Inside it radiance is le (1 + rho + rho^2 + ...) in every direction.
+inline void furnaceSphere(SceneBuilder& b, glm::vec3 centre, float rho, float le) {
+    const auto mat = b.material("furnace", glm::vec3(rho), glm::vec3(le));
+    AreaLight light;
+    light.name = "furnace";
+    light.radiance = glm::vec3(le);
+    light.triangles = sphere(b, centre, 1.0f, mat, /*inward=*/true, 12, 24);
+    b.scene().areaLights.push_back(light);
+}
+
 // Fills uvs with zeros for vertices added without them (the mesh needs one per position).
 inline void padUvs(Scene& s) { s.mesh.uvs.resize(s.mesh.positions.size(), glm::vec2(0.0f)); }
 

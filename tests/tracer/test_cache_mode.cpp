@@ -104,6 +104,16 @@ void cacheMatchesPath(const Scene& scene, const View& view, int size, int strata
     }
 }
 
+// From inside the box, straight up, so that the ceiling fills the image.
+View ceilingView() {
+    View up;
+    up.position = {0.278f, 0.25f, 0.1f};
+    up.direction = {0.0f, 1.0f, 0.0f};
+    up.up = {0.0f, 0.0f, 1.0f};
+    up.horizontalFovDeg = up.verticalFovDeg = 50.0f;
+    return up;
+}
+
 // The published view: back wall and floor, lit directly and indirectly (SE measured 0.1%).
 TEST(CacheMode, CornellWallAndFloorMatchPathWithOneBounce) {
     const Scene scene = builtinScene("cornell");
@@ -118,11 +128,7 @@ TEST(CacheMode, CornellWallAndFloorMatchPathWithOneBounce) {
 // from inside the box, straight up, so that the patch fills the image (SE measured 0.3%).
 TEST(CacheMode, CornellCeilingMatchesPathWithOneBounce) {
     const Scene scene = builtinScene("cornell");
-    View up;
-    up.position = {0.278f, 0.25f, 0.1f};
-    up.direction = {0.0f, 1.0f, 0.0f};
-    up.up = {0.0f, 0.0f, 1.0f};
-    up.horizontalFovDeg = up.verticalFovDeg = 50.0f;
+    const View up = ceilingView();
     const Patch patches[] = {{"ceiling", 1, 0.5488f, {0.03f, 0.0f}, {0.53f, 0.2f}}};  // in front of the light
     cacheMatchesPath(scene, up, 32, 24, patches);
 }
@@ -131,11 +137,7 @@ TEST(CacheMode, CornellCeilingMatchesPathWithOneBounce) {
 // diffuse bounces of path tracing. The ceiling, lit only indirectly, with 3 bounces.
 TEST(CacheMode, CornellCeilingMatchesPathWithThreeBounces) {
     const Scene scene = builtinScene("cornell");
-    View up;
-    up.position = {0.278f, 0.25f, 0.1f};
-    up.direction = {0.0f, 1.0f, 0.0f};
-    up.up = {0.0f, 0.0f, 1.0f};
-    up.horizontalFovDeg = up.verticalFovDeg = 50.0f;
+    const View up = ceilingView();
     const Patch patches[] = {{"ceiling", 1, 0.5488f, {0.03f, 0.0f}, {0.53f, 0.2f}}};
     cacheMatchesPath(scene, up, 32, 24, patches, 3);
 }
@@ -147,12 +149,7 @@ TEST(CacheMode, CornellCeilingMatchesPathWithThreeBounces) {
 TEST(CacheMode, FurnaceSphereSumsOneTermPerBounce) {
     const float rho = 0.5f, le = 1.0f;
     testing::SceneBuilder b;
-    const auto mat = b.material("furnace", glm::vec3(rho), glm::vec3(le));
-    AreaLight light;
-    light.name = "furnace";
-    light.radiance = glm::vec3(le);
-    light.triangles = testing::sphere(b, {0.1f, -0.2f, 0.3f}, 1.0f, mat, /*inward=*/true, 12, 24);
-    b.scene().areaLights.push_back(light);
+    testing::furnaceSphere(b, {0.1f, -0.2f, 0.3f}, rho, le);
     for (int bounces : {1, 2, 4, 8}) {
         const TraceResult r = renderScene(b.scene(), testing::lookAt({0.1f, -0.2f, 0.3f}, {1, 0, 0}, 90),
                                           cacheShading(bounces), 16, 1);

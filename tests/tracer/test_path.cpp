@@ -22,12 +22,7 @@ using testing::renderScene;
 TEST(PathMode, FurnaceSphereGivesLeOverOneMinusRho) {
     const float rho = 0.5f, le = 1.0f;
     testing::SceneBuilder b;
-    const auto mat = b.material("furnace", glm::vec3(rho), glm::vec3(le));
-    AreaLight light;
-    light.name = "furnace";
-    light.radiance = glm::vec3(le);
-    light.triangles = testing::sphere(b, {0.1f, -0.2f, 0.3f}, 1.0f, mat, /*inward=*/true, 12, 24);
-    b.scene().areaLights.push_back(light);
+    testing::furnaceSphere(b, {0.1f, -0.2f, 0.3f}, rho, le);
     ShadingSettings sh;
     sh.mode = ShadingMode::Path;
     sh.maxDepth = 1000;  // Russian roulette ends the paths; truncation error rho^1000
@@ -50,12 +45,7 @@ TEST(PathMode, FurnaceSphereGivesLeOverOneMinusRho) {
 // paths one bounce ray early, and starting earlier ends more.
 TEST(PathMode, RouletteDepthIsTheFirstSegmentRouletteMayEnd) {
     testing::SceneBuilder b;
-    const auto mat = b.material("furnace", glm::vec3(0.5f), glm::vec3(1.0f));
-    AreaLight light;
-    light.name = "furnace";
-    light.radiance = glm::vec3(1.0f);
-    light.triangles = testing::sphere(b, {0.0f, 0.0f, 0.0f}, 1.0f, mat, /*inward=*/true, 12, 24);
-    b.scene().areaLights.push_back(light);
+    testing::furnaceSphere(b, {0.0f, 0.0f, 0.0f}, 0.5f, 1.0f);
     const int size = 8, strata = 2, maxDepth = 5;
     const auto bounceRays = [&](bool roulette, int rouletteDepth) {
         ShadingSettings sh;
