@@ -22,9 +22,13 @@
 namespace aamap {
 namespace {
 
-// Records decided per parallel batch. A constant, never the thread count: batches decide which
-// points get records, so they must not change with the machine.
-constexpr std::size_t kBatch = 64;
+// Records decided per parallel batch: 1, 2, 4, ... up to kBatch. Constants, never the thread
+// count: batches decide which points get records, so they must not change with the machine. The
+// first batches are small because every task of a batch computes the deeper-level records its
+// hemisphere needs on its own (they are merged only after the batch): starting with one record
+// lets it fill the deeper levels once, which later tasks then find instead of each redoing them.
+constexpr int kBatchLog2 = 6;
+constexpr std::size_t kBatch = std::size_t{1} << kBatchLog2;
 // Deeper levels sample fewer cells; below this the gradients are meaningless.
 constexpr int kMinDivisions = 16;
 
@@ -255,7 +259,8 @@ void IrradianceCache::build(std::span<const CachePoint> points) {
             guess = std::max(guess, 0.5f * radii[radii.size() / 2]);
         }
         batch.clear();
-        while (batch.size() < kBatch && pos < points.size()) {
+        const std::size_t capacity = std::size_t{1} << std::min<std::size_t>(stats_.batches, kBatchLog2);
+        while (batch.size() < capacity && pos < points.size()) {
             const CachePoint& c = points[pos];
             if (covered(c.position, c.normal, 0)) {
                 ++pos;
