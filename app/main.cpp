@@ -44,7 +44,8 @@ docs/config.md). Paths in it are relative to the config file. Keys:
   seed: 1          threads: 0 (all cores)
   light_file: lights.yaml (docs/lights.md)  lights: [{type: point|spot|quad|disk, name, position: [x,y,z],
             intensity|radiance|power: [r,g,b], normal, direction, inner_angle, outer_angle, size, radius}]
-  image: {width: 512, height: 512, exposure: 1.0}   (the view's aspect ratio fits inside)
+  image: {width: 512, height: 512, exposure: 1.0,   (the view's aspect ratio fits inside)
+         filter: box|tent|gaussian, filter_radius: 0 (the filter's own), filter_stddev: 0.5}
   snapshot: {scale: 1.5, area_light_samples: 5, blur_radius: 1, noise_floor: 0.02, gain: 1.0}
   shading: {area_light_samples: 16, mode: direct|path|cache, max_depth: 5, russian_roulette: true,
             roulette_depth: 5, max_specular_depth: 8}

@@ -32,7 +32,7 @@ std::vector<std::string> settableKeys() {
     std::vector<std::string> l = {
         "scene", "view", "view_index", "seed", "threads",
         "camera.position", "camera.look_at", "camera.up", "camera.fov",
-        "image.width", "image.height", "image.exposure",
+        "image.width", "image.height", "image.exposure", "image.filter", "image.filter_radius", "image.filter_stddev",
         "snapshot.scale", "snapshot.area_light_samples", "snapshot.environment_lights", "snapshot.blur_radius", "snapshot.noise_floor",
         "snapshot.gain", "snapshot.map", "shading.area_light_samples", "shading.mode", "shading.max_depth",
         "shading.russian_roulette", "shading.roulette_depth", "shading.max_specular_depth", "shading.light_selection",
@@ -111,11 +111,20 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
         c.lights.push_back(std::move(l));
     }
 
-    MapReader image(ctx, top.node("image"), "image", {"width", "height", "exposure"});
+    MapReader image(ctx, top.node("image"), "image",
+                    {"width", "height", "exposure", "filter", "filter_radius", "filter_stddev"});
     c.image.sizeGiven = image.has("width") || image.has("height");
     image.getInt("width", c.image.width, 1, kMaxSide);
     image.getInt("height", c.image.height, 1, kMaxSide);
     image.getDouble("exposure", c.image.exposure, 0.0, 1e6, true);
+    image.getString("filter", c.image.filter);
+    detail::checkOneOf(ctx, image.node("filter"), "image.filter", c.image.filter, {"box", "tent", "gaussian"});
+    image.getDouble("filter_radius", c.image.filterRadius, 0.0, 8.0);
+    image.getDouble("filter_stddev", c.image.filterStddev, 0.0, 4.0, true);
+    if (image.has("filter_stddev") && c.image.filter != "gaussian")
+        ctx.fail(image.node("filter_stddev"), "image.filter_stddev",
+                 fmt::format("image.filter_stddev: only the gaussian filter has a stddev (image.filter is '{}')",
+                             c.image.filter));
 
     MapReader snap(ctx, top.node("snapshot"), "snapshot",
                    {"scale", "area_light_samples", "environment_lights", "blur_radius", "noise_floor", "gain", "map"});
@@ -252,6 +261,12 @@ Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = ""
     return j;
 }
 
+Json filterJson(const ImageConfig& image) {
+    Json j = {{"type", image.filter}, {"radius", image.filterRadius}};
+    if (image.filter == "gaussian") j["stddev"] = image.filterStddev;
+    return j;
+}
+
 Json cameraJson(const CameraConfig& cam) {
     return {{"position", cam.position}, {"look_at", cam.lookAt}, {"up", cam.up}, {"fov", cam.fov}};
 }
@@ -297,6 +312,7 @@ std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) {
     j["strategy"] = r.strategy;
     j["rpp"] = r.rpp;
     j["params"] = paramsJson(r);
+    if (!c.image.defaultFilter()) j["filter"] = filterJson(c.image);  // only then: other configs keep their keys
     const StrategyInfo* s = findStrategy(r.strategy);
     if (s != nullptr && s->usesAamap) j["snapshot"] = snapshotJson(c);
     return j.dump();
@@ -321,6 +337,11 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     if (c.lightFile) j["light_file"] = *c.lightFile;  // only when set: older configs keep their hash
     j["lights"] = lightsJson(c);
     j["image"] = {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}};
+    if (!c.image.defaultFilter()) {  // else older configs keep their hash
+        j["image"]["filter"] = c.image.filter;
+        j["image"]["filter_radius"] = c.image.filterRadius;
+        if (c.image.filter == "gaussian") j["image"]["filter_stddev"] = c.image.filterStddev;
+    }
     j["seed"] = c.seed;
     j["threads"] = c.threads;
     j["snapshot"] = snapshotJson(c);

@@ -27,6 +27,11 @@ struct ImageConfig {
     int width = 512, height = 512;  // the bounding box; the view's aspect ratio decides the fit
     bool sizeGiven = false;         // width or height written: else a scene's own size (Mitsuba film) wins
     double exposure = 1.0;          // PNG tone mapping and the snapshot's greyscale
+    // Pixel reconstruction filter of every traced image (tracer/pixel_filter.h).
+    std::string filter = "box";  // box | tent | gaussian
+    double filterRadius = 0.0;   // pixels; 0: the filter's own (box 0.5, tent 1, gaussian 4 stddev)
+    double filterStddev = 0.5;   // gaussian only
+    bool defaultFilter() const { return filter == "box" && (filterRadius == 0.0 || filterRadius == 0.5); }
 };
 
 // `camera`: a view written in the config instead of a .vf file (scene/framing.h, lookAtView).

@@ -324,6 +324,10 @@ TraceSettings traceSettingsFor(const ExperimentConfig& config, const RenderConfi
     ts.seed = config.seed;
     ts.threads = threads >= 0 ? threads : config.threads;
     ts.shading = toShadingSettings(config, render);
+    if (!parse(config.image.filter, ts.filter.type))
+        throw std::invalid_argument(fmt::format("unknown pixel filter '{}'", config.image.filter));
+    ts.filter.radius = static_cast<float>(config.image.filterRadius);
+    ts.filter.stddev = static_cast<float>(config.image.filterStddev);
     return ts;
 }
 

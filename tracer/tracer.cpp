@@ -111,7 +111,8 @@ bool isFinite(const glm::vec3& c) { return std::isfinite(c.x) && std::isfinite(c
 class EmbreeSource final : public SampleSource {
 public:
     EmbreeSource(const PinholeCamera& camera, const Integrator& integrator, const EmbreeScene& geometry,
-                 const std::vector<std::uint32_t>& shapes, std::uint64_t seed, int width, int height)
+                 const std::vector<std::uint32_t>& shapes, std::uint64_t seed, int width, int height,
+                 const PixelFilter& filter)
         : camera_(camera),
           integrator_(integrator),
           geometry_(geometry),
@@ -120,7 +121,8 @@ public:
           width_(width),
           height_(height),
           invW_(1.0f / static_cast<float>(width)),
-          invH_(1.0f / static_cast<float>(height)) {}
+          invH_(1.0f / static_cast<float>(height)),
+          filter_(filter) {}
 
     int width() const override { return width_; }
     int height() const override { return height_; }
@@ -195,10 +197,11 @@ private:
 
     std::uint64_t pixelIndex(int x, int y) const { return static_cast<std::uint64_t>(y) * width_ + x; }
 
-    // The unit direction of stratum (sx, sy) of pixel (x, y): jittered by the sample's own sampler.
+    // The unit direction of stratum (sx, sy) of pixel (x, y): jittered by the sample's own sampler,
+    // then placed by the pixel filter (the identity for the default box).
     glm::vec3 direction(int x, int y, int sx, int sy, int k) const {
         const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(sy * k + sx), seed_);
-        const glm::vec2 j = sampler.stratified2D(dims::kFilm, sx, sy, k);
+        const glm::vec2 j = filter_.positionInPixel(sampler.stratified2D(dims::kFilm, sx, sy, k));
         // Film point exactly as the rasteriser defines pixel (x, y).
         const float u = (static_cast<float>(x) + j.x) * invW_;
         const float v = (static_cast<float>(y) + j.y) * invH_;
@@ -232,6 +235,7 @@ private:
     std::uint64_t seed_;
     int width_, height_;
     float invW_, invH_;
+    const PixelFilter& filter_;
     mutable tbb::enumerable_thread_specific<ThreadCounters> counters_;
 };
 
@@ -262,12 +266,13 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     if (W <= 0 || H <= 0) throw std::invalid_argument(fmt::format("render size {}x{} is empty", W, H));
     if (settings.threads < 0) throw std::invalid_argument(fmt::format("threads must be >= 0, got {}", settings.threads));
     const auto strategy = makeStrategy(strategySettings, W, H);
+    const PixelFilter filter(settings.filter);  // checks its settings before any work
     const PinholeCamera camera = PinholeCamera::fromView(view);
     // Cache mode: builds the irradiance cache (its pre-pass) and the Integrator that reads it.
     const RenderShading shading =
         makeRenderShading(impl_->geometry, impl_->lights, settings.shading, camera, W, H, settings.threads);
     const Integrator& integrator = *shading.integrator;
-    const EmbreeSource source(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H);
+    const EmbreeSource source(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filter);
 
     StrategyImages images(W, H);
     Scheduler scheduler(W, H, settings.onTileDone);

@@ -9,6 +9,7 @@
 #include "core/image.h"
 #include "scene/scene.h"
 #include "tracer/irradiance_cache.h"
+#include "tracer/pixel_filter.h"
 #include "core/pixel_facts.h"
 
 namespace aamap {
@@ -131,6 +132,8 @@ struct TraceSettings {
     std::uint64_t seed = 1;
     int threads = 0;  // 0: all hardware threads
     ShadingSettings shading;
+    // Where a pixel's primary rays land (tracer/pixel_filter.h): the pixel itself by default.
+    PixelFilterSettings filter;
     // Called from worker threads as tiles finish (for progress bars); may be empty.
     std::function<void(int tilesDone, int tilesTotal)> onTileDone;
     // Live previews (the viewer): called from a worker thread as each tile of a tile phase

@@ -73,6 +73,17 @@ const char* kRoom = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
 const char* kLights = "- {type: point, position: [0, 1.5, 0], intensity: [2, 2, 2]}\n";
 
+// kConfig with a Gaussian pixel filter (the one filter with a stddev).
+const std::string& gaussianConfig() {
+    static const std::string config = [] {
+        std::string c = kConfig;
+        const std::string image = "exposure: 1.0}";
+        c.replace(c.find(image), image.size(), "exposure: 1.0, filter: gaussian}");
+        return c;
+    }();
+    return config;
+}
+
 std::vector<KeyInput> inputs() {
     std::vector<KeyInput> v;
     const auto set = [&](std::string name, std::string override) {
@@ -89,6 +100,9 @@ std::vector<KeyInput> inputs() {
     set("ImageWidth", "image.width=65");
     set("ImageHeight", "image.height=47");
     set("ImageExposure", "image.exposure=1.5");
+    set("ImageFilter", "image.filter=tent");
+    set("ImageFilterRadius", "image.filter_radius=1");
+    v.push_back({"ImageFilterStddev", gaussianConfig().c_str(), {"image.filter_stddev=0.3"}, {}});
     set("LightPosition", "lights.0.position=[0, 1.8, 0]");
     set("LightRadiance", "lights.0.radiance=[5, 5, 4]");
     set("LightSize", "lights.0.size=[0.4, 0.3]");
@@ -154,9 +168,10 @@ TEST_P(CacheKeyInputs, ChangesTheKeyOfEveryRenderItAffects) {
     for (std::size_t r = 0; r < before.renders.size(); ++r)
         EXPECT_NE(keysBefore[r], renderKey(after, after.renders[r]))
             << input.name << " does not reach the key of render " << before.renders[r].name;
-    // Every input here changes what the Snapshot sees too, except the seed and shading (the
-    // Snapshot has its own area-light samples and no random numbers).
-    const bool snapshotInput = !input.name.starts_with("Seed") && !input.name.starts_with("Shading");
+    // Every input here changes what the Snapshot sees too, except the seed, shading and the pixel
+    // filter (the Snapshot has its own area-light samples, no random numbers and no filter).
+    const bool snapshotInput = !input.name.starts_with("Seed") && !input.name.starts_with("Shading") &&
+                               !input.name.starts_with("ImageFilter");
     EXPECT_EQ(snapshotBefore != snapshotKey(after), snapshotInput) << input.name;
 }
 

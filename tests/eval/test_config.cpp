@@ -116,6 +116,12 @@ TEST(ConfigErrors, OutOfRange) {
     expectAt(parseError("scene: builtin:cornell\nrenders: [{strategy: uniform, rpp: 4096}]\n"), 2, 36, "out of range");
     expectAt(parseError(kMinimal + "shading: {light_selection: random}\n"), 4, 28,
              "shading.light_selection: unknown value 'random' (supported: contribution, power)");
+    expectAt(parseError(kMinimal + "image: {filter: lanczos}\n"), 4, 17,
+             "image.filter: unknown value 'lanczos' (supported: box, tent, gaussian)");
+    expectAt(parseError(kMinimal + "image: {filter: tent, filter_radius: 9}\n"), 4, 38, "out of range [0, 8]");
+    expectAt(parseError(kMinimal + "image: {filter: gaussian, filter_stddev: 0}\n"), 4, 42, "out of range (0");
+    expectAt(parseError(kMinimal + "image: {filter: tent, filter_stddev: 0.3}\n"), 4, 38,
+             "image.filter_stddev: only the gaussian filter has a stddev (image.filter is 'tent')");
 }
 
 TEST(ConfigErrors, RppMustBeAPerfectSquare) {

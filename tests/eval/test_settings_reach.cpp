@@ -211,6 +211,14 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                          differs([](const ExperimentConfig& c, int) { return prepared(c).height; })};
     t["image.exposure"] = {{}, {"image.exposure=2.5"}, Renders::All, true,
                            becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.exposure; }, 2.5f)};
+    // The pixel filter: every traced image, never the Snapshot.
+    const auto filter = [](const ExperimentConfig& c, int) { return traceSettingsFor(c, c.renders.front(), 8, 8, -1).filter; };
+    t["image.filter"] = {{}, {"image.filter=tent"}, Renders::All, false,
+                         becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).type; }, PixelFilterType::Tent)};
+    t["image.filter_radius"] = {{}, {"image.filter_radius=1.5"}, Renders::All, false,
+                                becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).radius; }, 1.5f)};
+    t["image.filter_stddev"] = {{"image.filter=gaussian"}, {"image.filter_stddev=0.3"}, Renders::All, false,
+                                becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).stddev; }, 0.3f)};
     // The seed drives every traced sample. The GPU Snapshot has no random numbers, so its key
     // leaves the seed out (the CPU fallback's snapshot is then the one of the first seed run).
     t["seed"] = {{}, {"seed=99"}, Renders::All, false, becomes([](const ExperimentConfig& c, int) {
@@ -401,6 +409,7 @@ protected:
         bases_["camera"] = "scene: builtin:cornell\n"
                            "camera: {position: [0, 1, 3.9], look_at: [0, 1, 0]}\n"
                            "snapshot: {map: combined}\n"
+                           "image: {filter: gaussian}\n"  // the filter keys appear only when not the box
                            "light_file: lights.yaml\n"
                            "timing: {repeats: 2}\n"
                            "renders:\n  - {strategy: uniform, rpp: 4}\n  - {strategy: aamap, rpp: 4}\n";

@@ -159,7 +159,9 @@ TEST(CacheMode, FurnaceSphereSumsOneTermPerBounce) {
         for (const glm::vec3& c : r.image.pixels()) mean += c.y;
         mean /= static_cast<double>(r.image.pixels().size());
         EXPECT_NEAR(mean, want, 0.01 * want) << bounces << " bounces";
-        if (bounces == 8) EXPECT_NEAR(mean, le / (1.0 - rho), 0.01 * le / (1.0 - rho)) << "path mode's answer";
+        if (bounces == 8) {
+            EXPECT_NEAR(mean, le / (1.0 - rho), 0.01 * le / (1.0 - rho)) << "path mode's answer";
+        }
     }
 }
 

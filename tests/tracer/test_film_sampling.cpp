@@ -12,6 +12,7 @@
 
 #include "scene/camera.h"
 #include "tests/tracer/scene_builder.h"
+#include "tracer/pixel_filter.h"
 #include "tracer/tracer.h"
 
 namespace aamap {
@@ -137,6 +138,40 @@ TEST(FilmSampling, EveryStratifyingStrategyPutsOneRayInEachCellForKUpTo8) {
 
 TEST(FilmSampling, SupersampleSubPixelsTileThePixelOneRayPerCell) {
     for (const StratifyingStrategy& s : supersampleStrategies()) expectOneRayPerCell(s);
+}
+
+// With a pixel filter the k x k rays of a pixel land one in each of k x k cells of equal filter
+// weight: cell (i, j) spans the offsets [F^-1(i/k), F^-1((i+1)/k)] x [F^-1(j/k), F^-1((j+1)/k)]
+// from the pixel centre, beyond the pixel itself. One-pixel renders with one cell lit at a time
+// (in a probe image of many pixels each pixel's rays would also reach its neighbours' cells).
+TEST(FilmSampling, PixelFiltersPutOneRayInEachCellOfEqualFilterWeight) {
+    const ImageGrey one(1, 1, 1.0f);
+    for (const PixelFilterSettings& fs : {PixelFilterSettings{PixelFilterType::Tent, 0.0f, 0.5f},
+                                          PixelFilterSettings{PixelFilterType::Gaussian, 0.0f, 0.5f},
+                                          PixelFilterSettings{PixelFilterType::Box, 1.0f, 0.5f}}) {
+        const PixelFilter filter(fs);
+        const auto edge = [&](int i, int k) {
+            return static_cast<double>(0.5f + filter.offset(static_cast<float>(i) / static_cast<float>(k)));
+        };
+        for (int k : {2, 3}) {
+            TraceSettings settings;
+            settings.width = settings.height = 1;
+            settings.seed = 11;
+            settings.filter = fs;
+            for (int j = 0; j < k; ++j)
+                for (int i = 0; i < k; ++i) {
+                    testing::SceneBuilder b;
+                    addFilmRectangle(b, edge(i, k), edge(j, k), edge(i + 1, k), edge(j + 1, k));
+                    const Tracer tracer(b.scene());
+                    for (const StratifyingStrategy& s : stratifyingStrategies(k, &one)) {
+                        const TraceResult r = tracer.render(frontView(), settings, s.settings);
+                        EXPECT_NEAR(r.image.at(0, 0).x, 1.0 / (k * k), 1e-6)
+                            << toString(fs.type) << " r=" << filter.radius() << ", " << s.name << ", k = " << k
+                            << ": cell (" << i << ", " << j << ") got " << r.image.at(0, 0).x * k * k << " rays";
+                    }
+                }
+        }
+    }
 }
 
 // A one-pixel image, uniform k x k strata.

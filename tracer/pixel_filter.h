@@ -1,0 +1,69 @@
+#pragma once
+// Pixel reconstruction filters by filter importance sampling (as pbrt-v4 does): each primary ray's
+// film position is drawn from the filter itself, so every sample weighs 1 and a pixel stays the
+// plain mean of its samples, for every strategy. Separable filters: each axis maps its stratified
+// number through the inverse of the 1D filter's cumulative distribution, which is monotone, so
+// k x k strata of [0,1)^2 stay k x k cells of equal filter weight. Formulas: docs/tracer.md.
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+namespace aamap {
+
+enum class PixelFilterType {
+    Box,       // constant over [-r, r]: r = 0.5 is the pixel itself (the default)
+    Tent,      // 1 - |x| / r (pbrt's triangle filter, Mitsuba's tent)
+    Gaussian,  // exp(-x^2 / (2 sigma^2)) - exp(-r^2 / (2 sigma^2)), clamped at 0 (pbrt, Mitsuba)
+};
+const char* toString(PixelFilterType type);
+bool parse(const std::string& name, PixelFilterType& type);  // false for an unknown name
+
+struct PixelFilterSettings {
+    PixelFilterType type = PixelFilterType::Box;
+    float radius = 0.0f;  // in pixels; 0 chooses the filter's own: box 0.5, tent 1, gaussian 4 sigma
+    float stddev = 0.5f;  // gaussian only: sigma in pixels (Mitsuba's default)
+    bool operator==(const PixelFilterSettings&) const = default;
+};
+
+// The radius a setting resolves to (its own, or the filter's default).
+float resolvedRadius(const PixelFilterSettings& settings);
+
+class PixelFilter {
+public:
+    explicit PixelFilter(const PixelFilterSettings& settings = {});
+
+    PixelFilterType type() const { return type_; }
+    float radius() const { return radius_; }
+    // True for the default box of radius 0.5: film positions are then the stratified numbers
+    // themselves, bit for bit.
+    bool isPixelBox() const { return pixelBox_; }
+
+    // The 1D filter at offset x from the pixel centre, not normalised (0 outside [-r, r]).
+    double evaluate1D(double x) const;
+    // Its cumulative distribution from -r, normalised: 0 at -r, 1 at r.
+    double cdf1D(double x) const;
+
+    // The film position, relative to the pixel's lower corner (pixel units), of the stratified
+    // numbers u in [0,1)^2: u itself for the pixel box, else 0.5 + F^-1(u) per axis.
+    glm::vec2 positionInPixel(glm::vec2 u) const {
+        if (pixelBox_) return u;
+        return {0.5f + offset(u.x), 0.5f + offset(u.y)};
+    }
+    // F^-1(u): the offset from the pixel centre whose cumulative weight is u, in [-r, r].
+    float offset(float u) const;
+
+private:
+    double gaussianIntegral(double x) const;  // from -r to x, not normalised
+
+    PixelFilterType type_;
+    float radius_;
+    double sigma_;
+    bool pixelBox_;
+    // Gaussian: the CDF at equal steps over [-r, r], brackets for Newton's method on the exact
+    // CDF (erf), so offsets are exact to far below float resolution.
+    std::vector<double> table_;
+    double gaussianTotal_ = 1.0;
+};
+
+}  // namespace aamap
