@@ -10,7 +10,6 @@ namespace aamap {
 namespace {
 
 constexpr double kSqrtHalfPi = 1.2533141373155003;  // sqrt(pi / 2)
-constexpr int kTableSteps = 64;                      // brackets for the Gaussian's inversion
 
 }  // namespace
 
@@ -50,9 +49,13 @@ PixelFilter::PixelFilter(const PixelFilterSettings& settings)
     pixelBox_ = type_ == PixelFilterType::Box && radius_ == 0.5f;
     if (type_ == PixelFilterType::Gaussian) {
         gaussianTotal_ = gaussianIntegral(radius_);
-        table_.resize(kTableSteps + 1);
-        for (int i = 0; i <= kTableSteps; ++i)
-            table_[static_cast<std::size_t>(i)] = cdf1D(radius_ * (2.0 * i / kTableSteps - 1.0));
+        cdf_.resize(kSteps + 1);
+        pdf_.resize(kSteps + 1);
+        for (int i = 0; i <= kSteps; ++i) {
+            const double x = radius_ * (2.0 * i / kSteps - 1.0);
+            cdf_[static_cast<std::size_t>(i)] = cdf1D(x);
+            pdf_[static_cast<std::size_t>(i)] = evaluate1D(x) / gaussianTotal_;
+        }
     }
 }
 
@@ -99,25 +102,18 @@ float PixelFilter::offset(float uf) const {
         case PixelFilterType::Tent:
             return static_cast<float>(u < 0.5 ? r * (std::sqrt(2.0 * u) - 1.0) : r * (1.0 - std::sqrt(2.0 * (1.0 - u))));
         case PixelFilterType::Gaussian: {
-            // The table brackets u; Newton's method on the exact CDF inside the bracket, falling
-            // back to bisection when a step would leave it.
-            const auto it = std::upper_bound(table_.begin(), table_.end(), u);
-            const int hi = std::clamp(static_cast<int>(it - table_.begin()), 1, kTableSteps);
-            double lo = r * (2.0 * (hi - 1) / kTableSteps - 1.0), up = r * (2.0 * hi / kTableSteps - 1.0);
-            const double clo = table_[static_cast<std::size_t>(hi - 1)], cup = table_[static_cast<std::size_t>(hi)];
-            double x = cup > clo ? lo + (up - lo) * (u - clo) / (cup - clo) : 0.5 * (lo + up);
-            for (int i = 0; i < 64; ++i) {
-                const double f = cdf1D(x) - u;
-                if (f == 0.0) break;
-                if (f > 0.0) up = x; else lo = x;
-                const double pdf = evaluate1D(x) / gaussianTotal_;
-                double next = pdf > 0.0 ? x - f / pdf : 0.5 * (lo + up);
-                if (!(next > lo && next < up)) next = 0.5 * (lo + up);
-                const bool converged = std::abs(next - x) < 1e-10 * r;
-                x = next;
-                if (converged) break;
-            }
-            return static_cast<float>(x);
+            // The step holding u, then the exact inverse of the CDF of a filter linear across
+            // the step (its values at both ends): a d^2 + b d = u - F_i, in the stable form.
+            const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+            const int i = std::clamp(static_cast<int>(it - cdf_.begin()) - 1, 0, kSteps - 1);
+            const double h = 2.0 * r / kSteps;
+            const double du = u - cdf_[static_cast<std::size_t>(i)];
+            const double b = pdf_[static_cast<std::size_t>(i)];
+            const double a = 0.5 * (pdf_[static_cast<std::size_t>(i) + 1] - b) / h;
+            const double disc = std::max(0.0, b * b + 4.0 * a * du);
+            const double denom = b + std::sqrt(disc);
+            const double d = denom > 0.0 ? 2.0 * du / denom : 0.0;
+            return static_cast<float>(std::clamp(-r + h * i + std::clamp(d, 0.0, h), -r, r));
         }
     }
     return 0.0f;

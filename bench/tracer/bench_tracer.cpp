@@ -3,6 +3,7 @@
 //                [--size 512] [--fit-view] [--strata 6] [--threads 0]
 //                [--light-samples 16] [--repeat 3] [--mode direct|path|cache] [--max-depth 5]
 //                [--ab 1] [--ad 512] [--as 128] [--aa 0.2] [--ar 64] [--cache-grid-step 4] [--out FILE.exr]
+//                [--filter box|tent|gaussian]
 // Reports the best of --repeat runs: the machine is shared and noisy, the minimum is the
 // least disturbed figure. Cache mode also reports the pre-pass (best of the runs) apart.
 #include <algorithm>
@@ -27,7 +28,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Tracer throughput benchmark (uniform n x n sampling)"};
     std::string sceneSpec = "builtin:cornell";
     int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3, maxDepth = 5;
-    std::string mode = "direct";
+    std::string mode = "direct", filter = "box";
     aamap::IrradianceCacheSettings cache;
     int gridStep = 4;
     std::string viewFile, lightFile, outFile;
@@ -58,6 +59,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1024));
     app.add_option("--ar", cache.resolution, "cache mode: resolution")->capture_default_str()->check(CLI::Range(0, 1 << 20));
     app.add_option("--max-depth", maxDepth, "path mode: longest path in segments")->capture_default_str()->check(CLI::Range(1, 1000));
+    app.add_option("--filter", filter, "pixel filter, default radius (tracer/pixel_filter.h)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"box", "tent", "gaussian"}));
     CLI11_PARSE(app, argc, argv);
 
     aamap::Scene scene;
@@ -103,6 +107,7 @@ int main(int argc, char** argv) {
     settings.shading.cache = cache;
     settings.shading.cacheGridStep = gridStep;
     settings.shading.maxDepth = maxDepth;
+    aamap::parse(filter, settings.filter.type);
     aamap::StrategySettings strategy;
     strategy.strata = strata;
 
@@ -122,7 +127,7 @@ int main(int argc, char** argv) {
         bestPrepass = std::min(bestPrepass, result.cache.prepassSeconds);
     }
     const auto& rays = result.rays;
-    fmt::print("{}x{} uniform n={} ({} spp), mode {}, {}\n", width, height, strata, strata * strata, mode,
+    fmt::print("{}x{} uniform n={} ({} spp), {} filter, mode {}, {}\n", width, height, strata, strata * strata, filter, mode,
                mode == "path"    ? fmt::format("max depth {}", maxDepth)
                : mode == "cache" ? fmt::format("{} light samples/hit, -ab {} -ad {} -as {} -aa {} -ar {}", lightSamples,
                                                cache.bounces, cache.divisions, cache.supersamples, cache.accuracy,
