@@ -133,6 +133,20 @@ Json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageG
             {"image", "aliasing.png"}};
 }
 
+Json evaluateAgainstRender(const std::string& againstName, const ImageRGB& against, const ImageRGB& test,
+                           const MetricsConfig& m, float exposure) {
+    const metrics::Comparison c = metrics::compareImages(against, test, comparisonOptions(m, exposure));
+    Json j;
+    j["against"] = againstName;
+    j["mse"] = c.display.mse;
+    j["pct_error_mse"] = 100.0 * c.display.fractionInError;
+    if (c.flip) {
+        j["flip_mean"] = c.flip->mean;
+        j["pct_error_flip"] = 100.0 * c.flip->fractionAbove;
+    }
+    return j;
+}
+
 Json evaluateRenderCauses(const PixelFacts& facts, const ImageRGB& reference, const ImageRGB& test, float exposure,
                           const ImageGrey& flipError, const ImageGrey& oneRayError, const Image<std::uint16_t>& rays,
                           float threshold, const fs::path& outDir, const std::string& name,

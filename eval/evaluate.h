@@ -25,6 +25,13 @@ nlohmann::ordered_json evaluateRender(const ImageRGB& reference, const ImageRGB&
                                       float exposure, const std::filesystem::path& outDir, const std::string& name,
                                       std::vector<std::string>& outputs, ImageGrey* flipError = nullptr);
 
+// The error of `test` against another render of the same shading mode (no files written):
+// {against, mse, pct_error_mse, flip_mean, pct_error_flip} (the FLIP fields when FLIP is on).
+// Against the most-sampled uniform render of the mode, it is the antialiasing share of the error,
+// apart from the mode's shading bias (docs/experiments.md, "Error against ground truth").
+nlohmann::ordered_json evaluateAgainstRender(const std::string& againstName, const ImageRGB& against,
+                                             const ImageRGB& test, const MetricsConfig& metrics, float exposure);
+
 // Map quality: true aliasing T = FLIP(oneRay vs reference) > flip_threshold, flagged F = aamap > 0.
 // {threshold, pixels, true_pixels, flagged_pixels, true_positives, recall, precision,
 // flagged_fraction, true_fraction}. Writes aliasing.png: true positives white, misses red (orange

@@ -144,6 +144,37 @@ void addCauseTables(const Json& results, std::vector<Table>& tables) {
     }
 }
 
+// Error against ground truth, split: the shading floor's error is the shading mode's bias; each
+// render's error against the floor is the antialiasing it still lacks (eval/runner.cpp).
+void addGroundTruthTable(const Json& results, std::vector<Table>& tables) {
+    const Json& ref = results["reference"];
+    if (!ref.contains("shading_floor")) return;
+    const std::string floor = ref["shading_floor"].get<std::string>();
+    const std::string truth = ref.value("type", std::string()) == "file"
+                                  ? "the reference image " + ref.value("path", std::string())
+                                  : fmt::format("the {} rpp {} reference", ref.value("rpp", 0), ref.value("mode", std::string()));
+    const std::string mode = results["config"].contains("shading") ? results["config"]["shading"].value("mode", std::string())
+                                                                    : std::string();
+    Table t{"ground_truth", "Error against ground truth: shading bias and antialiasing",
+            fmt::format("total: against {}; shading bias: {} ({} shading, the most-sampled uniform render) against it; "
+                        "antialiasing: each render against {}, the same shading",
+                        truth, floor, mode, floor),
+            {"name", "series", "rpp", "time (s)", "total FLIP mean", "total % FLIP", "antialiasing FLIP mean",
+             "antialiasing % FLIP", "antialiasing % MSE"},
+            {}};
+    for (const Json& r : results["renders"]) {
+        const Json m = r.contains("metrics") ? r["metrics"] : Json::object();
+        const bool isFloor = r["name"].get<std::string>() == floor;
+        const Json aa = m.contains("antialiasing") ? m["antialiasing"] : Json::object();
+        t.rows.push_back({r["name"].get<std::string>() + (isFloor ? " (shading bias)" : ""), r.value("series", std::string()),
+                          std::to_string(r["max_rays_per_pixel"].get<int>()), rangeCell(renderTimeRange(r), "{:.3f}"),
+                          cell(num(m, "flip_mean"), "{:.4f}"), cell(num(m, "pct_error_flip")),
+                          isFloor ? "0" : cell(num(aa, "flip_mean"), "{:.4f}"), isFloor ? "0" : cell(num(aa, "pct_error_flip")),
+                          isFloor ? "0" : cell(num(aa, "pct_error_mse"))});
+    }
+    tables.push_back(t);
+}
+
 }  // namespace
 
 std::vector<Table> reportTables(const Json& results) {
@@ -207,6 +238,8 @@ std::vector<Table> reportTables(const Json& results) {
         error.rows.push_back(row);
     }
     tables.push_back(error);
+
+    addGroundTruthTable(results, tables);
 
     Table all{"renders", "All renders", "cached: reused from an earlier run of this folder",
               {"name", "series", "rpp", "time (s)", "timed runs", "mean rpp", "rays", "PSNR (dB)", "FLIP mean", "% FLIP", "% MSE", "cached"},

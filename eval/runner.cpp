@@ -120,6 +120,8 @@ private:
     void traceFinished(const Job& job, double seconds);
     ImageRGB loadFileReference(const std::vector<Job>& jobs);
     void checkReference(const ImageRGB& reference);
+    void addAntialiasingShares(Results& results, const std::vector<Job>& jobs, std::size_t listed,
+                               const ImageRGB& reference) const;
     void writeNamedOutputs(const std::string& name, const Traced& t, int rpp, std::vector<std::string>& outputs) const;
 
     const ExperimentConfig& c_;
@@ -402,6 +404,29 @@ ImageRGB Runner::loadFileReference(const std::vector<Job>& jobs) {
 }
 
 // A reference that shows nothing makes every error figure meaningless: say so at the top.
+// With a ground-truth reference (another renderer's image, or another shading mode), a render's
+// error mixes the shading mode's bias with the antialiasing still missing. The most-sampled
+// uniform render (the shading floor) carries the bias alone; every other render is also measured
+// against it, which is its antialiasing share.
+void Runner::addAntialiasingShares(Results& results, const std::vector<Job>& jobs, std::size_t listed,
+                                   const ImageRGB& reference) const {
+    const bool groundTruth = c_.reference.type == "file" || (!c_.reference.mode.empty() && c_.reference.mode != c_.shading.mode);
+    if (!groundTruth) return;
+    std::optional<std::size_t> floor;
+    for (std::size_t i = 0; i < listed; ++i)
+        if (jobs[i].render.strategy == "uniform" && (!floor || jobs[i].render.rpp > jobs[*floor].render.rpp)) floor = i;
+    if (!floor) return;
+    const ImageRGB& floorImage = traced_.at(jobs[*floor].key).image;
+    if (floorImage.width() != reference.width() || floorImage.height() != reference.height()) return;
+    const std::string& floorName = results.renders[*floor].name;
+    results.referenceInfo["shading_floor"] = floorName;
+    for (std::size_t i = 0; i < listed; ++i)
+        if (i != *floor)
+            results.renders[i].metrics["antialiasing"] =
+                evaluateAgainstRender(floorName, floorImage, traced_.at(jobs[i].key).image, c_.metrics,
+                                      static_cast<float>(c_.image.exposure));
+}
+
 void Runner::checkReference(const ImageRGB& reference) {
     const bool black = std::all_of(reference.pixels().begin(), reference.pixels().end(), [](const glm::vec3& p) {
         return !(p.r > 0.0f) && !(p.g > 0.0f) && !(p.b > 0.0f);
@@ -525,6 +550,7 @@ Results Runner::run() {
                                                              static_cast<float>(c_.metrics.flipThreshold), out_,
                                                              rec.name, rec.outputs);
         }
+        addAntialiasingShares(results, jobs, listed, *reference);
         if (mapQuality) {
             spdlog::info("map quality: recall {:.3f}, precision {:.3f}, flagged {:.1f}%",
                          results.mapQuality["recall"].get<double>(), results.mapQuality["precision"].get<double>(),

@@ -43,7 +43,7 @@ public:
             for (int x = 0; x < kW; ++x) {
                 const int rays = aamap && aamap->at(x, y) == 0.0f ? 1 : r.rpp;
                 const float v = x < kW / 2 ? 0.05f : x > kW / 2 ? 0.8f : 0.8f * (1.0f - 1.0f / (1.0f + rays));
-                t.image.at(x, y) = glm::vec3(v);
+                t.image.at(x, y) = glm::vec3(v + (r.shadingMode == "path" ? 0.0f : shadingBias));
                 t.primaryRays.at(x, y) = static_cast<std::uint16_t>(rays);
             }
         t.rays = {static_cast<std::uint64_t>(kW * kH * r.rpp), 0, 0};
@@ -59,6 +59,7 @@ public:
         for (int y = 0; y < kH; ++y) f.at(kW / 2, y) = pixel_fact::Silhouette;
         return f;
     }
+    float shadingBias = 0.0f;  // added to every pixel outside path mode: a biased shading mode
     bool withFacts = false;
     int factsComputed = 0;
     int prepares = 0, snapshots = 0;

@@ -154,6 +154,43 @@ TEST_F(Runner, MetricsAgainstTheReference) {
     EXPECT_GT(worst["flip_mean"].get<double>(), 0.0);
 }
 
+// A path-traced reference of a biased shading mode: the most-sampled uniform render carries the
+// bias alone (its error against the truth), and every other render is measured against it too,
+// which leaves the antialiasing it lacks (here the edge column only, as without a bias).
+TEST_F(Runner, GroundTruthSplitsShadingBiasFromAntialiasing) {
+    FakeBackend backend;
+    backend.shadingBias = 0.05f;
+    const Results r = run(backend, {"reference.mode=path", "reference.rpp=64"});
+    ASSERT_EQ(r.referenceInfo.value("shading_floor", std::string()), "uniform16");
+    const RenderRecord& floor = r.renders[2];
+    ASSERT_EQ(floor.name, "uniform16");
+    EXPECT_FALSE(floor.metrics.contains("antialiasing"));
+    // The bias shows in every column but the edge's, where the floor's missing rays and the bias
+    // nearly cancel.
+    EXPECT_GE(floor.metrics["pct_error_mse"].get<double>(), 100.0 * (FakeBackend::kW - 1) / FakeBackend::kW - 1e-9);
+    const RenderRecord& coarse = r.renders[0];
+    ASSERT_EQ(coarse.name, "uniform1");
+    const nlohmann::ordered_json& aa = coarse.metrics["antialiasing"];
+    EXPECT_EQ(aa["against"].get<std::string>(), "uniform16");
+    EXPECT_NEAR(aa["pct_error_mse"].get<double>(), 100.0 / FakeBackend::kW, 1e-9);
+    EXPECT_GT(aa["flip_mean"].get<double>(), 0.0);
+    EXPECT_LT(aa["flip_mean"].get<double>(), coarse.metrics["flip_mean"].get<double>());
+    const RenderRecord& selective = r.renders[5];  // the map flags the edge: its pixels get 16 rays
+    ASSERT_EQ(selective.name, "aamap16");
+    EXPECT_EQ(selective.metrics["antialiasing"]["mse"].get<double>(), 0.0);
+    const std::string md = test::readText(out_ / "report.md");
+    EXPECT_NE(md.find("Error against ground truth: shading bias and antialiasing"), std::string::npos) << md;
+    EXPECT_NE(md.find("| uniform16 (shading bias) |"), std::string::npos) << md;
+
+    // A reference in the renders' own mode is no ground truth to split against.
+    FakeBackend same;
+    same.shadingBias = 0.05f;
+    const Results plain = run(same);
+    EXPECT_FALSE(plain.referenceInfo.contains("shading_floor"));
+    for (const RenderRecord& rec : plain.renders) EXPECT_FALSE(rec.metrics.contains("antialiasing")) << rec.name;
+    EXPECT_EQ(test::readText(out_ / "report.md").find("Error against ground truth"), std::string::npos);
+}
+
 TEST_F(Runner, ReferenceAndOneRayRendersAreAddedWhenMissing) {
     FakeBackend backend;
     run(backend, {"renders.0.rpp=4", "renders.1.rpp=4", "reference.rpp=64"});
