@@ -44,19 +44,21 @@ std::array<int, 2> winners(VulkanContext& context, const Scene& scene) {
     return count;
 }
 
-TEST_F(GpuTest, NearestSurfaceWinsInEitherDrawOrder) {
+class DepthPrepass : public GpuTest {};  // the suite names the feature a failure is in
+
+TEST_F(DepthPrepass, NearestSurfaceWinsInEitherDrawOrder) {
     const int pixels = 48 * 48;
     EXPECT_EQ(winners(context(), twoSquares({0, 1}, {0.0f, 0.5f})), (std::array<int, 2>{0, pixels}));  // green nearer, last
     EXPECT_EQ(winners(context(), twoSquares({1, 0}, {0.0f, 0.5f})), (std::array<int, 2>{0, pixels}));  // green nearer, first
 }
 
-TEST_F(GpuTest, DepthTiesGoToTheFirstTriangleOfTheMesh) {
+TEST_F(DepthPrepass, DepthTiesGoToTheFirstTriangleOfTheMesh) {
     const int pixels = 48 * 48;
     EXPECT_EQ(winners(context(), twoSquares({0, 1}, {0.0f, 0.0f})), (std::array<int, 2>{pixels, 0}));
     EXPECT_EQ(winners(context(), twoSquares({1, 0}, {0.0f, 0.0f})), (std::array<int, 2>{0, pixels}));
 }
 
-TEST_F(GpuTest, SharedPositionsMergeExactlyTheBitEqualCorners) {
+TEST_F(DepthPrepass, SharedPositionsMergeExactlyTheBitEqualCorners) {
     Scene scene = twoSquares({0, 1}, {0.0f, 0.5f});
     scene.mesh.positions.push_back({-1.0f, -1.0f, 0.0f});  // a copy of a corner: merged, as bits are equal
     scene.mesh.positions.push_back({-0.0f, 0.0f, 0.5f});   // -0 vs +0 below: not merged

@@ -71,7 +71,9 @@ View frontView() {
 
 glm::vec3 onPlane(glm::vec3 origin, glm::vec3 d, float z) { return origin + ((z - origin.z) / d.z) * d; }
 
-TEST_F(GpuTest, MirrorShowsTheObjectWhereTheReflectedCameraSeesIt) {
+class SnapshotMirror : public GpuTest {};  // the suite names the feature a failure is in
+
+TEST_F(SnapshotMirror, MirrorShowsTheObjectWhereTheReflectedCameraSeesIt) {
     const Scene scene = mirrorScene(MaterialKind::Mirror);
     const View view = frontView();
     SnapshotRenderer renderer(context(), scene);
@@ -119,7 +121,7 @@ TEST_F(GpuTest, MirrorShowsTheObjectWhereTheReflectedCameraSeesIt) {
     EXPECT_NE(r.explain.find("1 planar mirror"), std::string::npos) << r.explain;
 }
 
-TEST_F(GpuTest, MirrorPassesOnlyForAPlanarMirrorInView) {
+TEST_F(SnapshotMirror, MirrorPassesOnlyForAPlanarMirrorInView) {
     const auto passes = [&](const Scene& scene, const View& view, std::string* explain = nullptr) {
         SnapshotRenderer renderer(context(), scene);
         const SnapshotResult r = renderer.render(view, 32, 32, SnapshotSettings{});
@@ -147,7 +149,7 @@ TEST_F(GpuTest, MirrorPassesOnlyForAPlanarMirrorInView) {
     EXPECT_NE(why.find("in view"), std::string::npos) << why;
 }
 
-TEST_F(GpuTest, MirrorUnderALightWithShadowsAndAlphaMaskedTextures) {
+TEST_F(SnapshotMirror, MirrorUnderALightWithShadowsAndAlphaMaskedTextures) {
     // Every pipeline variant of the reflected view at once: shadowed and textured (the object
     // gets a texture whose left half is cut out), lit by a light between mirror and object.
     Scene scene = mirrorScene(MaterialKind::Mirror);

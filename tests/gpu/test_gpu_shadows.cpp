@@ -90,7 +90,9 @@ int countPass(const SnapshotResult& r, const std::string& name) {
     return n;
 }
 
-TEST_F(GpuTest, ShadowEdgeLiesOnTheAnalyticProjection) {
+class SnapshotShadows : public GpuTest {};  // the suite names the feature a failure is in
+
+TEST_F(SnapshotShadows, ShadowEdgeLiesOnTheAnalyticProjection) {
     const Scene scene = boxScene(true);
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;
@@ -131,7 +133,7 @@ TEST_F(GpuTest, ShadowEdgeLiesOnTheAnalyticProjection) {
     }
 }
 
-TEST_F(GpuTest, ShadowPassesOnlyForLights) {
+TEST_F(SnapshotShadows, ShadowPassesOnlyForLights) {
     SnapshotSettings settings;
     {
         SnapshotRenderer renderer(context(), boxScene(true, false));
@@ -153,7 +155,7 @@ TEST_F(GpuTest, ShadowPassesOnlyForLights) {
     EXPECT_EQ(countPass(off, "shadow"), 0);
 }
 
-TEST_F(GpuTest, AreaLightSamplesEachGetACubeMap) {
+TEST_F(SnapshotShadows, AreaLightSamplesEachGetACubeMap) {
     const Scene scene = boxUnderLamp();
     ASSERT_EQ(scene.areaLights.size(), 1u);
     SnapshotRenderer renderer(context(), scene);
@@ -169,7 +171,7 @@ TEST_F(GpuTest, AreaLightSamplesEachGetACubeMap) {
 
 // The shading pipelines are specialised for the light list (glsl/lights.glsl) and rebuilt when it
 // changes: a renderer that went through other sample counts draws what a fresh one draws.
-TEST_F(GpuTest, ChangingTheLightSamplesAndBackGivesTheFreshSnapshot) {
+TEST_F(SnapshotShadows, ChangingTheLightSamplesAndBackGivesTheFreshSnapshot) {
     const Scene scene = boxUnderLamp();
     SnapshotSettings settings;
     settings.scale = 1.0f;
@@ -192,7 +194,7 @@ TEST_F(GpuTest, ChangingTheLightSamplesAndBackGivesTheFreshSnapshot) {
     EXPECT_GT(lit, 48 * 48 / 2);
 }
 
-TEST_F(GpuTest, OccluderDarkensTheSurface) {
+TEST_F(SnapshotShadows, OccluderDarkensTheSurface) {
     SnapshotSettings settings;
     settings.scale = 1.0f;
     const View view = topView();

@@ -62,7 +62,9 @@ View quadView() {
     return view;
 }
 
-TEST_F(GpuTest, RasterAgreesWithCameraRays) {
+class SnapshotGraph : public GpuTest {};  // the suite names the feature a failure is in
+
+TEST_F(SnapshotGraph, RasterAgreesWithCameraRays) {
     const Scene scene = quadScene();
     const View view = quadView();
     SnapshotRenderer renderer(context(), scene);
@@ -124,7 +126,7 @@ TEST_F(GpuTest, RasterAgreesWithCameraRays) {
     EXPECT_GT(edgeMax, 0.5f);
 }
 
-TEST_F(GpuTest, WithoutDebugImagesOnlyTheAamapComesBack) {
+TEST_F(SnapshotGraph, WithoutDebugImagesOnlyTheAamapComesBack) {
     const Scene scene = quadScene();
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;
@@ -144,7 +146,7 @@ TEST_F(GpuTest, WithoutDebugImagesOnlyTheAamapComesBack) {
     EXPECT_GT(lean.totalSeconds, 0.0);
 }
 
-TEST_F(GpuTest, AreaLightBecomesLobesAndEmitterShowsItsRadiance) {
+TEST_F(SnapshotGraph, AreaLightBecomesLobesAndEmitterShowsItsRadiance) {
     Scene scene;
     Material floor, lamp;
     floor.name = "floor";
@@ -191,7 +193,7 @@ TEST_F(GpuTest, AreaLightBecomesLobesAndEmitterShowsItsRadiance) {
 // The G-buffer writes the grey of step 1 itself when no mirror composite follows it; the aamap
 // built on it must be the CPU chain's on the snapshot colour the same run read back (the Cornell
 // box: shadows from the area light's samples, emitter, coloured walls).
-TEST_F(GpuTest, ChainOnTheGBuffersGreyMatchesTheCpuChainOnItsColour) {
+TEST_F(SnapshotGraph, ChainOnTheGBuffersGreyMatchesTheCpuChainOnItsColour) {
     const Scene scene = builtinScene("cornell");
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;

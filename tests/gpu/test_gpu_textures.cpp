@@ -71,7 +71,9 @@ Scene maskedQuadScene(const TempDir& dir, const std::string& alphaMode, bool fla
     return scene;
 }
 
-TEST_F(GpuTest, AlphaMaskEdgesAtTheCutOutAndNoneInside) {
+class SnapshotTextures : public GpuTest {};  // the suite names the feature a failure is in
+
+TEST_F(SnapshotTextures, AlphaMaskEdgesAtTheCutOutAndNoneInside) {
     TempDir dir;
     Scene scene = maskedQuadScene(dir, "MASK", true);
     addLight(scene, {0, 0, 3}, 30.0f);
@@ -124,7 +126,7 @@ TEST_F(GpuTest, AlphaMaskEdgesAtTheCutOutAndNoneInside) {
     EXPECT_GT(o.aamap.at(w / 2, h / 2), 0.5f);
 }
 
-TEST_F(GpuTest, CutOutsCastCutOutShadows) {
+TEST_F(SnapshotTextures, CutOutsCastCutOutShadows) {
     TempDir dir;
     Scene scene = maskedQuadScene(dir, "MASK", true);
     const glm::vec3 light(0, 0, 3);
@@ -163,7 +165,7 @@ TEST_F(GpuTest, CutOutsCastCutOutShadows) {
     EXPECT_GT(lit, 50);
 }
 
-TEST_F(GpuTest, ObjAndGltfGiveTheSameGBuffer) {
+TEST_F(SnapshotTextures, ObjAndGltfGiveTheSameGBuffer) {
     TempDir dir;
     writePng(dir, "tex.png", 16, holeTexture(16, false));
     Scene fromObj = loadObj(writeQuadObj(dir, "tex.png"));
@@ -206,7 +208,7 @@ float holeCoverage(glm::vec2 uv) {
     return (1.0f - ay) * top + ay * bottom;
 }
 
-TEST_F(GpuTest, SnapshotAndTracerCutTheSameTexels) {
+TEST_F(SnapshotTextures, SnapshotAndTracerCutTheSameTexels) {
     // The masked quad alone, at an angle: every snapshot pixel is lit iff the tracer's camera ray
     // through its centre hits (Embree with the alpha filter), except where the coverage at the
     // hit is within a hair of the cutoff or the ray grazes the quad's outline.
@@ -314,7 +316,7 @@ std::set<std::string> minus(const std::set<std::string>& a, const std::set<std::
     return out;
 }
 
-TEST_F(GpuTest, SceneFeaturesAddExactlyTheirPassesAndBindings) {
+TEST_F(SnapshotTextures, SceneFeaturesAddExactlyTheirPassesAndBindings) {
     TempDir dir;
     writePng(dir, "tex.png", 16, holeTexture(16, true));
     const Scene textured = loadGltf(writeQuadGltf(dir, "tex.png", "MASK"));

@@ -1,5 +1,5 @@
 // Numerical extremes of the tracer and the CPU aamap filter chain: every image finite and sensible
-// at the limits users push parameters to (issue 9). Each test checks a property with a known
+// at the limits users push parameters to. Each test checks a property with a known
 // answer (linearity, scale invariance, exact constants), not stored outputs.
 #include <algorithm>
 #include <cmath>

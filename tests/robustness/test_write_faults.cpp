@@ -1,4 +1,4 @@
-// A disk that fills up or fails while an output is written (issue 9): one error naming the file,
+// A disk that fills up or fails while an output is written: one error naming the file,
 // no temporary left, and an existing file under the final name untouched. The failure comes
 // from the test hook AAMAP_TEST_WRITE_FAULT (core/atomic_file.h), set by CMakeLists.txt to
 // ENOSPC after 4096 bytes; ctest runs each test in its own process, so each starts with 4096.
