@@ -305,7 +305,7 @@ std::string fnv1a64Hex(const std::string& text) {
 
 std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-2";  // bump when the tracer's output for the same settings changes
+    j["format"] = "aamap-render-3";  // bump when the tracer's output for the same settings changes
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);

@@ -168,9 +168,13 @@ glm::vec3 IrradianceCache::irradiance(const glm::vec3& p, const glm::vec3& n, in
     // A miss. Inside the pre-pass (current_ set) the new record joins the task's Local and is
     // merged after the batch. After build() it is computed on the fly and dropped: storing it
     // would make later pixels depend on which thread got there first.
-    Local scratch(this);
     Local* local = current_ != nullptr && current_->owner == this ? current_ : nullptr;
     const bool outermost = local == nullptr;
+    if (outermost && probe_) {
+        probeMisses_.local().push_back({p, n});
+        return glm::vec3(0.0f);
+    }
+    Local scratch(this);
     Local* const previous = current_;
     if (outermost) {
         local = &scratch;
@@ -184,6 +188,34 @@ glm::vec3 IrradianceCache::irradiance(const glm::vec3& p, const glm::vec3& n, in
         renderRays_.fetch_add(scratch.rays, std::memory_order_relaxed);
     }
     return r.irradiance;
+}
+
+std::vector<CachePoint> IrradianceCache::takeMisses() {
+    std::vector<CachePoint> all;
+    for (std::vector<CachePoint>& v : probeMisses_) {
+        all.insert(all.end(), v.begin(), v.end());
+        v.clear();
+    }
+    // Sorted by a hash of each point's bits: a fixed order, and one that spreads consecutive
+    // points over the image as the coarse-to-fine candidates do (neighbours in a batch would end
+    // it early, see build()).
+    const auto bits = [](const CachePoint& c) {
+        return std::array<std::uint32_t, 6>{std::bit_cast<std::uint32_t>(c.position.x), std::bit_cast<std::uint32_t>(c.position.y),
+                                            std::bit_cast<std::uint32_t>(c.position.z), std::bit_cast<std::uint32_t>(c.normal.x),
+                                            std::bit_cast<std::uint32_t>(c.normal.y), std::bit_cast<std::uint32_t>(c.normal.z)};
+    };
+    const auto hash = [&](const CachePoint& c) {
+        std::uint64_t h = 0x9e3779b97f4a7c15ULL;
+        for (std::uint32_t b : bits(c)) h = mix64(h ^ b);
+        return h;
+    };
+    std::sort(all.begin(), all.end(), [&](const CachePoint& a, const CachePoint& b) {
+        const std::uint64_t ha = hash(a), hb = hash(b);
+        return ha != hb ? ha < hb : bits(a) < bits(b);
+    });
+    all.erase(std::unique(all.begin(), all.end(), [&](const CachePoint& a, const CachePoint& b) { return bits(a) == bits(b); }),
+              all.end());
+    return all;
 }
 
 IrradianceRecord IrradianceCache::computeRecord(const CachePoint& point, int level) const {

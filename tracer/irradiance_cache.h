@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <tbb/enumerable_thread_specific.h>
 
 #include "scene/lights.h"
 
@@ -101,6 +102,15 @@ public:
     // deterministic estimate that is NOT stored (counted in stats().renderMisses). Thread-safe.
     glm::vec3 irradiance(const glm::vec3& p, const glm::vec3& n, int level = 0) const;
 
+    // Probe mode (after build()): a level-0 lookup that no record covers is not computed; its
+    // point is kept for takeMisses() and the lookup returns 0. A render in probe mode finds the
+    // points its samples need; building records for them first leaves the real render no misses
+    // (each miss computes a record that is then dropped, so misses are the render's main cost).
+    void setProbe(bool on) { probe_ = on; }
+    // The points probe mode kept, in an order fixed by their values (not by threads or timing),
+    // duplicates removed; clears them.
+    std::vector<CachePoint> takeMisses();
+
     // Interpolation only: false (out untouched) when no record covers (p, n) at `level`.
     bool interpolate(const glm::vec3& p, const glm::vec3& n, int level, glm::vec3& out) const;
 
@@ -133,6 +143,8 @@ private:
     IrradianceCacheStats stats_;
     float behindTolerance_ = 0.0f;
     mutable std::atomic<std::uint64_t> renderMisses_{0}, renderRays_{0};
+    bool probe_ = false;
+    mutable tbb::enumerable_thread_specific<std::vector<CachePoint>> probeMisses_;
     static thread_local Local* current_;  // the task's Local while a record is being computed
 };
 

@@ -117,6 +117,20 @@ CacheStats RenderShading::stats() const {
     return s;
 }
 
+void RenderShading::addProbedRecords(const RayCounts& probeRays, double probeSeconds) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<CachePoint> missed = source->takeMisses();
+    if (!missed.empty()) source->build(*integrator, missed);
+    CacheStats& s = prepass;
+    s.probed = missed.size();
+    s.records = source->cache().stats().records;
+    s.prepassRays = source->prepassRays();
+    s.prepassRays.primary += static_cast<std::uint64_t>(s.gridWidth) * static_cast<std::uint64_t>(s.gridHeight);
+    s.probeRays = probeRays;
+    s.prepassSeconds += probeSeconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    spdlog::info("irradiance cache: the probe render found {} points no record covered", missed.size());
+}
+
 void cacheGrid(int width, int height, int step, int& gridW, int& gridH) {
     step = std::max(step, 1);
     gridW = std::max((width + step - 1) / step, std::min(width, 32));

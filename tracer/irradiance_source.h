@@ -30,6 +30,9 @@ public:
                                  int depth, RayCounts& rays) const override;
 
     const IrradianceCache& cache() const { return cache_; }
+    // Probe mode and the points it found uncovered (IrradianceCache::setProbe, takeMisses).
+    void setProbe(bool on) { cache_.setProbe(on); }
+    std::vector<CachePoint> takeMisses() { return cache_.takeMisses(); }
     // Rays traced by build() (hemisphere rays and what their shading traced), summed over threads.
     RayCounts prepassRays() const;
 
@@ -53,7 +56,11 @@ private:
 struct RenderShading {
     std::unique_ptr<IrradianceSource> source;  // null without a cache
     std::unique_ptr<Integrator> integrator;
-    CacheStats prepass;                         // filled by makeRenderShading
+    CacheStats prepass;                         // filled by makeRenderShading and addProbedRecords
+
+    // After a probe render (source->setProbe): records for the points it found uncovered, then
+    // `prepass` updated (records, rays with the probe's own, seconds).
+    void addProbedRecords(const RayCounts& probeRays, double probeSeconds);
 
     // `prepass` plus the cache's misses during the render; logs them (many misses: the candidate
     // grid is too coarse for the view).

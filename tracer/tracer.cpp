@@ -269,7 +269,7 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     const PixelFilter filter(settings.filter);  // checks its settings before any work
     const PinholeCamera camera = PinholeCamera::fromView(view);
     // Cache mode: builds the irradiance cache (its pre-pass) and the Integrator that reads it.
-    const RenderShading shading =
+    RenderShading shading =
         makeRenderShading(impl_->geometry, impl_->lights, settings.shading, camera, W, H, settings.threads);
     const Integrator& integrator = *shading.integrator;
     const EmbreeSource source(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filter);
@@ -283,6 +283,21 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
         });
     const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
     tbb::task_arena arena(threads);
+    if (shading.source) {
+        // Cache mode: the strategy renders once with lookups that no record covers left out (the
+        // image is dropped), records are built for the points they needed, and then the render
+        // proper finds a record wherever its samples land (docs/irradiance-cache.md, "Probe").
+        const auto probeStart = std::chrono::steady_clock::now();
+        shading.source->setProbe(true);
+        const EmbreeSource probe(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filter);
+        StrategyImages scratch(W, H);
+        arena.execute([&] { strategy->render(probe, Scheduler(W, H), scratch); });
+        shading.source->setProbe(false);
+        TraceResult probeCounts;
+        probe.addCounts(probeCounts);
+        shading.addProbedRecords(probeCounts.rays,
+                                 std::chrono::duration<double>(std::chrono::steady_clock::now() - probeStart).count());
+    }
     arena.execute([&] { strategy->render(source, scheduler, images); });
 
     TraceResult result;

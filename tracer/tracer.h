@@ -57,8 +57,10 @@ struct CacheStats {
     int gridWidth = 0, gridHeight = 0;  // the candidate grid of camera rays
     std::size_t candidates = 0;         // its first hits offered to the pre-pass
     std::size_t records = 0;            // records after the pre-pass (all levels)
-    double prepassSeconds = 0.0;        // candidates + pre-pass; part of TraceResult::seconds
+    std::size_t probed = 0;             // points the probe render found uncovered, offered as candidates too
+    double prepassSeconds = 0.0;        // candidates + pre-pass + probe; part of TraceResult::seconds
     RayCounts prepassRays;              // candidate camera rays (primary) and pre-pass rays; NOT in TraceResult::rays
+    RayCounts probeRays;                // the probe render's own rays; NOT in TraceResult::rays
     std::uint64_t misses = 0;           // lookups during the render that no record covered
     std::uint64_t missRays = 0;         // their hemisphere rays (counted in TraceResult::rays.other)
 };

@@ -183,6 +183,11 @@ TEST(CacheMode, ImageIndependentOfThreadsAndRaysCounted) {
 
     EXPECT_EQ(one.rays.primary, static_cast<std::uint64_t>(size * size));
     EXPECT_EQ(one.rays.other, one.cache.missRays);
+    // The probe render found the points the grid's records left uncovered, and records for them
+    // leave the render proper (the same samples) no miss at all.
+    EXPECT_GT(one.cache.probed, 0u);
+    EXPECT_EQ(one.cache.misses, 0u);
+    EXPECT_EQ(one.cache.probeRays.primary, static_cast<std::uint64_t>(size * size));
     EXPECT_EQ(one.cache.gridWidth, 32);
     EXPECT_EQ(one.cache.prepassRays.primary, 32u * 32u);
     EXPECT_GT(one.cache.prepassRays.other, one.cache.records * 128u);  // >= -ad rays per record
