@@ -167,7 +167,8 @@ glm::vec3 IrradianceCache::irradiance(const glm::vec3& p, const glm::vec3& n, in
     if (interpolate(p, n, level, e)) return e;
     // A miss. Inside the pre-pass (current_ set) the new record joins the task's Local and is
     // merged after the batch. After build() it is computed on the fly and dropped: storing it
-    // would make later pixels depend on which thread got there first.
+    // would make later pixels depend on which thread got there first. In probe mode only the
+    // point is kept, for the next build().
     Local* local = current_ != nullptr && current_->owner == this ? current_ : nullptr;
     const bool outermost = local == nullptr;
     if (outermost && probe_) {

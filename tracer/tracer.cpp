@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <spdlog/spdlog.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
@@ -288,6 +289,7 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
         // image is dropped), records are built for the points they needed, and then the render
         // proper finds a record wherever its samples land (docs/irradiance-cache.md, "Probe").
         const auto probeStart = std::chrono::steady_clock::now();
+        spdlog::info("irradiance cache: probe render (the points no record covers)");
         shading.source->setProbe(true);
         const EmbreeSource probe(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filter);
         StrategyImages scratch(W, H);
