@@ -82,6 +82,10 @@ def main():
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--bench", default=os.path.join(repo, "build", "release", "bench", "tracer", "bench_tracer"))
     ap.add_argument("--json", help="write the rounds and the summary here")
+    ap.add_argument("--reference-spp", type=int, default=0,
+                    help="also render Mitsuba at this many spp and print the error of its --spp image against it "
+                         "(aamap diff: LDR-FLIP, %% pixels above 0.1): Mitsuba's time to that error")
+    ap.add_argument("--aamap", default=os.path.join(repo, "build", "release", "aamap"))
     args = ap.parse_args()
     strata = round(args.spp ** 0.5)
     if strata * strata != args.spp:
@@ -141,6 +145,20 @@ def main():
             print(f"round {r + 1}: mitsuba {tm:.2f} s ({samples / tm * 1e-6:.2f} M samples/s), "
                   f"aamap {ta:.2f} s ({samples / ta * 1e-6:.2f} M samples/s), aamap/mitsuba throughput "
                   f"{tm / ta:.2f}", flush=True)
+
+        if args.reference_spp > 0:
+            t0 = time.perf_counter()
+            reference = mi.render(scene, spp=args.reference_spp)
+            dr.eval(reference)
+            dr.sync_thread()
+            t_ref = time.perf_counter() - t0
+            ref_exr, test_exr = os.path.join(tmp, "mitsuba_reference.exr"), os.path.join(tmp, "mitsuba.exr")
+            mi.Bitmap(reference).write(ref_exr)
+            mi.Bitmap(last["mitsuba"]).write(test_exr)
+            diff = json.loads(subprocess.run([args.aamap, "diff", ref_exr, test_exr, "--json"], check=True,
+                                             capture_output=True, text=True).stdout)
+            print(f"mitsuba {args.spp} spp against its own {args.reference_spp}-spp reference ({t_ref:.1f} s): "
+                  f"{json.dumps(diff)}")
 
         # The same scene? Mean radiance of the last images (both linear RGB).
         import numpy as np
