@@ -66,11 +66,19 @@ constexpr long long kMaxTexels = 8192LL * 8192LL;
 
 // Binary PNM (P5/P6) other than 8 bits with maxval 255 is refused: Debian 12's stb_image reads
 // 16-bit samples in the wrong byte order and, converting channels, past its buffer (found by
-// fuzz_texture; tests/corpus/texture/warn-16-bit-pnm-*), and it never scales by maxval.
+// fuzz_texture; tests/corpus/texture/warn-16-bit-pnm-*), and it never scales by maxval. So is a
+// header stb_image would accept but that does not describe the file: a field that is not a
+// number (stb reads it as 0: a 22-byte file declared 5 x 11512711 decoded to 920 MB of zeros,
+// found by fuzz_texture, tests/corpus/texture/warn-pnm-maxval-not-a-number.ppm), or more texels
+// than the file holds (warn-pnm-data-truncated.ppm).
 bool supportedPnm(const std::string& name, std::string* error) {
     std::ifstream in(name, std::ios::binary);
     char magic[2] = {};
     if (!in.read(magic, 2) || magic[0] != 'P' || (magic[1] != '5' && magic[1] != '6')) return true;  // not PNM
+    const auto fail = [&](const std::string& why) {
+        if (error) *error = why;
+        return false;
+    };
     long long fields[3] = {};
     for (long long& field : fields) {
         int c = in.get();
@@ -79,12 +87,21 @@ bool supportedPnm(const std::string& name, std::string* error) {
                 while (c != EOF && c != '\n') c = in.get();  // a comment to the end of the line
             c = in.get();
         }
-        if (c == EOF || !std::isdigit(c)) return true;  // malformed: stb_image reports it
+        if (c == EOF || !std::isdigit(c)) return fail("malformed PNM header: width, height and maxval must be numbers");
         for (; c != EOF && std::isdigit(c) && field < (1LL << 40); c = in.get()) field = 10 * field + (c - '0');
     }
-    if (fields[2] == 255) return true;
-    if (error) *error = fmt::format("PNM with maxval {} is not supported (8-bit samples with maxval 255 only)", fields[2]);
-    return false;
+    if (fields[2] != 255)
+        return fail(fmt::format("PNM with maxval {} is not supported (8-bit samples with maxval 255 only)", fields[2]));
+    // The loop consumed the one whitespace character after maxval: the samples start here.
+    const long long header = static_cast<long long>(in.tellg());
+    std::error_code ec;
+    const auto size = static_cast<long long>(fs::file_size(name, ec));
+    // In double: each field may be up to 2^40, their product overflows 64 bits.
+    const double need = static_cast<double>(fields[0]) * static_cast<double>(fields[1]) * (magic[1] == '5' ? 1 : 3);
+    if (!ec && header >= 0 && static_cast<double>(size - header) < need)
+        return fail(fmt::format("PNM data truncated: the header declares {} x {} texels ({} bytes), the file holds {}",
+                                fields[0], fields[1], need, std::max(0LL, size - header)));
+    return true;
 }
 
 bool withinTexelLimit(const std::string& name, std::string* error) {
