@@ -403,7 +403,6 @@ ImageRGB Runner::loadFileReference(const std::vector<Job>& jobs) {
     return reference;
 }
 
-// A reference that shows nothing makes every error figure meaningless: say so at the top.
 // With a ground-truth reference (another renderer's image, or another shading mode), a render's
 // error mixes the shading mode's bias with the antialiasing still missing. The most-sampled
 // uniform render (the shading floor) carries the bias alone; every other render is also measured
@@ -427,6 +426,7 @@ void Runner::addAntialiasingShares(Results& results, const std::vector<Job>& job
                                       static_cast<float>(c_.image.exposure));
 }
 
+// A reference that shows nothing makes every error figure meaningless: say so at the top.
 void Runner::checkReference(const ImageRGB& reference) {
     const bool black = std::all_of(reference.pixels().begin(), reference.pixels().end(), [](const glm::vec3& p) {
         return !(p.r > 0.0f) && !(p.g > 0.0f) && !(p.b > 0.0f);

@@ -117,6 +117,17 @@ CacheStats RenderShading::stats() const {
     return s;
 }
 
+namespace {
+
+// The pre-pass's rays: the cache's own, plus the candidate grid's camera rays as primary.
+RayCounts prepassRaysOf(const IrradianceSource& source, const CacheStats& s) {
+    RayCounts r = source.prepassRays();
+    r.primary += static_cast<std::uint64_t>(s.gridWidth) * static_cast<std::uint64_t>(s.gridHeight);
+    return r;
+}
+
+}  // namespace
+
 void RenderShading::addProbedRecords(const RayCounts& probeRays, double probeSeconds) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<CachePoint> missed = source->takeMisses();
@@ -124,8 +135,7 @@ void RenderShading::addProbedRecords(const RayCounts& probeRays, double probeSec
     CacheStats& s = prepass;
     s.probed = missed.size();
     s.records = source->cache().stats().records;
-    s.prepassRays = source->prepassRays();
-    s.prepassRays.primary += static_cast<std::uint64_t>(s.gridWidth) * static_cast<std::uint64_t>(s.gridHeight);
+    s.prepassRays = prepassRaysOf(*source, s);
     s.probeRays = probeRays;
     s.prepassSeconds += probeSeconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     spdlog::info("irradiance cache: the probe render found {} points no record covered", missed.size());
@@ -165,8 +175,7 @@ RenderShading makeRenderShading(const EmbreeScene& geometry, const LightSet& lig
     s.gridHeight = gridH;
     s.candidates = points.size();
     s.records = out.source->cache().stats().records;
-    s.prepassRays = out.source->prepassRays();
-    s.prepassRays.primary += static_cast<std::uint64_t>(gridW) * static_cast<std::uint64_t>(gridH);  // candidates
+    s.prepassRays = prepassRaysOf(*out.source, s);
     s.prepassSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

@@ -11,6 +11,17 @@ namespace {
 
 constexpr double kSqrtHalfPi = 1.2533141373155003;  // sqrt(pi / 2)
 
+// The radius a setting resolves to: its own, or the filter's default.
+float resolvedRadius(const PixelFilterSettings& s) {
+    if (s.radius != 0.0f) return s.radius;  // negative: refused by PixelFilter
+    switch (s.type) {
+        case PixelFilterType::Box: return 0.5f;
+        case PixelFilterType::Tent: return 1.0f;
+        case PixelFilterType::Gaussian: return 4.0f * s.stddev;
+    }
+    return 0.5f;
+}
+
 }  // namespace
 
 const char* toString(PixelFilterType type) {
@@ -29,16 +40,6 @@ bool parse(const std::string& name, PixelFilterType& type) {
             return true;
         }
     return false;
-}
-
-float resolvedRadius(const PixelFilterSettings& s) {
-    if (s.radius != 0.0f) return s.radius;  // negative: refused by PixelFilter
-    switch (s.type) {
-        case PixelFilterType::Box: return 0.5f;
-        case PixelFilterType::Tent: return 1.0f;
-        case PixelFilterType::Gaussian: return 4.0f * s.stddev;
-    }
-    return 0.5f;
 }
 
 PixelFilter::PixelFilter(const PixelFilterSettings& settings)

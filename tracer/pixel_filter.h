@@ -26,9 +26,6 @@ struct PixelFilterSettings {
     bool operator==(const PixelFilterSettings&) const = default;
 };
 
-// The radius a setting resolves to (its own, or the filter's default).
-float resolvedRadius(const PixelFilterSettings& settings);
-
 class PixelFilter {
 public:
     explicit PixelFilter(const PixelFilterSettings& settings = {});
