@@ -143,13 +143,16 @@ int main(int argc, char** argv) {
     CLI::App* snapshot = aamap::app::addSnapshotCommand(app, snapshotOptions);
     const std::unique_ptr<aamap::ViewCommand> view = aamap::addViewCommand(app);
     CLI::App* compare = app.add_subcommand("compare", "Merge several experiments' results into one report and CSV, "
-                                                      "with a column for each setting that differs between them");
+                                                      "with a column for each setting that differs between them, and "
+                                                      "per scene the time-error Pareto front over all their renders");
     std::vector<std::string> compareDirs;
     std::string compareOut;
+    bool compareNoPlots = false;
     compare->add_option("OUTDIR", compareDirs, "Experiment output folders (each with results.json)")->required();
     compare->add_option("-o,--out", compareOut, "Where compare.html, compare.md and compare.csv go")
         ->required()
         ->type_name("OUT");
+    compare->add_flag("--no-plots", compareNoPlots, "Skip the error-against-time plot (tools/report_plots.py --compare)");
     aamap::app::DiffOptions diffOptions;
     CLI::App* diff = aamap::app::addDiffCommand(app, diffOptions);
     std::string configPath, outDir, device = envString("AAMAP_DEVICE");
@@ -195,7 +198,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (compare->parsed()) {
-            aamap::writeComparison({compareDirs.begin(), compareDirs.end()}, compareOut);
+            aamap::writeComparison({compareDirs.begin(), compareDirs.end()}, compareOut, {}, !compareNoPlots);
             return 0;
         }
         if (diff->parsed()) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -51,7 +52,54 @@ std::vector<std::vector<const ComparedRun*>> byScene(const std::vector<ComparedR
     return groups;
 }
 
+// The error a trade is read by: % pixels above the FLIP threshold, else above the MSE threshold.
+std::string errorKey(const std::vector<const ComparedRun*>& group) {
+    for (const ComparedRun* run : group)
+        for (const Json& r : run->results["renders"])
+            if (r.contains("metrics") && r["metrics"].contains("pct_error_flip")) return "pct_error_flip";
+    return "pct_error_mse";
+}
+
+double renderSeconds(const Json& r) {
+    const Json& t = r["times_s"];
+    return t.value("trace", 0.0) + t.value("snapshot_total", 0.0);
+}
+
+std::string plotFile(std::size_t sceneIndex) { return fmt::format("plots/compare_error_vs_time_{}.png", sceneIndex); }
+
 }  // namespace
+
+Table paretoTable(const std::vector<const ComparedRun*>& group, std::size_t sceneIndex) {
+    const std::string key = errorKey(group);
+    struct Point {
+        double seconds, error;
+        const ComparedRun* run;
+        const Json* render;
+    };
+    std::vector<Point> points;
+    for (const ComparedRun* run : group)
+        for (const Json& r : run->results["renders"])
+            if (r.contains("metrics") && r["metrics"].contains(key) && r["metrics"][key].is_number())
+                points.push_back({renderSeconds(r), r["metrics"][key].get<double>(), run, &r});
+    std::sort(points.begin(), points.end(),
+              [](const Point& a, const Point& b) { return a.seconds != b.seconds ? a.seconds < b.seconds : a.error < b.error; });
+    Table t{fmt::format("pareto-{}", sceneIndex), "Speed against accuracy across the runs",
+            fmt::format("the renders that no faster render matches in {}, fastest first: the best setting at each error "
+                        "level; time = trace + Snapshot",
+                        key == "pct_error_flip" ? "% pixels above the FLIP threshold" : "% pixels above the MSE threshold"),
+            {"run", "series", "render", "time (s)", key == "pct_error_flip" ? "% error (FLIP)" : "% error (MSE)", "FLIP mean"},
+            {}};
+    double best = std::numeric_limits<double>::infinity();
+    for (const Point& p : points) {
+        if (!(p.error < best)) continue;
+        best = p.error;
+        const Json& m = (*p.render)["metrics"];
+        t.rows.push_back({p.run->label, p.render->value("series", std::string()), p.render->value("name", std::string()),
+                          readableNumber(p.seconds), readableNumber(p.error),
+                          m.contains("flip_mean") && m["flip_mean"].is_number() ? readableNumber(m["flip_mean"].get<double>()) : "—"});
+    }
+    return t;
+}
 
 std::vector<ComparedRun> loadComparedRuns(const std::vector<fs::path>& dirs) {
     if (dirs.empty()) throw InputError("compare", "needs at least one experiment folder");
@@ -115,11 +163,17 @@ std::string compareCsv(const std::vector<ComparedRun>& runs) {
     return out;
 }
 
-std::string compareMarkdown(const std::vector<ComparedRun>& runs) {
+std::string compareMarkdown(const std::vector<ComparedRun>& runs, const std::vector<std::string>& scenePlots) {
     std::string md = fmt::format("# aamap comparison of {} run(s)\n\n", runs.size());
     if (runs.front().differs.empty()) md += "The runs' settings are the same.\n\n";
-    for (const auto& group : byScene(runs)) {
+    const auto groups = byScene(runs);
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        const auto& group = groups[g];
         md += fmt::format("## Scene {}\n\n", sceneOf(*group.front()));
+        if (group.size() > 1) {
+            md += markdownTable(paretoTable(group, g), "###");
+            if (g < scenePlots.size() && !scenePlots[g].empty()) md += fmt::format("![error against time]({})\n\n", scenePlots[g]);
+        }
         for (const ComparedRun* run : group) {
             md += fmt::format("### {} ({})\n\n", run->label, run->dir.string());
             for (const Json& w : run->results["warnings"]) md += fmt::format("> **warning:** {}\n\n", w.get<std::string>());
@@ -137,7 +191,8 @@ std::string compareMarkdown(const std::vector<ComparedRun>& runs) {
     return md;
 }
 
-std::string compareHtml(const std::vector<ComparedRun>& runs, const fs::path& outDir) {
+std::string compareHtml(const std::vector<ComparedRun>& runs, const fs::path& outDir,
+                        const std::vector<std::string>& scenePlots) {
     std::string h = fmt::format(
         "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>aamap comparison</title><style>"
         "body{{font-family:sans-serif;margin:2em;max-width:1400px}}table{{border-collapse:collapse;margin:.5em 0}}"
@@ -155,8 +210,17 @@ std::string compareHtml(const std::vector<ComparedRun>& runs, const fs::path& ou
         overview.rows.push_back(std::move(row));
     }
     h += htmlTable(overview);
-    for (const auto& group : byScene(runs)) {
+    const auto groups = byScene(runs);
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        const auto& group = groups[g];
         h += fmt::format("<h2>Scene {}</h2>\n", htmlEscape(sceneOf(*group.front())));
+        if (group.size() > 1) {
+            h += htmlTable(paretoTable(group, g));
+            if (g < scenePlots.size() && !scenePlots[g].empty())
+                h += fmt::format("<figure><a href=\"{0}\"><img src=\"{0}\" alt=\"error against time\" style=\"max-width:100%\"></a>"
+                                 "<figcaption>Error against time, every run's series (labels: rpp)</figcaption></figure>\n",
+                                 htmlEscape(scenePlots[g]));
+        }
         for (const ComparedRun* run : group) {
             h += fmt::format("<h3>{} (<a href=\"{}\">report</a>)</h3>\n", htmlEscape(run->label),
                              htmlEscape(fs::relative(run->dir / "report.html", outDir).string()));
@@ -171,14 +235,28 @@ std::string compareHtml(const std::vector<ComparedRun>& runs, const fs::path& ou
     return h + "</body></html>\n";
 }
 
-void writeComparison(const std::vector<fs::path>& dirs, const fs::path& outDir, const ComparisonFiles& files) {
+void writeComparison(const std::vector<fs::path>& dirs, const fs::path& outDir, const ComparisonFiles& files,
+                     bool plots) {
     const std::vector<ComparedRun> runs = loadComparedRuns(dirs);
     std::error_code ec;
     fs::create_directories(outDir, ec);
     if (ec) throw EnvironmentError(fmt::format("{}: cannot create output folder: {}", outDir.string(), ec.message()));
+    // One error-against-time plot per scene with several runs: the runs' trades on one set of axes.
+    std::vector<std::string> scenePlots;
+    const auto groups = byScene(runs);
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        scenePlots.emplace_back();
+        if (!plots || groups[g].size() < 2) continue;
+        std::vector<std::pair<std::string, fs::path>> labelled;
+        for (const ComparedRun* run : groups[g]) labelled.emplace_back(run->label, run->dir);
+        const PlotRun plot = runComparisonPlot(outDir, plotFile(g), fmt::format("Speed against accuracy ({}; labels: rpp)",
+                                                                                fs::path(sceneOf(*groups[g].front())).filename().string()),
+                                               labelled);
+        if (!plot.files.empty()) scenePlots.back() = plot.files.front();
+    }
     writeTextAtomically(outDir / files.csv, compareCsv(runs));
-    writeTextAtomically(outDir / files.markdown, compareMarkdown(runs));
-    writeTextAtomically(outDir / files.html, compareHtml(runs, outDir));
+    writeTextAtomically(outDir / files.markdown, compareMarkdown(runs, scenePlots));
+    writeTextAtomically(outDir / files.html, compareHtml(runs, outDir, scenePlots));
     spdlog::info("comparison of {} run(s): {}", runs.size(), (outDir / files.html).string());
 }
 

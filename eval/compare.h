@@ -3,13 +3,16 @@
 // other scenes) side by side. Each run's results.json is read as it is; what differs between the
 // runs' configs (every setting but the renders and the thread count) becomes the columns that
 // tell the runs apart. Writes OUT/compare.csv (every render of every run, with those columns in
-// front of results.csv's), OUT/compare.md and OUT/compare.html (per scene, then per run: the
+// front of results.csv's), OUT/compare.md and OUT/compare.html (per scene: the renders on the
+// time-error Pareto front over all its runs, and their error-against-time plot; then per run: the
 // run's own tables, its speedups within the run), atomically.
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "eval/report.h"
 
 namespace aamap {
 
@@ -24,17 +27,26 @@ struct ComparedRun {
 // out the settings that differ between them. Needs at least one folder.
 std::vector<ComparedRun> loadComparedRuns(const std::vector<std::filesystem::path>& dirs);
 
+// The renders of one scene's runs that no other render beats in both time and error (% pixels above
+// the FLIP threshold, else above the MSE threshold), fastest first: the best setting at each error
+// level, whatever run, shading mode or strategy it comes from. Time = trace + Snapshot.
+Table paretoTable(const std::vector<const ComparedRun*>& sceneRuns, std::size_t sceneIndex = 0);
+
 std::string compareCsv(const std::vector<ComparedRun>& runs);
-std::string compareMarkdown(const std::vector<ComparedRun>& runs);
-std::string compareHtml(const std::vector<ComparedRun>& runs, const std::filesystem::path& outDir);
+// Per scene with several runs: the Pareto front of time against error over all their renders, and
+// scenePlots[scene index] (relative to the output folder; "" or missing: no plot).
+std::string compareMarkdown(const std::vector<ComparedRun>& runs, const std::vector<std::string>& scenePlots = {});
+std::string compareHtml(const std::vector<ComparedRun>& runs, const std::filesystem::path& outDir,
+                        const std::vector<std::string>& scenePlots = {});
 
 // The names of the three files (`aamap compare`'s; a sweep's comparison is its report).
 struct ComparisonFiles {
     std::string html = "compare.html", markdown = "compare.md", csv = "compare.csv";
 };
 
-// All of the above into outDir (created if needed).
+// All of the above into outDir (created if needed), with the plots of tools/report_plots.py
+// --compare in outDir/plots/ when `plots`.
 void writeComparison(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& outDir,
-                     const ComparisonFiles& files = {});
+                     const ComparisonFiles& files = {}, bool plots = true);
 
 }  // namespace aamap

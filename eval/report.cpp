@@ -320,21 +320,26 @@ std::string markdownReport(const Json& results, const std::vector<Table>& tables
     std::string md = fmt::format("# aamap experiment report\n\nconfig hash `{}`, git revision `{}`\n\n",
                                  results.value("config_hash", std::string()), results.value("git_revision", std::string()));
     for (const Json& w : results["warnings"]) md += fmt::format("> **warning:** {}\n\n", w.get<std::string>());
-    for (const Table& t : tables) {
-        std::string rule = "|";
-        for (std::size_t i = 0; i < t.header.size(); ++i) rule += "---|";
-        md += fmt::format("## {}\n\n| {} |\n{}\n", t.title, fmt::join(t.header, " | "), rule);
-        for (const auto& row : t.rows) md += fmt::format("| {} |\n", fmt::join(row, " | "));
-        md += fmt::format("\n{}\n\n", t.note);
-    }
+    for (const Table& t : tables) md += markdownTable(t);
     return md;
+}
+
+std::string markdownTable(const Table& t, const std::string& heading) {
+    std::string rule = "|";
+    for (std::size_t i = 0; i < t.header.size(); ++i) rule += "---|";
+    std::string md = fmt::format("{} {}\n\n| {} |\n{}\n", heading, t.title, fmt::join(t.header, " | "), rule);
+    for (const auto& row : t.rows) md += fmt::format("| {} |\n", fmt::join(row, " | "));
+    return md + fmt::format("\n{}\n\n", t.note);
 }
 
 namespace {
 constexpr const char* kPlotFiles[] = {"plots/time_vs_rpp.png", "plots/error_vs_time.png", "plots/psnr_vs_time.png"};
 }  // namespace
 
-PlotRun runPlots(const fs::path& outDir) {
+namespace {
+// Runs tools/report_plots.py with `args` in the venv's Python; `files` (relative to outDir) are
+// removed first, so that plots of an earlier run never pass for this one's when the script fails.
+PlotRun runPlotScript(const fs::path& outDir, const std::vector<std::string>& args, const std::vector<std::string>& files) {
     PlotRun run;
     const char* envPython = std::getenv("AAMAP_PYTHON");
     const char* envScript = std::getenv("AAMAP_REPORT_PLOTS");
@@ -346,12 +351,16 @@ PlotRun runPlots(const fs::path& outDir) {
     } else if (!fs::is_regular_file(script)) {
         run.warning = fmt::format("no plots: {} not found", script.string());
     } else {
-        // Plots of an earlier run must not pass for this one's when the script fails.
-        for (const char* f : kPlotFiles) fs::remove(outDir / f);
+        for (const std::string& f : files) fs::remove(outDir / f);
+        std::vector<std::string> argv = {python.string(), script.string()};
+        argv.insert(argv.end(), args.begin(), args.end());
+        std::vector<char*> cArgv;
+        for (std::string& a : argv) cArgv.push_back(a.data());
+        cArgv.push_back(nullptr);
         const pid_t pid = ::fork();
         if (pid == 0) {
             ::dup2(STDERR_FILENO, STDOUT_FILENO);  // results go to files; chatter to stderr
-            ::execl(python.c_str(), python.c_str(), script.c_str(), outDir.c_str(), static_cast<char*>(nullptr));
+            ::execv(python.c_str(), cArgv.data());
             ::_exit(127);
         }
         int status = 0;
@@ -361,9 +370,24 @@ PlotRun runPlots(const fs::path& outDir) {
         else run.ran = true;
     }
     if (!run.warning.empty()) spdlog::warn("{}", run.warning);
-    for (const char* f : kPlotFiles)
+    for (const std::string& f : files)
         if (run.ran && fs::is_regular_file(outDir / f)) run.files.push_back(f);
     return run;
+}
+}  // namespace
+
+PlotRun runPlots(const fs::path& outDir) {
+    return runPlotScript(outDir, {outDir.string()}, {std::begin(kPlotFiles), std::end(kPlotFiles)});
+}
+
+PlotRun runComparisonPlot(const fs::path& outDir, const std::string& file, const std::string& title,
+                          const std::vector<std::pair<std::string, fs::path>>& runs) {
+    std::vector<std::string> args = {"--compare", (outDir / file).string(), title};
+    for (const auto& [label, dir] : runs) {
+        args.push_back(label);
+        args.push_back(dir.string());
+    }
+    return runPlotScript(outDir, args, {file});
 }
 
 void writeReport(const fs::path& outDir, const Json& results, bool plots) {

@@ -5,6 +5,7 @@
 // plots of tools/report_plots.py (run from the Python venv; skipped with a warning without one).
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -37,6 +38,8 @@ std::string resultsCsv(const nlohmann::ordered_json& results);
 const std::vector<std::string>& resultsCsvColumns();
 
 std::string markdownReport(const nlohmann::ordered_json& results, const std::vector<Table>& tables);
+// One table as Markdown: a heading of that level, the table, the note.
+std::string markdownTable(const Table& t, const std::string& heading = "##");
 
 struct PlotRun {
     bool ran = false;
@@ -46,6 +49,9 @@ struct PlotRun {
 // Runs tools/report_plots.py OUTDIR with the venv's Python (AAMAP_PYTHON overrides the
 // interpreter, AAMAP_REPORT_PLOTS the script).
 PlotRun runPlots(const std::filesystem::path& outDir);
+// The same script's error-against-time plot of several runs (label, folder) into outDir/file.
+PlotRun runComparisonPlot(const std::filesystem::path& outDir, const std::string& file, const std::string& title,
+                          const std::vector<std::pair<std::string, std::filesystem::path>>& runs);
 
 std::string htmlReport(const nlohmann::ordered_json& results, const std::vector<Table>& tables, const PlotRun& plots,
                        const std::filesystem::path& outDir);

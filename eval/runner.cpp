@@ -482,6 +482,15 @@ Results Runner::run() {
                                  c_.reference.rpp, job.render.name, job.render.rpp));
                 break;
             }
+    // Cache mode with B bounces renders paths of up to B + 2 segments (camera, B diffuse bounces,
+    // the light): against a path reference of another length the difference is not the cache's.
+    if (refJob && c_.shading.mode == "cache" && c_.reference.mode == "path" && c_.shading.cache.bounces > 0 &&
+        c_.shading.maxDepth != c_.shading.cache.bounces + 2)
+        warn(fmt::format("shading.cache.bounces {} renders paths of up to {} segments, the path-traced reference up to "
+                         "shading.max_depth {}: set shading.max_depth: {} to measure the cache against the same light "
+                         "transport",
+                         c_.shading.cache.bounces, c_.shading.cache.bounces + 2, c_.shading.maxDepth,
+                         c_.shading.cache.bounces + 2));
 
     if (c_.usesAamap()) loadOrRenderSnapshot();
     else spdlog::info("no render uses the aamap: snapshot skipped");

@@ -49,7 +49,7 @@ void runSweepWith(const Experiment& experiment, const fs::path& outDir, const Ba
         sweep["variants"].push_back({{"folder", experiment.folders[i]}, {"values", experiment.sweptValues[i]}});
         writeTextAtomically(outDir / "sweep.json", sweep.dump(2) + "\n");  // the finished ones so far
     }
-    writeComparison(dirs, outDir, kSweepFiles);
+    writeComparison(dirs, outDir, kSweepFiles, ro.plots && experiment.variants.front().report.plots);
 }
 
 void rebuildReport(const fs::path& outDir, bool plots) {
@@ -64,7 +64,7 @@ void rebuildReport(const fs::path& outDir, bool plots) {
         writeReport(dir, readJsonFile(dir / "results.json"), plots);
         dirs.push_back(dir);
     }
-    writeComparison(dirs, outDir, kSweepFiles);
+    writeComparison(dirs, outDir, kSweepFiles, plots);
 }
 
 }  // namespace aamap

@@ -7,8 +7,15 @@ Writes OUTDIR/plots/time_vs_rpp.png (the paper's Figures 6-7: render time agains
 rays per pixel each render actually traced, one line per series with its least-squares fit and
 R^2) and OUTDIR/plots/error_vs_time.png (the speed-accuracy trade: % FLIP error pixels against
 time, one curve per series, the Pareto front marked). An axis whose values span a decade or more
-is logarithmic; point labels that would collide are moved or left out. `aamap run` calls this itself; `aamap report OUTDIR` reruns it. Files are written under
-a temporary name and renamed, like every aamap output.
+is logarithmic; point labels that would collide are moved or left out. `aamap run` calls this
+itself; `aamap report OUTDIR` reruns it.
+
+    .venv/bin/python tools/report_plots.py --compare OUT.png TITLE LABEL DIR [LABEL DIR ...]
+
+Writes one error-against-time plot of several runs of the same scene (`aamap compare`, and the
+report of a sweep): one curve per run and series, labelled "LABEL: series", with the Pareto front
+over all of them, so that shading modes, maps and strategies are read off one trade. Files are
+written under a temporary name and renamed, like every aamap output.
 """
 import json
 import os
@@ -122,38 +129,77 @@ def pareto(points):
     return front
 
 
-def error_vs_time(series, path, key, ylabel, title):
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+def error_vs_time(series, path, key, ylabel, title, many_runs=False):
+    """many_runs: curves of several runs (markers cycle per ten curves, legend beside the axes, error
+    axis logarithmic when it spans a decade: 1 % and 90 % are both readable)."""
+    fig, ax = plt.subplots(figsize=(9 if many_runs else 7, 4.5))
     points = []
     for i, (name, rs) in enumerate(series.items()):
         pts = [(render_seconds(r), r["metrics"][key], r["max_rays_per_pixel"]) for r in rs
                if isinstance(r.get("metrics", {}).get(key), (int, float))]
         if not pts:
             continue
-        ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", color=f"C{i % 10}", label=name)
+        marker = "osD^v<>"[(i // 10) % 7]
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], marker + "-", color=f"C{i % 10}", label=name)
         points += pts
     if points:
         front = pareto([(t, e) for t, e, _ in points])
         ax.plot([p[0] for p in front], [p[1] for p in front], "k--", lw=1, label="Pareto front")
         ax.scatter([p[0] for p in front], [p[1] for p in front], s=90, facecolors="none", edgecolors="k")
     log_if_wide(ax, "x", [t for t, _, _ in points])
+    if many_runs and all(e > 0 for _, e, _ in points):
+        log_if_wide(ax, "y", [e for _, e, _ in points])
     ax.set_xlabel("render time (s): trace + Snapshot")
     ax.set_ylabel(ylabel)
     ax.set_title(title)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
+    if many_runs:
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    else:
+        ax.legend(fontsize=8)
     label_points(ax, [(t, e, str(rpp)) for t, e, rpp in points])
     save(fig, path)
 
 
+def error_metric(renders):
+    """The error key the plots use ("pct_error_flip", else "pct_error_mse"; None without metrics) and its label."""
+    metrics = [r.get("metrics", {}) for r in renders]
+    if any("pct_error_flip" in m for m in metrics):
+        return "pct_error_flip", "% pixels in error (FLIP)"
+    if any("pct_error_mse" in m for m in metrics):
+        return "pct_error_mse", "% pixels in error (MSE)"
+    return None, None
+
+
+def read_renders(run_dir):
+    with open(os.path.join(run_dir, "results.json")) as f:
+        return json.load(f).get("renders", [])
+
+
+def compare(out_png, title, runs):
+    """runs: (label, dir) pairs; every (run, series) pair is one curve."""
+    series = {}
+    for label, run_dir in runs:
+        for name, rs in by_series(read_renders(run_dir)).items():
+            series[f"{label}: {name}"] = rs
+    key, ylabel = error_metric([r for rs in series.values() for r in rs])
+    if key is None:
+        print("report_plots: the runs have no error metrics", file=sys.stderr)
+        return 1
+    os.makedirs(os.path.dirname(out_png) or ".", exist_ok=True)
+    error_vs_time(series, out_png, key, ylabel, title, many_runs=True)
+    return 0
+
+
 def main(argv):
-    if len(argv) != 2:
+    if len(argv) >= 6 and argv[1] == "--compare" and len(argv) % 2 == 0:
+        pairs = argv[4:]
+        return compare(argv[2], argv[3], list(zip(pairs[0::2], pairs[1::2])))
+    if len(argv) != 2 or argv[1].startswith("--"):
         print(__doc__, file=sys.stderr)
         return 2
     out = argv[1]
-    with open(os.path.join(out, "results.json")) as f:
-        results = json.load(f)
-    renders = results.get("renders", [])
+    renders = read_renders(out)
     if not renders:
         print("report_plots: no renders in results.json", file=sys.stderr)
         return 1
@@ -161,13 +207,10 @@ def main(argv):
     series = by_series(renders)
     scene = os.path.basename(renders[0].get("scene", ""))
     time_vs_rpp(series, os.path.join(out, "plots", "time_vs_rpp.png"), f"Time against rays per pixel ({scene})")
-    metrics = [r.get("metrics", {}) for r in renders]
-    if any("pct_error_flip" in m for m in metrics):
-        error_vs_time(series, os.path.join(out, "plots", "error_vs_time.png"), "pct_error_flip",
-                      "% pixels in error (FLIP)", "Speed against accuracy (labels: rpp)")
-    elif any("pct_error_mse" in m for m in metrics):
-        error_vs_time(series, os.path.join(out, "plots", "error_vs_time.png"), "pct_error_mse",
-                      "% pixels in error (MSE)", "Speed against accuracy (labels: rpp)")
+    key, ylabel = error_metric(renders)
+    if key is not None:
+        error_vs_time(series, os.path.join(out, "plots", "error_vs_time.png"), key, ylabel,
+                      "Speed against accuracy (labels: rpp)")
     return 0
 
 

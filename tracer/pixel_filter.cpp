@@ -57,7 +57,15 @@ PixelFilter::PixelFilter(const PixelFilterSettings& settings)
             cdf_[static_cast<std::size_t>(i)] = cdf1D(x);
             pdf_[static_cast<std::size_t>(i)] = evaluate1D(x) / gaussianTotal_;
         }
+        guide_.resize(kGuide + 1);
+        for (int j = 0; j <= kGuide; ++j) guide_[static_cast<std::size_t>(j)] = stepHolding(static_cast<double>(j) / kGuide, 0, kSteps - 1);
     }
+}
+
+int PixelFilter::stepHolding(double u, int lo, int hi) const {
+    // cdf_ is non-decreasing: the answer for u lies between those of the guides around it.
+    const auto first = cdf_.begin() + lo + 1, last = cdf_.begin() + hi + 1;
+    return static_cast<int>(std::upper_bound(first, last, u) - cdf_.begin()) - 1;
 }
 
 double PixelFilter::gaussianIntegral(double x) const {
@@ -105,8 +113,8 @@ float PixelFilter::offset(float uf) const {
         case PixelFilterType::Gaussian: {
             // The step holding u, then the exact inverse of the CDF of a filter linear across
             // the step (its values at both ends): a d^2 + b d = u - F_i, in the stable form.
-            const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-            const int i = std::clamp(static_cast<int>(it - cdf_.begin()) - 1, 0, kSteps - 1);
+            const int j = std::min(static_cast<int>(u * kGuide), kGuide - 1);
+            const int i = stepHolding(u, guide_[static_cast<std::size_t>(j)], guide_[static_cast<std::size_t>(j) + 1]);
             const double h = 2.0 * r / kSteps;
             const double du = u - cdf_[static_cast<std::size_t>(i)];
             const double b = pdf_[static_cast<std::size_t>(i)];

@@ -63,6 +63,11 @@ private:
     // (tests/tracer/test_pixel_filter.cpp).
     static constexpr int kSteps = 1024;
     std::vector<double> cdf_, pdf_;
+    // guide_[j]: the step holding u = j / kGuide, so that a lookup searches the few steps between
+    // two guides instead of the whole table (a full binary search mispredicts at every level).
+    static constexpr int kGuide = 1024;
+    std::vector<int> guide_;
+    int stepHolding(double u, int lo, int hi) const;  // the last i in [lo, hi] with cdf_[i] <= u
     double gaussianTotal_ = 1.0;
 };
 

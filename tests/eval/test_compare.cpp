@@ -30,7 +30,7 @@ TEST(Compare, RunsDifferingInOneSettingSideBySide) {
         const ExperimentConfig c = parseConfig(yaml, "exp.yaml", {std::string("snapshot.gain=") + gain});
         runExperimentWith(c, dir / (std::string("gain") + gain), backend, RunnerOptions{"test-rev", false});
     }
-    writeComparison({dir / "gain1", dir / "gain2"}, dir / "cmp");
+    writeComparison({dir / "gain1", dir / "gain2"}, dir / "cmp", {}, false);
     const std::string csv = test::readText(dir / "cmp" / "compare.csv");
     std::istringstream lines(csv);
     std::string header;
@@ -53,8 +53,60 @@ TEST(Compare, RunsDifferingInOneSettingSideBySide) {
     const std::string html = test::readText(dir / "cmp" / "compare.html");
     EXPECT_NE(html.find("../gain2/report.html"), std::string::npos);  // relative links to each run's report
 
-    EXPECT_THROW(writeComparison({dir / "gain1", dir / "missing"}, dir / "cmp2"), InputError);
+    EXPECT_THROW(writeComparison({dir / "gain1", dir / "missing"}, dir / "cmp2", {}, false), InputError);
     EXPECT_FALSE(fs::exists(dir / "cmp2"));  // nothing written for bad input
+}
+
+// Two shading modes against one path-traced reference: the table across the runs holds exactly the
+// renders that no other render of either run matches in both time and error.
+TEST(Compare, ParetoFrontAcrossRunsHoldsExactlyTheUndominatedRenders) {
+    const fs::path dir = fs::path(::testing::TempDir()) / "compare_pareto";
+    fs::remove_all(dir);
+    const std::string yaml = "scene: builtin:cornell\nimage: {width: 48, height: 32}\n"
+                             "renders:\n  - {strategy: uniform, rpp: [1, 4, 16, 64], series: Standard}\n"
+                             "  - {strategy: aamap, rpp: [4, 16, 64], series: Selective}\n"
+                             "reference: {mode: path, rpp: 256}\nmetrics: {map_quality: false}\nreport: {plots: false}\n";
+    std::vector<fs::path> dirs;
+    for (const char* mode : {"direct", "path"}) {
+        FakeBackend backend;
+        if (std::string(mode) == "direct") backend.shadingBias = 0.02f;  // biased: off everywhere by a little
+        const ExperimentConfig c = parseConfig(yaml, "exp.yaml", {std::string("shading.mode=") + mode});
+        dirs.push_back(dir / mode);
+        runExperimentWith(c, dirs.back(), backend, RunnerOptions{"test-rev", false});
+    }
+    const std::vector<ComparedRun> runs = loadComparedRuns(dirs);
+    const Table t = paretoTable({&runs[0], &runs[1]});
+    ASSERT_FALSE(t.rows.empty());
+    struct Point {
+        std::string run, name;
+        double seconds, error;
+    };
+    std::vector<Point> all;
+    for (const ComparedRun& run : runs)
+        for (const auto& r : run.results["renders"])
+            all.push_back({run.label, r["name"].get<std::string>(),
+                           r["times_s"]["trace"].get<double>() + r["times_s"]["snapshot_total"].get<double>(),
+                           r["metrics"]["pct_error_flip"].get<double>()});
+    ASSERT_EQ(all.size(), 14u);
+    const auto inTable = [&](const Point& p) {
+        for (const auto& row : t.rows)
+            if (row[0] == p.run && row[2] == p.name) return true;
+        return false;
+    };
+    for (const Point& p : all) {
+        bool dominated = false;
+        for (const Point& q : all)
+            if (&q != &p && q.seconds <= p.seconds && q.error <= p.error && (q.seconds < p.seconds || q.error < p.error))
+                dominated = true;
+        EXPECT_EQ(inTable(p), !dominated) << p.run << " " << p.name << " " << p.seconds << " s " << p.error << " %";
+    }
+    for (std::size_t i = 1; i < t.rows.size(); ++i) {  // fastest first, each more accurate than the last
+        EXPECT_LT(std::stod(t.rows[i - 1][3]), std::stod(t.rows[i][3]));
+        EXPECT_GT(std::stod(t.rows[i - 1][4]), std::stod(t.rows[i][4]));
+    }
+    EXPECT_EQ(t.rows.back()[0], "shading.mode=path");  // the unbiased mode reaches the lowest error
+    writeComparison(dirs, dir / "cmp", {}, false);
+    EXPECT_NE(test::readText(dir / "cmp" / "compare.md").find("### Speed against accuracy across the runs"), std::string::npos);
 }
 
 }  // namespace

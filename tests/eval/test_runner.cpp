@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -189,6 +191,24 @@ TEST_F(Runner, GroundTruthSplitsShadingBiasFromAntialiasing) {
     EXPECT_FALSE(plain.referenceInfo.contains("shading_floor"));
     for (const RenderRecord& rec : plain.renders) EXPECT_FALSE(rec.metrics.contains("antialiasing")) << rec.name;
     EXPECT_EQ(test::readText(out_ / "report.md").find("Error against ground truth"), std::string::npos);
+}
+
+// Cache mode with B bounces renders paths of B + 2 segments; a path reference of another length is
+// named in a warning, since the difference would pass for the cache's bias.
+TEST_F(Runner, CacheAgainstPathReferenceOfAnotherDepthIsWarned) {
+    const auto mentions = [](const Results& r, const std::string& text) {
+        for (const std::string& w : r.warnings)
+            if (w.find(text) != std::string::npos) return true;
+        return false;
+    };
+    FakeBackend mismatched;
+    const Results off = run(mismatched, {"shading.mode=cache", "shading.cache.bounces=4", "shading.max_depth=5",
+                                          "reference.mode=path", "reference.rpp=64"});
+    EXPECT_TRUE(mentions(off, "set shading.max_depth: 6")) << fmt::format("{}", fmt::join(off.warnings, "\n"));
+    FakeBackend matched;
+    const Results same = run(matched, {"shading.mode=cache", "shading.cache.bounces=4", "shading.max_depth=6",
+                                        "reference.mode=path", "reference.rpp=64"});
+    EXPECT_FALSE(mentions(same, "shading.max_depth")) << fmt::format("{}", fmt::join(same.warnings, "\n"));
 }
 
 TEST_F(Runner, ReferenceAndOneRayRendersAreAddedWhenMissing) {
