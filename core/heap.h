@@ -6,9 +6,8 @@ namespace aamap {
 // Keeps freed memory in the heap for reuse instead of handing it back to the kernel. The
 // Snapshot and the tracer allocate images of the same few MiB every frame; with glibc's defaults
 // each is mmapped or trimmed away when freed and page-faulted back in, zero-filled, next frame
-// (bench_snapshot, Cornell at 768^2, 43 frames: 35.0 k page faults against 17.8 k with this, about
-// the start-up's, and a read-back of 1.1 ms against 0.2 ms). Blocks over 32 MiB are still
-// mmapped. No effect off glibc.
+// (page faults and read-back time with and without it: docs/results.md). Blocks over 32 MiB are
+// still mmapped. No effect off glibc.
 void keepFreedMemoryForReuse();
 
 }  // namespace aamap

@@ -65,6 +65,12 @@ double renderSeconds(const Json& r) {
     return t.value("trace", 0.0) + t.value("snapshot_total", 0.0);
 }
 
+// "mitsuba-cbox/scene.xml" rather than the whole path, or a bare "scene.xml".
+std::string sceneTitle(const std::string& scene) {
+    const fs::path p(scene);
+    return p.has_parent_path() ? (p.parent_path().filename() / p.filename()).string() : scene;
+}
+
 std::string plotFile(std::size_t sceneIndex) { return fmt::format("plots/compare_error_vs_time_{}.png", sceneIndex); }
 
 }  // namespace
@@ -250,7 +256,7 @@ void writeComparison(const std::vector<fs::path>& dirs, const fs::path& outDir, 
         std::vector<std::pair<std::string, fs::path>> labelled;
         for (const ComparedRun* run : groups[g]) labelled.emplace_back(run->label, run->dir);
         const PlotRun plot = runComparisonPlot(outDir, plotFile(g), fmt::format("Speed against accuracy ({}; labels: rpp)",
-                                                                                fs::path(sceneOf(*groups[g].front())).filename().string()),
+                                                                                sceneTitle(sceneOf(*groups[g].front()))),
                                                labelled);
         if (!plot.files.empty()) scenePlots.back() = plot.files.front();
     }

@@ -305,7 +305,7 @@ std::string fnv1a64Hex(const std::string& text) {
 
 std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-3";  // bump when the tracer's output for the same settings changes
+    j["format"] = "aamap-render-4";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);
@@ -322,7 +322,7 @@ std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-1";
+    j["format"] = "aamap-snapshot-2";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c);
     return fnv1a64Hex(j.dump());

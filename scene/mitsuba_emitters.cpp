@@ -57,7 +57,7 @@ std::pair<double, double> halfTangents(const Element& sensor, double fovDeg, int
 
 glm::vec3 areaRadiance(const Element& emitter, Warnings& warnings) {
     if (emitter.type() != "area") fail(emitter, fmt::format("a shape's emitter must be 'area', not '{}'", emitter.type()));
-    return colourProperty(emitter, "radiance", glm::vec3(1.0f), warnings);
+    return colourProperty(emitter, "radiance", glm::vec3(1.0f), warnings, SpectrumUse::Emission);
 }
 
 void addEmitter(const Element& emitter, Scene& scene, Warnings& warnings) {
@@ -68,13 +68,13 @@ void addEmitter(const Element& emitter, Scene& scene, Warnings& warnings) {
         PointLight p;
         p.name = name;
         p.position = emitter.property("position") ? pointProperty(emitter, "position", glm::vec3(0.0f)) : glm::vec3(toWorld[3]);
-        p.intensity = colourProperty(emitter, "intensity", glm::vec3(1.0f), warnings);
+        p.intensity = colourProperty(emitter, "intensity", glm::vec3(1.0f), warnings, SpectrumUse::Emission);
         scene.pointLights.push_back(std::move(p));
     } else if (type == "spot") {
         PointLight p;
         p.name = name;
         p.position = glm::vec3(toWorld[3]);
-        p.intensity = colourProperty(emitter, "intensity", glm::vec3(1.0f), warnings);
+        p.intensity = colourProperty(emitter, "intensity", glm::vec3(1.0f), warnings, SpectrumUse::Emission);
         const float cutoff = floatProperty(emitter, "cutoff_angle", 20.0f);
         const float beam = floatProperty(emitter, "beam_width", cutoff * 0.75f);
         if (!(cutoff > 0.0f && cutoff < 180.0f) || !(beam >= 0.0f && beam <= cutoff))
@@ -95,7 +95,7 @@ void addEmitter(const Element& emitter, Scene& scene, Warnings& warnings) {
                                                             : axisOf(toWorld, 2);
         if (!(glm::length(dir) > 0.0f)) fail(emitter, "directional light has a zero direction");
         d.direction = glm::normalize(dir);
-        d.irradiance = colourProperty(emitter, "irradiance", glm::vec3(1.0f), warnings);
+        d.irradiance = colourProperty(emitter, "irradiance", glm::vec3(1.0f), warnings, SpectrumUse::Emission);
         scene.directionalLights.push_back(std::move(d));
     } else if (type == "envmap") {
         EnvironmentLight env;
@@ -110,7 +110,7 @@ void addEmitter(const Element& emitter, Scene& scene, Warnings& warnings) {
     } else if (type == "constant") {
         EnvironmentLight env;
         env.name = name;
-        env.scale = colourProperty(emitter, "radiance", glm::vec3(1.0f), warnings);
+        env.scale = colourProperty(emitter, "radiance", glm::vec3(1.0f), warnings, SpectrumUse::Emission);
         setEnvironment(emitter, scene, std::move(env));
     } else if (type == "area") {
         fail(emitter, "an area emitter belongs inside a <shape>");

@@ -310,7 +310,8 @@ glm::vec3 pointProperty(const Element& parent, std::string_view name, glm::vec3 
     return out;
 }
 
-glm::vec3 colourProperty(const Element& parent, std::string_view name, glm::vec3 fallback, Warnings& warnings) {
+glm::vec3 colourProperty(const Element& parent, std::string_view name, glm::vec3 fallback, Warnings& warnings,
+                         SpectrumUse use) {
     const Element* p = parent.property(name);
     if (p == nullptr) return fallback;
     if (p->tag == "float") return glm::vec3(static_cast<float>(oneNumber(*p)));
@@ -348,7 +349,7 @@ glm::vec3 colourProperty(const Element& parent, std::string_view name, glm::vec3
         }
         warnings.once("spectrum", fmt::format("{}:{}: sampled spectra are converted to linear RGB (CIE 1931 projection)",
                                               p->file.string(), p->line));
-        return spectrumToRgb(std::move(samples));
+        return spectrumToRgb(std::move(samples), use);
     }
     if (p->tag == "blackbody") fail(*p, "<blackbody> spectra are not supported; give an <rgb>");
     fail(*p, fmt::format("property '{}' is a <{}>; expected a colour (<rgb>, <srgb>, <spectrum> or <float>)", name, p->tag));

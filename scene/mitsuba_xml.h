@@ -18,6 +18,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "scene/spectrum.h"
+
 namespace aamap::mitsuba {
 
 struct Element {
@@ -85,7 +87,10 @@ glm::vec3 pointProperty(const Element& parent, std::string_view name, glm::vec3 
 // A constant colour: <rgb>, <srgb> (decoded to linear), <spectrum> (a constant, or
 // wavelength:value pairs converted to linear RGB, see scene/spectrum.h), <float> (grey).
 // A <texture> or a <ref> property is not a constant: callers that accept textures look first.
-glm::vec3 colourProperty(const Element& parent, std::string_view name, glm::vec3 fallback, Warnings& warnings);
+// `use`: how a sampled spectrum is projected (an emitter's radiance, intensity or irradiance is
+// Emission).
+glm::vec3 colourProperty(const Element& parent, std::string_view name, glm::vec3 fallback, Warnings& warnings,
+                         SpectrumUse use = SpectrumUse::Reflectance);
 // Numbers in a value attribute, separated by commas and/or blanks.
 std::vector<double> parseNumbers(const Element& at, const std::string& text);
 

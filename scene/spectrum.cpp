@@ -36,21 +36,33 @@ glm::dvec3 project(F&& value) {
 
 }  // namespace
 
-glm::vec3 spectrumToRgb(std::vector<std::pair<double, double>> samples) {
+glm::vec3 spectrumToRgb(std::vector<std::pair<double, double>> samples, SpectrumUse use) {
     if (samples.empty()) return glm::vec3(0.0f);
     std::sort(samples.begin(), samples.end());
+    const bool emission = use == SpectrumUse::Emission;
     const auto at = [&](double nm) {
-        if (nm <= samples.front().first) return samples.front().second;
-        if (nm >= samples.back().first) return samples.back().second;
+        if (nm < samples.front().first || nm > samples.back().first) {
+            if (emission) return 0.0;
+            return nm < samples.front().first ? samples.front().second : samples.back().second;
+        }
+        if (nm == samples.front().first) return samples.front().second;
+        if (nm == samples.back().first) return samples.back().second;
         const auto hi = std::upper_bound(samples.begin(), samples.end(), std::make_pair(nm, -HUGE_VAL));
         const auto lo = hi - 1;
         const double span = hi->first - lo->first;
         const double t = span > 0.0 ? (nm - lo->first) / span : 0.0;
         return lo->second + t * (hi->second - lo->second);
     };
+    if (emission) {
+        static const double yIntegral = [] {
+            double y = 0.0;
+            for (double nm = 360.0; nm <= 830.0; nm += 1.0) y += cie1931(nm).y;
+            return y;
+        }();
+        return glm::vec3(project(at) / yIntegral);
+    }
     static const glm::dvec3 white = project([](double) { return 1.0; });
-    const glm::dvec3 rgb = project(at) / white;
-    return glm::vec3(rgb);
+    return glm::vec3(project(at) / white);
 }
 
 }  // namespace aamap

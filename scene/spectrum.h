@@ -8,12 +8,23 @@
 
 namespace aamap {
 
-// A piecewise-linear spectrum through (wavelength nm, value) samples, held at its end values
-// outside their range, projected on the CIE 1931 colour matching functions (the multi-lobe
-// Gaussian fit of Wyman, Sloan and Shirley 2013) over 360-830 nm and converted to linear sRGB.
-// Normalised per channel so that a constant spectrum c gives exactly (c, c, c): reflectances
-// keep their albedo, and a flat emitter stays grey. Samples need not be sorted; an empty list
-// gives 0.
-glm::vec3 spectrumToRgb(std::vector<std::pair<double, double>> samples);
+// What a spectrum describes: RGB rendering multiplies a reflectance's RGB by the light's, so the
+// two are projected differently, as Mitsuba's RGB modes do (and as a spectral render would show).
+enum class SpectrumUse {
+    // Normalised per channel so that a constant spectrum c gives exactly (c, c, c): a white
+    // surface keeps the colour of the light it reflects. Held at its end values outside the
+    // samples (a wall does not turn black at 399 nm).
+    Reflectance,
+    // Absolute: XYZ = integral of L(lambda) times the matching functions over the integral of
+    // y-bar, then linear sRGB, so an equal-energy spectrum is (1.20, 0.95, 0.91) as a spectral
+    // renderer shows it on an sRGB (D65) display; 0 outside the samples, as Mitsuba reads them.
+    Emission,
+};
+
+// A piecewise-linear spectrum through (wavelength nm, value) samples, projected on the CIE 1931
+// colour matching functions (the multi-lobe Gaussian fit of Wyman, Sloan and Shirley 2013) over
+// 360-830 nm and converted to linear sRGB, as `use` says. Samples need not be sorted; an empty
+// list gives 0.
+glm::vec3 spectrumToRgb(std::vector<std::pair<double, double>> samples, SpectrumUse use = SpectrumUse::Reflectance);
 
 }  // namespace aamap

@@ -55,9 +55,8 @@ struct GpuLight {
 // LIGHTING_INLINE_LIGHTS lights themselves are fixed per pipeline. So the code of absent light
 // kinds and of the other PCF path is dropped (lavapipe's SIMD lanes run both sides of every
 // branch), and those lights cost no uniform loads (lavapipe gathers every uniform load lane by
-// lane, constant offset or not). lavapipe's Cornell G-buffer at 768^2 with 5 light samples took
-// 22 ms without these, 15 ms with the first three, 10 ms with the lights inline too
-// (docs/results.md). Values in this order.
+// lane, constant offset or not); docs/results.md has the G-buffer's time with and without them.
+// Values in this order.
 #define LIGHTING_SPEC_LIGHT_COUNT 0  // uint: lights[0 .. count)
 #define LIGHTING_SPEC_SHADOW_PCF 1   // uint: PCF kernel side in texels (1: one tap)
 #define LIGHTING_SPEC_LIGHT_KINDS 2  // uint: the LIGHT_KIND_* bits of the kinds in the list
@@ -142,7 +141,7 @@ struct FilterPush {
     float pad0;
 };
 // The blur's radius is a specialisation constant (a pipeline per radius), so that its loops
-// unroll: lavapipe's blur at 768^2 and radius 1 took 3.4 ms with the radius in the push constants.
+// unroll (lavapipe runs a loop bounded by a push constant several times slower; docs/results.md).
 #define FILTER_SPEC_BLUR_RADIUS 0  // int, >= 0
 
 // --- Block sums (block_sum_rows.comp / block_sum_columns.comp) -------------------------------

@@ -103,9 +103,9 @@ TEST_F(Extremes, LargeImage2048) {
 // 8192 x 8192, the largest size, through the cheapest strategy that still writes every
 // pixel: aamap-subsample with s = 64 and t = infinity traces only the grid (129 x 129 rays, one
 // per grid pixel) and interpolates the rest. Budget, stated up front: 64 Mpx x (12 B RGB + 2 B rays
-// + 1 B traced + 4 B aamap + 12 B block sums: a double table and a uint32 count table) = 1.9 GiB;
-// measured: 2.0 GiB peak RSS, 3.9 s on 2 cores (docs/robustness.md). Every pixel must be finite, and the interpolation between finite corners
-// must stay within their range.
+// + 1 B traced + 4 B aamap + 12 B block sums: a double table and a uint32 count table) = 1.9 GiB
+// (peak RSS and time: docs/robustness.md). Every pixel must be finite, and the interpolation
+// between finite corners must stay within their range.
 TEST_F(Extremes, LargeImage8192BySubsampling) {
     constexpr int kSize = 8192;
     const ImageGrey map(kSize, kSize, 0.0f);

@@ -319,6 +319,26 @@ TEST(Spectrum, ConstantIsGreyAndBandsLandInTheirChannels) {
     EXPECT_GT(blue.b, 3.0f * blue.r);
 }
 
+// Emission is absolute, as a spectral render shows it on an sRGB display: equal energy is not grey
+// but (1.20, 0.95, 0.91), and the values Mitsuba 3's own RGB modes read from the same spectra
+// (mi.traverse of an area emitter in scalar_rgb) are met within the colour-matching fit's error.
+TEST(Spectrum, EmissionIsAbsoluteAsMitsubaReadsIt) {
+    expectVec(spectrumToRgb({{360, 1}, {830, 1}}, SpectrumUse::Emission), glm::vec3(1.20488f, 0.948228f, 0.909267f), 0.02f);
+    const glm::vec3 light = spectrumToRgb({{400, 0}, {500, 8}, {600, 15.6}, {700, 18.4}}, SpectrumUse::Emission);
+    EXPECT_NEAR(light.r / 20.7108f, 1.0f, 0.02f) << light.r;
+    EXPECT_NEAR(light.g / 10.8546f, 1.0f, 0.02f) << light.g;
+    EXPECT_NEAR(light.b / 2.77115f, 1.0f, 0.02f) << light.b;
+    // Nothing outside the samples: luminance (Y) is linear in the spectrum, so a band carries only
+    // its share of the equal-energy Y of 1.
+    const auto luminance = [](glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; };
+    EXPECT_NEAR(luminance(spectrumToRgb({{360, 1}, {830, 1}}, SpectrumUse::Emission)), 1.0f, 1e-3f);
+    const float band = luminance(spectrumToRgb({{500, 1}, {600, 1}}, SpectrumUse::Emission));
+    EXPECT_GT(band, 0.5f);
+    EXPECT_LT(band, 0.95f);
+    // A reflectance of the same shape is grey: it keeps the light's colour.
+    expectVec(spectrumToRgb({{360, 1}, {830, 1}}), glm::vec3(1.0f), 1e-5f);
+}
+
 TEST(MitsubaXml, SnakeCase) {
     EXPECT_EQ(mitsuba::snakeCase("toWorld"), "to_world");
     EXPECT_EQ(mitsuba::snakeCase("intIOR"), "int_ior");
