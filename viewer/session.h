@@ -34,8 +34,9 @@ struct ViewerParams {
     double noiseFloor = 0.02;
     std::string strategy = "aamap-subsample";
     int strata = 4;
-    int spacing = 8;
-    double threshold = 0.0;
+    // Parameters of the traced strategy (spacing, threshold, ...), by name; setParams clamps those
+    // the strategy declares into its schema's ranges and keeps the others for a switch back.
+    StrategyParams strategyParams{{"spacing", 8}, {"threshold", 0.0}};
 };
 
 class ViewerSession {

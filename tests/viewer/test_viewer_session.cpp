@@ -38,7 +38,7 @@ TEST(TileHook, TilesRebuildTheFinalImageAndChangeNothing) {
     const Tracer tracer(scene);
     const int W = 40, H = 37;  // not a multiple of the 16-pixel tile
     StrategySettings strategy;
-    strategy.kind = StrategyKind::Uniform;
+    strategy.name = "uniform";
     strategy.strata = 2;
     const TraceResult plain = tracer.render(scene.views[0], smallTrace(W, H), strategy);
 
@@ -65,7 +65,7 @@ TEST(TileHook, ThrowingCancelsTheRender) {
     const Scene scene = loadScene("builtin:cornell");
     const Tracer tracer(scene);
     StrategySettings strategy;
-    strategy.kind = StrategyKind::Uniform;
+    strategy.name = "uniform";
     TraceSettings ts = smallTrace(64, 64);
     ts.threads = 2;
     std::atomic<int> tiles{0};
