@@ -77,21 +77,30 @@ ViewerSession::ViewerSession(VulkanContext& context, const ExperimentConfig& con
     params_.blurRadius = config.snapshot.blurRadius;
     params_.noiseFloor = config.snapshot.noiseFloor;
     params_.strata = render.strata();
-    if (render.strategy == "aamap" || render.strategy == "aamap-subsample") params_.strategy = render.strategy;
+    const StrategyDescriptor* strategy = findStrategy(render.strategy);
+    if (strategy != nullptr && strategy->usesAamap) params_.strategy = render.strategy;
     for (const auto& [key, value] : render.params.entries()) params_.strategyParams.set(key, value);
 }
 
 ViewerSession::~ViewerSession() { cancelTrace(); }
+
+std::string nextViewerStrategy(const std::string& current) {
+    std::vector<std::string> names;
+    for (const StrategyDescriptor& s : strategyRegistry())
+        if (s.usesAamap) names.push_back(s.name);
+    const auto at = std::find(names.begin(), names.end(), current);
+    return at == names.end() || at + 1 == names.end() ? names.front() : *(at + 1);
+}
 
 void ViewerSession::setParams(const ViewerParams& p) {
     ViewerParams c = p;
     c.blurRadius = std::clamp(c.blurRadius, 0, 16);
     c.noiseFloor = std::clamp(c.noiseFloor, 0.0, 1.0);
     c.strata = std::clamp(c.strata, 1, 16);
-    if (c.strategy != "aamap") c.strategy = "aamap-subsample";
-    const StrategyDescriptor& strategy = *findStrategy(c.strategy);
+    const StrategyDescriptor* strategy = findStrategy(c.strategy);
+    if (strategy == nullptr || !strategy->usesAamap) strategy = findStrategy(c.strategy = ViewerParams{}.strategy);
     for (const auto& [key, value] : p.strategyParams.entries())
-        if (const ParamSpec* spec = strategy.param(key)) c.strategyParams.set(key, spec->clamp(value));
+        if (const ParamSpec* spec = strategy->param(key)) c.strategyParams.set(key, spec->clamp(value));
     if (c.blurRadius != params_.blurRadius || c.noiseFloor != params_.noiseFloor) snapshotDirty_ = true;
     params_ = c;
 }

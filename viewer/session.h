@@ -39,6 +39,10 @@ struct ViewerParams {
     StrategyParams strategyParams{{"spacing", 8}, {"threshold", 0.0}};
 };
 
+// The strategy G switches to: the next one in the registry that uses the aamap (the viewer
+// traces only those), after `current`.
+std::string nextViewerStrategy(const std::string& current);
+
 class ViewerSession {
 public:
     // render: the config render the viewer traces (its strategy and parameters seed ViewerParams).

@@ -113,7 +113,7 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) 
         case GLFW_KEY_MINUS: sp.set("threshold", sp.real("threshold") - 0.5); break;
         case GLFW_KEY_PERIOD: p.strata += 1; break;
         case GLFW_KEY_COMMA: p.strata -= 1; break;
-        case GLFW_KEY_G: p.strategy = p.strategy == "aamap" ? "aamap-subsample" : "aamap"; break;
+        case GLFW_KEY_G: p.strategy = nextViewerStrategy(p.strategy); break;
         case GLFW_KEY_H: std::printf("%s\n", viewerControls()); break;
         case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
         default: return;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <mutex>
+#include <set>
 #include <string>
 
 #include <fmt/format.h>
@@ -33,6 +34,20 @@ TraceSettings smallTrace(int w, int h) {
 
 // The tiles the hook reports cover the image once per phase, and copying their pixels as they
 // arrive rebuilds the final image exactly; the hook changes nothing in the result.
+TEST(ViewerStrategies, GCyclesThroughEveryStrategyThatUsesTheAamap) {
+    std::set<std::string> seen;
+    std::string s = "uniform";  // not one of them: G starts at the first
+    for (std::size_t i = 0; i < 2 * strategyRegistry().size(); ++i) {
+        s = nextViewerStrategy(s);
+        EXPECT_TRUE(findStrategy(s)->usesAamap) << s;
+        seen.insert(s);
+    }
+    std::size_t usingTheMap = 0;
+    for (const StrategyDescriptor& d : strategyRegistry()) usingTheMap += d.usesAamap ? 1 : 0;
+    EXPECT_EQ(seen.size(), usingTheMap);
+    EXPECT_EQ(nextViewerStrategy("aamap"), "aamap-subsample");
+}
+
 TEST(TileHook, TilesRebuildTheFinalImageAndChangeNothing) {
     const Scene scene = loadScene("builtin:cornell");
     const Tracer tracer(scene);
