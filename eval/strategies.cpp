@@ -6,11 +6,6 @@
 
 namespace aamap {
 
-const ParamSpec* findParam(const std::string& strategy, const std::string& key) {
-    const StrategyDescriptor* s = findStrategy(strategy);
-    return s != nullptr ? s->param(key) : nullptr;
-}
-
 std::vector<std::string> allStrategyParamNames() {
     std::vector<std::string> names;
     for (const StrategyDescriptor& s : strategyRegistry())

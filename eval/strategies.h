@@ -8,7 +8,6 @@
 
 namespace aamap {
 
-const ParamSpec* findParam(const std::string& strategy, const std::string& key);  // null if none such
 // Every parameter name of every strategy, deduplicated, in registry order (for --set paths).
 std::vector<std::string> allStrategyParamNames();
 

@@ -98,7 +98,10 @@ void ViewerSession::setParams(const ViewerParams& p) {
     c.noiseFloor = std::clamp(c.noiseFloor, 0.0, 1.0);
     c.strata = std::clamp(c.strata, 1, 16);
     const StrategyDescriptor* strategy = findStrategy(c.strategy);
-    if (strategy == nullptr || !strategy->usesAamap) strategy = findStrategy(c.strategy = ViewerParams{}.strategy);
+    if (strategy == nullptr || !strategy->usesAamap) {  // the viewer tunes the map: strategies that use it
+        c.strategy = ViewerParams{}.strategy;
+        strategy = findStrategy(c.strategy);
+    }
     for (const auto& [key, value] : p.strategyParams.entries())
         if (const ParamSpec* spec = strategy->param(key)) c.strategyParams.set(key, spec->clamp(value));
     if (c.blurRadius != params_.blurRadius || c.noiseFloor != params_.noiseFloor) snapshotDirty_ = true;

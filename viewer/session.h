@@ -36,7 +36,7 @@ struct ViewerParams {
     int strata = 4;
     // Parameters of the traced strategy (spacing, threshold, ...), by name; setParams clamps those
     // the strategy declares into its schema's ranges and keeps the others for a switch back.
-    StrategyParams strategyParams{{"spacing", 8}, {"threshold", 0.0}};
+    StrategyParams strategyParams = resolveParams(*findStrategy(strategy), {});
 };
 
 // The strategy G switches to: the next one in the registry that uses the aamap (the viewer

@@ -87,6 +87,19 @@ TEST(StrategyRegistry, EveryChoiceRoundTrips) {
         }
 }
 
+// The cache keys write numbers as doubles and choices by name, so existing caches stay valid.
+TEST(StrategyRegistry, RenderKeysKeepTheirParameterFormat) {
+    const ExperimentConfig c = parse("scene: builtin:cornell\nrenders:\n  - {strategy: aamap-subsample, rpp: 4}\n"
+                                     "  - {strategy: supersample, rpp: 4, filter: gaussian}\n");
+    EXPECT_NE(renderKeyJson(c, c.renders[0]).find(R"("params":{"spacing":8.0,"threshold":0.0,"mapping":"paper"})"),
+              std::string::npos)
+        << renderKeyJson(c, c.renders[0]);
+    EXPECT_NE(renderKeyJson(c, c.renders[1])
+                  .find(R"("params":{"supersample":2.0,"filter":"gaussian","filter_radius":0.6})"),
+              std::string::npos)
+        << renderKeyJson(c, c.renders[1]);
+}
+
 TEST(StrategyRegistry, ConfigAcceptsDefaultsAndRejectsOutOfRangeAtTheValue) {
     for (const StrategyDescriptor& s : strategyRegistry())
         for (const ParamSpec& p : s.params) {
