@@ -171,6 +171,20 @@ TEST(StrategyRegistry, HelpListsEveryStrategyWithItsRangesAndDefaults) {
     EXPECT_EQ(names, strategyNames());
 }
 
+std::string sourceFile(const std::string& path) {
+    std::ifstream in(std::string(AAMAP_SOURCE_DIR) + "/" + path);
+    EXPECT_TRUE(in.good()) << path << " not found under " << AAMAP_SOURCE_DIR;
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+TEST(StrategyRegistry, CliDocsQuoteTheHelpLines) {
+    EXPECT_NE(sourceFile("docs/cli.md").find(strategyHelpLines()), std::string::npos)
+        << "docs/cli.md: the strategy lines of `aamap run --help` are\n"
+        << strategyHelpLines();
+}
+
 // The rows of docs/config.md's strategy table: | `name` | yes/no | parameters | what it does |.
 struct DocRow {
     std::string name, usesAamap, params;
@@ -186,8 +200,7 @@ std::vector<std::string> cells(const std::string& row) {
 }
 
 std::vector<DocRow> docRows() {
-    std::ifstream in(std::string(AAMAP_SOURCE_DIR) + "/docs/config.md");
-    EXPECT_TRUE(in.good()) << "docs/config.md not found under " << AAMAP_SOURCE_DIR;
+    std::istringstream in(sourceFile("docs/config.md"));
     std::vector<DocRow> rows;
     bool inSection = false;
     for (std::string line; std::getline(in, line);) {
