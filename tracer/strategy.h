@@ -3,17 +3,8 @@
 // A strategy drives rendering through a SampleSource (trace stratum (sx, sy) of a k x k grid over
 // pixel p) and a Scheduler (parallel phases); multi-pass strategies trace, look at the completed
 // phase, then trace more. One interface for all; each strategy's own file in tracer/strategies/
-// declares it (StrategyDescriptor: name, parameters, needs, factory):
-// - uniform: n x n strata everywhere (the full solution of the paper).
-// - aamap: k(p) x k(p) strata, k from the map value (StrataMapping; paper section 4).
-// - aamap-subsample: the paper's adaptive subsampling on a grid of spacing s, with per-pixel
-//   modulation on the traced pixels ("Space 8", "Space 16"); strategies/subsample.h.
-// - rpict: Radiance's -ps/-pt adaptive undersampling, one ray per pixel at most; strategies/rpict.h.
-// - supersample: f x f sub-pixels of n x n strata, then a pfilt-like box/Gaussian filter.
-// - variance: Cycles-style two half-buffer error estimate and stop rule; strategies/variance.h.
-// - shape-id: pbrt-v2 AdaptiveSampler, shape-id method; strategies/shape_id.h.
-// - hybrid: the aamap picks the pixels that get more than one ray, each pixel's sample contrast
-//   (Cycles' half-buffer error) decides when it stops; strategies/hybrid.h.
+// declares it (StrategyDescriptor: name, doc line, parameters, needs, factory), and
+// strategyRegistry() lists them (docs/tracer.md, "Sampling strategies", has each one's rule).
 #include <deque>
 #include <functional>
 #include <memory>

@@ -228,5 +228,17 @@ TEST(StrategyRegistry, DocsTableListsExactlyTheRegistry) {
     }
 }
 
+// docs/tracer.md's table of rules has a row per strategy too.
+TEST(StrategyRegistry, TracerDocsHaveARulePerStrategy) {
+    std::istringstream in(sourceFile("docs/tracer.md"));
+    std::vector<std::string> names;
+    bool inSection = false;
+    for (std::string line; std::getline(in, line);) {
+        if (line.starts_with("## ")) inSection = line.starts_with("## Sampling strategies");
+        if (inSection && line.starts_with("| `")) names.push_back(line.substr(3, line.find('`', 3) - 3));
+    }
+    EXPECT_EQ(names, strategyNames()) << "docs/tracer.md, \"Sampling strategies\"";
+}
+
 }  // namespace
 }  // namespace aamap
