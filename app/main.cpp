@@ -66,17 +66,9 @@ Environment: AAMAP_VALIDATION=1 turns on --validation; AAMAP_DEVICE sets the def
 Exit codes: 0 success, 1 environment error (no GPU, disk), 2 bad input (config, scene, options),
 3 Vulkan validation messages.)";
 
-// The strategy lines come from the table, so new strategies show up here by themselves.
+// The strategy lines come from the registry, so new strategies show up here by themselves.
 std::string runFooter() {
-    std::string lines;
-    for (const aamap::StrategyInfo& s : aamap::strategyTable()) {
-        std::vector<std::string> params;
-        for (const aamap::StrategyParam& p : s.params)
-            params.push_back(p.choices.empty() ? fmt::format("{} ({})", p.name, aamap::formatParam(p.defaultValue))
-                                               : fmt::format("{} ({})", p.name, fmt::join(p.choices, "|")));
-        lines += fmt::format("    {:<16}{}{}\n", s.name, s.usesAamap ? "[aamap] " : "",
-                             params.empty() ? "no parameters" : fmt::format("{}", fmt::join(params, ", ")));
-    }
+    const std::string lines = aamap::strategyHelpLines();
     std::string footer = kRunFooter;
     const std::string token = "@STRATEGIES@\n";
     footer.replace(footer.find(token), token.size(), lines);

@@ -175,15 +175,9 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
 
 int RenderConfig::strata() const { return static_cast<int>(std::lround(std::sqrt(rpp))); }
 
-double RenderConfig::param(const std::string& key) const {
-    for (const auto& [k, v] : params)
-        if (k == key) return v;
-    throw std::out_of_range(fmt::format("render '{}' has no parameter '{}'", name, key));
-}
-
 bool ExperimentConfig::usesAamap() const {
     return std::any_of(renders.begin(), renders.end(), [](const RenderConfig& r) {
-        const StrategyInfo* s = findStrategy(r.strategy);
+        const StrategyDescriptor* s = findStrategy(r.strategy);
         return s != nullptr && s->usesAamap;
     });
 }
@@ -192,11 +186,6 @@ std::optional<std::filesystem::path> ReferenceConfig::resolvedPath(const std::fi
     if (type != "file") return std::nullopt;
     const std::filesystem::path p(path);
     return (p.is_absolute() || configFile.empty() ? p : configFile.parent_path() / p).lexically_normal();
-}
-
-std::string formatParam(double value) {
-    if (value == std::floor(value) && std::fabs(value) < 1e15) return fmt::format("{}", static_cast<long long>(value));
-    return fmt::format("{:g}", value);
 }
 
 std::string ExperimentConfig::resolvedScene() const {
@@ -221,11 +210,12 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+// Numbers as doubles, choices by name: the render keys of existing configs stay as they were.
 Json paramsJson(const RenderConfig& r) {
     Json p = Json::object();
-    for (const auto& [k, v] : r.params) {
-        const StrategyParam* sp = findParam(r.strategy, k);
-        p[k] = sp != nullptr && !sp->choices.empty() ? Json(paramText(r.strategy, k, v)) : Json(v);
+    for (const auto& [k, v] : r.params.entries()) {
+        if (const std::string* name = std::get_if<std::string>(&v)) p[k] = *name;
+        else p[k] = std::holds_alternative<int>(v) ? static_cast<double>(std::get<int>(v)) : std::get<double>(v);
     }
     return p;
 }
@@ -313,7 +303,7 @@ std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) {
     j["rpp"] = r.rpp;
     j["params"] = paramsJson(r);
     if (!c.image.defaultFilter()) j["filter"] = filterJson(c.image);  // only then: other configs keep their keys
-    const StrategyInfo* s = findStrategy(r.strategy);
+    const StrategyDescriptor* s = findStrategy(r.strategy);
     if (s != nullptr && s->usesAamap) j["snapshot"] = snapshotJson(c);
     return j.dump();
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "scene/light_file.h"
+#include "tracer/strategy_params.h"
 
 namespace aamap {
 
@@ -79,13 +80,12 @@ struct ShadingConfig {
 struct RenderConfig {
     std::string name;      // unique, [A-Za-z0-9_-]+, used as the output file stem
     std::string series;    // table column and plot curve ("Space 8"); renders differing in rpp only share one
-    std::string strategy;  // a strategyTable() name
+    std::string strategy;  // a strategyRegistry() name
     int rpp = 1;           // n*n rays per pixel at most
-    // The strategy's parameters in table order, defaults filled in.
-    std::vector<std::pair<std::string, double>> params;
+    // The strategy's parameters as the tracer takes them: schema order, typed, defaults filled in.
+    StrategyParams params;
     std::string shadingMode;  // "" = the experiment's shading.mode (the reference may differ)
     int strata() const;    // n
-    double param(const std::string& key) const;  // throws std::out_of_range if the strategy has none such
 };
 
 // What every render is compared with.
@@ -174,9 +174,6 @@ std::string fnv1a64Hex(const std::string& text);
 CameraConfig parseCameraOption(const std::string& text);
 // The same camera as --set overrides ("camera.position=[0, 1, 5]", ...).
 std::vector<std::string> cameraOverrides(const CameraConfig& camera);
-
-// Formats a parameter value for names and labels: integers without a decimal point, others %g.
-std::string formatParam(double value);
 
 // An experiment with its sweeps of settings outside the renders list expanded (eval/config_sweeps.h):
 // one variant per point of the cartesian product, the first swept key varying slowest. Without

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -27,38 +28,41 @@ bool isFileNameSafe(const std::string& s) {
 // One swept (or fixed) key of a renders[] entry.
 struct Axis {
     std::string key;
-    std::vector<double> values;
+    std::vector<ParamValue> values;
     bool listed = false;    // written as a list
     bool explicit_ = false; // written at all
 };
 
-double readNumber(const yaml::Context& ctx, const YAML::Node& n, const std::string& path, bool integer, double lo,
-                  double hi) {
-    double v = 0;
-    long long i = 0;
-    const bool ok = integer ? yaml::decodePlain(n, i) : yaml::decodePlain(n, v) && std::isfinite(v);
-    if (!ok)
-        ctx.fail(n, path, fmt::format("{}: expected {}, found {}", path, integer ? "an integer" : "a finite number",
-                                      yaml::describe(n)));
-    if (integer) v = static_cast<double>(i);
-    if (v < lo || v > hi) ctx.fail(n, path, fmt::format("{}: {} is out of range [{}, {}]", path, v, lo, hi));
-    return v;
-}
-
-// A choice's name as its index.
-double readChoice(const yaml::Context& ctx, const YAML::Node& n, const std::string& path,
-                  const std::vector<std::string>& choices) {
-    const std::string v = n.IsScalar() ? n.Scalar() : "";
-    const auto it = std::find(choices.begin(), choices.end(), v);
-    if (it == choices.end())
-        ctx.fail(n, path, fmt::format("{}: expected one of {}, found {}", path, fmt::join(choices, ", "), yaml::describe(n)));
-    return static_cast<double>(it - choices.begin());
+// One scalar, decoded as the parameter's type and checked against its schema.
+ParamValue readValue(const yaml::Context& ctx, const YAML::Node& n, const std::string& path, const ParamSpec& spec) {
+    ParamValue v;
+    if (spec.type == ParamType::Choice) {
+        if (!n.IsScalar())
+            ctx.fail(n, path, fmt::format("{}: expected one of {}, found {}", path, fmt::join(spec.choices, ", "),
+                                          yaml::describe(n)));
+        v = n.Scalar();
+    } else {
+        const bool integer = spec.type == ParamType::Int;
+        double d = 0;
+        long long i = 0;
+        const bool ok = integer ? yaml::decodePlain(n, i) : yaml::decodePlain(n, d) && std::isfinite(d);
+        if (!ok)
+            ctx.fail(n, path, fmt::format("{}: expected {}, found {}", path, integer ? "an integer" : "a finite number",
+                                          yaml::describe(n)));
+        // An integer beyond int stays a number, so the schema reports it as out of range.
+        const bool fits = i >= std::numeric_limits<int>::min() && i <= std::numeric_limits<int>::max();
+        v = !integer ? ParamValue(d) : fits ? ParamValue(static_cast<int>(i)) : ParamValue(static_cast<double>(i));
+    }
+    std::string error;
+    const std::optional<ParamValue> checked = spec.check(v, error);
+    if (!checked) ctx.fail(n, path, fmt::format("{}: {}", path, error));
+    return *checked;
 }
 
 // A scalar or a non-empty list of scalars, each checked.
-Axis readAxis(const yaml::Context& ctx, MapReader& m, const std::string& key, bool integer, double lo, double hi,
-              double fallback, const std::vector<std::string>& choices = {}) {
-    Axis a{key, {fallback}, false, false};
+Axis readAxis(const yaml::Context& ctx, MapReader& m, const ParamSpec& spec) {
+    const std::string& key = spec.name;
+    Axis a{key, {spec.defaultParam()}, false, false};
     const YAML::Node n = m.node(key);
     if (!n.IsDefined()) return a;
     a.explicit_ = true;
@@ -68,14 +72,13 @@ Axis readAxis(const yaml::Context& ctx, MapReader& m, const std::string& key, bo
         a.listed = true;
         a.values.clear();
         for (std::size_t i = 0; i < n.size(); ++i) {
-            const std::string at = fmt::format("{}[{}]", path, i);
-            const double v = choices.empty() ? readNumber(ctx, n[i], at, integer, lo, hi) : readChoice(ctx, n[i], at, choices);
+            const ParamValue v = readValue(ctx, n[i], fmt::format("{}[{}]", path, i), spec);
             if (std::find(a.values.begin(), a.values.end(), v) != a.values.end())
                 ctx.fail(n[i], path, fmt::format("{}: {} is listed twice", path, n[i].Scalar()));
             a.values.push_back(v);
         }
     } else {
-        a.values = {choices.empty() ? readNumber(ctx, n, path, integer, lo, hi) : readChoice(ctx, n, path, choices)};
+        a.values = {readValue(ctx, n, path, spec)};
     }
     return a;
 }
@@ -83,11 +86,10 @@ Axis readAxis(const yaml::Context& ctx, MapReader& m, const std::string& key, bo
 // "{rpp}", "{n}" and "{<param>}" in a name or series template.
 // fileName: the text becomes a render's file stem, so a value's '.' is written 'p' and '+' is
 // dropped ("noise_threshold0p02", "threshold1e06"): letters, digits, '_' and '-' only.
-std::string substitute(std::string text, const std::string& strategy,
-                       const std::vector<std::pair<std::string, double>>& values, bool fileName) {
-    for (const auto& [key, v] : values) {
+std::string substitute(std::string text, const StrategyParams& values, bool fileName) {
+    for (const auto& [key, v] : values.entries()) {
         const std::string token = "{" + key + "}";
-        std::string value = paramText(strategy, key, v);
+        std::string value = toString(v);
         if (fileName) {
             std::replace(value.begin(), value.end(), '.', 'p');
             std::erase(value, '+');
@@ -106,31 +108,28 @@ std::vector<RenderConfig> expandEntry(const yaml::Context& ctx, const YAML::Node
     m.require("rpp");
     std::string strategy;
     m.getString("strategy", strategy);
-    const StrategyInfo* info = findStrategy(strategy);
+    const StrategyDescriptor* info = findStrategy(strategy);
     if (info == nullptr)
         ctx.fail(m.node("strategy"), m.childPath("strategy"),
                  fmt::format("{}: unknown strategy '{}' (supported: {})", m.childPath("strategy"), strategy,
                              fmt::join(strategyNames(), ", ")));
     for (const std::string& p : allStrategyParamNames()) {
-        const bool own = std::any_of(info->params.begin(), info->params.end(),
-                                     [&](const StrategyParam& sp) { return sp.name == p; });
-        if (!own && m.has(p))
+        if (info->param(p) == nullptr && m.has(p))
             ctx.fail(m.node(p), m.childPath(p),
                      fmt::format("{}: strategy '{}' has no parameter '{}'", m.childPath(p), strategy, p));
     }
 
     std::vector<Axis> axes;
-    axes.push_back(readAxis(ctx, m, "rpp", true, 1, kMaxRpp, 1));
+    axes.push_back(readAxis(ctx, m, intParam("rpp", 1, kMaxRpp, 1, "rays per pixel")));
     for (std::size_t i = 0; i < axes[0].values.size(); ++i) {
-        const int rpp = static_cast<int>(axes[0].values[i]);
+        const int rpp = std::get<int>(axes[0].values[i]);
         const int n = static_cast<int>(std::lround(std::sqrt(rpp)));
         if (n * n != rpp)
             ctx.fail(m.node("rpp"), m.childPath("rpp"),
                      fmt::format("{}: {} is not a perfect square; rays per pixel are n x n strata (1, 4, 9, 16, "
                                  "25, 36, ...)", m.childPath("rpp"), rpp));
     }
-    for (const StrategyParam& p : info->params)
-        axes.push_back(readAxis(ctx, m, p.name, p.integer, p.lo, p.hi, p.defaultValue, p.choices));
+    for (const ParamSpec& p : info->params) axes.push_back(readAxis(ctx, m, p));
 
     std::string nameTemplate, seriesTemplate;
     const bool named = m.has("name");
@@ -159,20 +158,21 @@ std::vector<RenderConfig> expandEntry(const yaml::Context& ctx, const YAML::Node
     std::vector<RenderConfig> out;
     for (std::size_t index = 0; index < count; ++index) {
         // Row-major: the first key (rpp) varies slowest.
-        std::vector<std::pair<std::string, double>> values;
+        StrategyParams values;  // rpp, then the strategy's parameters in schema order
         std::size_t rest = index, stride = count;
-        for (const Axis& a : axes) {
-            stride /= a.values.size();
-            values.emplace_back(a.key, a.values[rest / stride]);
-            rest %= stride;
-        }
         RenderConfig r;
         r.strategy = strategy;
-        r.rpp = static_cast<int>(values[0].second);
-        r.params.assign(values.begin() + 1, values.end());
-        values.emplace_back("n", r.strata());
-        r.name = substitute(nameTemplate, strategy, values, true);
-        r.series = substitute(seriesTemplate, strategy, values, false);
+        for (std::size_t a = 0; a < axes.size(); ++a) {
+            stride /= axes[a].values.size();
+            const ParamValue& v = axes[a].values[rest / stride];
+            values.set(axes[a].key, v);
+            if (a == 0) r.rpp = std::get<int>(v);
+            else r.params.set(axes[a].key, v);
+            rest %= stride;
+        }
+        values.set("n", r.strata());
+        r.name = substitute(nameTemplate, values, true);
+        r.series = substitute(seriesTemplate, values, false);
         const YAML::Node at = named ? m.node("name") : node;
         if (!isFileNameSafe(r.name))
             ctx.fail(at, m.childPath("name"),
@@ -240,8 +240,8 @@ std::vector<RenderConfig> readRenders(const yaml::Context& ctx, const YAML::Node
             if (!fresh) {
                 const RenderConfig& other = all[cell->second];
                 std::string hint;
-                for (const auto& [key, value] : r.params)
-                    for (const auto& [otherKey, otherValue] : other.params)
+                for (const auto& [key, value] : r.params.entries())
+                    for (const auto& [otherKey, otherValue] : other.params.entries())
                         if (key == otherKey && value != otherValue && hint.empty())
                             hint = fmt::format("; did you mean series: \"{} {}={{{}}}\"?", r.series, key, key);
                 ctx.fail(renders[i], path,

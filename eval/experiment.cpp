@@ -117,8 +117,10 @@ SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
     passes::parse(c.snapshot.map, s.map);  // validated by the config reader
     s.keepDebugImages = true;
     // The GPU block-sum pass only when a render subsamples (otherwise the graph culls it).
-    s.blockSums = std::any_of(c.renders.begin(), c.renders.end(),
-                              [](const RenderConfig& r) { return r.strategy == "aamap-subsample"; });
+    s.blockSums = std::any_of(c.renders.begin(), c.renders.end(), [](const RenderConfig& r) {
+        const StrategyDescriptor* d = findStrategy(r.strategy);
+        return d != nullptr && d->needsBlockSums;
+    });
     return s;
 }
 
@@ -242,9 +244,7 @@ public:
         ts.seed = config_.seed;
         ts.threads = options_.threads >= 0 ? options_.threads : config_.threads;
         ts.shading.areaLightSamples = std::max(1, settings.areaLightSamples);
-        StrategySettings uniform;
-        uniform.kind = StrategyKind::Uniform;
-        uniform.strata = 1;
+        StrategySettings uniform;  // uniform, n = 1
         SnapshotOutput out;
         out.snapshot = tracer_->render(view_, ts, uniform).image;
         cpu::AamapImages maps = cpu::buildAamap(out.snapshot, info_.width, info_.height, settings.filter);
@@ -262,7 +262,7 @@ public:
         ts.onTileDone = progress;
         StrategySettings ss = toStrategySettings(render, aamap);
         std::string blockSums;
-        if (ss.kind == StrategyKind::AamapSubsample) {
+        if (findStrategy(ss.name)->needsBlockSums) {
             // The Snapshot's GPU tables when this run rendered it; the CPU fallback when the
             // snapshot came from the cache (both give the same plan: tests/gpu/test_gpu_block_sums).
             const bool gpu = gpuBlockSums_ && aamap != nullptr && gpuBlockSums_->width() == aamap->width() &&

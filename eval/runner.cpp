@@ -34,7 +34,7 @@ struct Job {
 };
 
 bool usesAamap(const RenderConfig& render) {
-    const StrategyInfo* info = findStrategy(render.strategy);
+    const StrategyDescriptor* info = findStrategy(render.strategy);
     return info != nullptr && info->usesAamap;
 }
 
@@ -222,7 +222,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
         }
     }
     const SceneInfo& s = scene();
-    const StrategyInfo* info = findStrategy(job.render.strategy);
+    const StrategyDescriptor* info = findStrategy(job.render.strategy);
     const bool usesMap = info != nullptr && info->usesAamap;
     Progress progress(fmt::format("[{}/{}] trace {}", index, count, job.render.name));
     TraceOutput out = backend_.trace(job.render, usesMap ? &*aamap_ : nullptr,
@@ -338,7 +338,7 @@ void Runner::repeatTraces(const std::vector<Job>& jobs) {
     std::vector<std::string> changed;
     const auto runOnce = [&](const Job& job) {
         Traced& t = traced_.at(job.key);
-        const StrategyInfo* info = findStrategy(job.render.strategy);
+        const StrategyDescriptor* info = findStrategy(job.render.strategy);
         const bool usesMap = info != nullptr && info->usesAamap;
         scene();
         Progress progress(fmt::format("[run {}/{}] trace {}", t.record.times.traceRuns.size() + 1, repeats,
@@ -448,7 +448,8 @@ void Runner::writeNamedOutputs(const std::string& name, const Traced& t, int rpp
     writePng(out_ / (name + ".png"), toneMap(t.image, static_cast<float>(c_.image.exposure)));
     writePng(out_ / (name + ".rpp.png"), falseColour(t.rays, rpp));
     outputs = {name + ".exr", name + ".png", name + ".rpp.png"};
-    if (t.record.strategy == "aamap-subsample" || t.record.strategy == "rpict") {
+    const StrategyDescriptor* strategy = findStrategy(t.record.strategy);
+    if (strategy != nullptr && strategy->marksTraced) {
         // The paper's Figure 5: traced pixels white, interpolated ones (no primary ray) black.
         ImageGrey mask(t.rays.width(), t.rays.height());
         std::transform(t.rays.pixels().begin(), t.rays.pixels().end(), mask.pixels().begin(),

@@ -7,47 +7,13 @@
 namespace aamap {
 
 StrategySettings toStrategySettings(const RenderConfig& r, const ImageGrey* aamap) {
+    const StrategyDescriptor* d = findStrategy(r.strategy);
+    if (d == nullptr) throw InputError("config", fmt::format("strategy '{}' is not known to the tracer", r.strategy));
     StrategySettings s;
+    s.name = r.strategy;
     s.strata = r.strata();
-    // One case per strategyTable() entry (eval/strategies.cpp); tracer/strategy.cpp's names.
-    if (!parse(r.strategy, s.kind))
-        throw InputError("config", fmt::format("strategy '{}' is not known to the tracer", r.strategy));
-    const auto has = [&](const char* key) {
-        for (const auto& [k, v] : r.params)
-            if (k == key) return true;
-        return false;
-    };
-    const auto integer = [&](const char* key) { return static_cast<int>(r.param(key)); };
-    if (has("mapping")) s.mapping = integer("mapping") == 1 ? StrataMapping::LinearRays : StrataMapping::Paper;
-    switch (s.kind) {
-        case StrategyKind::Uniform: break;
-        case StrategyKind::Aamap: s.aamap = aamap; break;
-        case StrategyKind::AamapSubsample:
-            s.aamap = aamap;
-            s.spacing = integer("spacing");
-            s.threshold = r.param("threshold");
-            break;
-        case StrategyKind::RpictAdaptive:
-            s.spacing = integer("spacing");
-            s.threshold = r.param("threshold");
-            break;
-        case StrategyKind::SupersampleFilter:
-            s.supersample = integer("supersample");
-            s.filter = integer("filter") == 1 ? DownFilter::Gaussian : DownFilter::Box;
-            s.filterRadius = r.param("filter_radius");
-            break;
-        case StrategyKind::VarianceAdaptive:
-            s.noiseThreshold = r.param("noise_threshold");
-            s.minSamples = integer("min_samples");
-            s.sampleStep = integer("sample_step");
-            break;
-        case StrategyKind::ShapeIdAdaptive: s.minSamples = integer("min_samples"); break;
-        case StrategyKind::Hybrid:
-            s.aamap = aamap;
-            s.noiseThreshold = r.param("noise_threshold");
-            s.sampleStep = integer("sample_step");
-            break;
-    }
+    s.params = r.params;  // checked by the config reader and again by the tracer, against one schema
+    if (d->usesAamap) s.aamap = aamap;
     return s;
 }
 

@@ -1,6 +1,5 @@
 #pragma once
-// The runner side of the strategy table (eval/strategies.h): a render's config as the tracer's
-// StrategySettings and ShadingSettings.
+// A render's config as the tracer's StrategySettings and ShadingSettings.
 #include "core/image.h"
 #include "eval/config.h"
 #include "tracer/tracer.h"

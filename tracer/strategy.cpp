@@ -11,53 +11,28 @@
 
 namespace aamap {
 
-const char* toString(StrategyKind kind) {
-    switch (kind) {
-        case StrategyKind::Uniform: return "uniform";
-        case StrategyKind::Aamap: return "aamap";
-        case StrategyKind::AamapSubsample: return "aamap-subsample";
-        case StrategyKind::RpictAdaptive: return "rpict";
-        case StrategyKind::SupersampleFilter: return "supersample";
-        case StrategyKind::VarianceAdaptive: return "variance";
-        case StrategyKind::ShapeIdAdaptive: return "shape-id";
-        case StrategyKind::Hybrid: return "hybrid";
-    }
-    return "unknown";
-}
-
 const char* toString(StrataMapping mapping) {
     return mapping == StrataMapping::LinearRays ? "linear-rays" : "paper";
 }
 
-const char* toString(DownFilter filter) { return filter == DownFilter::Gaussian ? "gaussian" : "box"; }
-
-namespace {
-template <class Enum, int N>
-bool parseEnum(const std::string& name, Enum& out, const Enum (&all)[N]) {
-    for (Enum e : all)
-        if (name == toString(e)) {
-            out = e;
+bool parse(const std::string& name, StrataMapping& mapping) {
+    for (StrataMapping m : {StrataMapping::Paper, StrataMapping::LinearRays})
+        if (name == toString(m)) {
+            mapping = m;
             return true;
         }
     return false;
 }
-}  // namespace
 
-bool parse(const std::string& name, StrategyKind& kind) {
-    using K = StrategyKind;
-    const K all[] = {K::Uniform,           K::Aamap,           K::AamapSubsample, K::RpictAdaptive,
-                     K::SupersampleFilter, K::VarianceAdaptive, K::ShapeIdAdaptive, K::Hybrid};
-    return parseEnum(name, kind, all);
+ParamSpec mappingParam() {
+    return choiceParam("mapping", {toString(StrataMapping::Paper), toString(StrataMapping::LinearRays)},
+                       "map value -> strata: paper (k = 1 + round(a (n-1))) or linear-rays (rays linear in a)");
 }
 
-bool parse(const std::string& name, StrataMapping& mapping) {
-    const StrataMapping all[] = {StrataMapping::Paper, StrataMapping::LinearRays};
-    return parseEnum(name, mapping, all);
-}
-
-bool parse(const std::string& name, DownFilter& filter) {
-    const DownFilter all[] = {DownFilter::Box, DownFilter::Gaussian};
-    return parseEnum(name, filter, all);
+StrataMapping mappingOf(const StrategyParams& params) {
+    StrataMapping m = StrataMapping::Paper;
+    parse(params.choice("mapping"), m);  // resolved: one of the schema's names
+    return m;
 }
 
 int aamapStratification(float a, int n) { return stratification(a, n, StrataMapping::Paper); }
@@ -88,42 +63,24 @@ void PerPixelStrategy::render(const SampleSource& source, const Scheduler& sched
     });
 }
 
+const ParamSpec* StrategyDescriptor::param(const std::string& key) const {
+    for (const ParamSpec& p : params)
+        if (p.name == key) return &p;
+    return nullptr;
+}
+
 namespace {
 
-class UniformStrategy final : public PerPixelStrategy {
-public:
-    explicit UniformStrategy(int n) : n_(n) {}
-    StrategyKind kind() const override { return StrategyKind::Uniform; }
-    int maxRaysPerPixel() const override { return n_ * n_; }
-    std::string describe() const override { return fmt::format("uniform n={}", n_); }
-    int stratificationFor(int, int) const override { return n_; }
-
-private:
-    int n_;
-};
-
-class AamapStrategy final : public PerPixelStrategy {
-public:
-    AamapStrategy(int n, StrataMapping mapping, const ImageGrey& map) : n_(n), mapping_(mapping), map_(map) {}
-    StrategyKind kind() const override { return StrategyKind::Aamap; }
-    int maxRaysPerPixel() const override { return n_ * n_; }
-    std::string describe() const override { return fmt::format("aamap n={} mapping={}", n_, toString(mapping_)); }
-    int stratificationFor(int x, int y) const override { return stratification(map_.at(x, y), n_, mapping_); }
-
-private:
-    int n_;
-    StrataMapping mapping_;
-    const ImageGrey& map_;
-};
-
-const ImageGrey& requireMap(const StrategySettings& s, int width, int height) {
-    if (s.aamap == nullptr)
-        throw std::invalid_argument(fmt::format("{} strategy needs an aamap image", toString(s.kind)));
-    const ImageGrey& map = *s.aamap;
-    if (map.width() != width || map.height() != height)
-        throw std::invalid_argument(
-            fmt::format("aamap is {}x{} but the render is {}x{}", map.width(), map.height(), width, height));
-    return map;
+// An explicit list rather than self-registering statics: aamap_tracer is a static library, and
+// the linker drops an object file nothing refers to, registrar and all. A new strategy is its
+// own file in tracer/strategies/ plus one line here. A deque: registerStrategy() keeps earlier
+// pointers valid.
+std::deque<StrategyDescriptor>& registry() {
+    static std::deque<StrategyDescriptor> all = {
+        uniformStrategy(),     aamapStrategy(),    subsampleStrategy(), rpictStrategy(),
+        supersampleStrategy(), varianceStrategy(), shapeIdStrategy(),   hybridStrategy(),
+    };
+    return all;
 }
 
 void require(bool ok, const std::string& message) {
@@ -132,52 +89,69 @@ void require(bool ok, const std::string& message) {
 
 }  // namespace
 
+const std::deque<StrategyDescriptor>& strategyRegistry() { return registry(); }
+
+const StrategyDescriptor* findStrategy(const std::string& name) {
+    for (const StrategyDescriptor& s : registry())
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+std::vector<std::string> strategyNames() {
+    std::vector<std::string> names;
+    for (const StrategyDescriptor& s : registry()) names.push_back(s.name);
+    return names;
+}
+
+void registerStrategy(StrategyDescriptor descriptor) {
+    for (StrategyDescriptor& s : registry())
+        if (s.name == descriptor.name) {
+            s = std::move(descriptor);
+            return;
+        }
+    registry().push_back(std::move(descriptor));
+}
+
+void unregisterStrategy(const std::string& name) {
+    std::erase_if(registry(), [&](const StrategyDescriptor& s) { return s.name == name; });
+}
+
+StrategyParams resolveParams(const StrategyDescriptor& strategy, const StrategyParams& given) {
+    for (const auto& [key, value] : given.entries())
+        require(strategy.param(key) != nullptr,
+                fmt::format("strategy '{}' has no parameter '{}'", strategy.name, key));
+    StrategyParams out;
+    for (const ParamSpec& p : strategy.params) {
+        const ParamValue* v = given.find(p.name);
+        if (v == nullptr) {
+            out.set(p.name, p.defaultParam());
+            continue;
+        }
+        std::string error;
+        const std::optional<ParamValue> ok = p.check(*v, error);
+        require(ok.has_value(), fmt::format("{}: {}: {}", strategy.name, p.name, error));
+        out.set(p.name, *ok);
+    }
+    return out;
+}
+
 std::unique_ptr<SamplingStrategy> makeStrategy(const StrategySettings& s, int width, int height) {
+    const StrategyDescriptor* d = findStrategy(s.name);
+    require(d != nullptr, fmt::format("unknown sampling strategy '{}'", s.name));
     const int n = s.strata;
     require(n >= 1 && n <= kMaxStrata, fmt::format("strata must be in [1, {}], got {}", kMaxStrata, n));
-    std::unique_ptr<SamplingStrategy> strategy;
-    switch (s.kind) {
-        case StrategyKind::Uniform: strategy = std::make_unique<UniformStrategy>(n); break;
-        case StrategyKind::Aamap:
-            strategy = std::make_unique<AamapStrategy>(n, s.mapping, requireMap(s, width, height));
-            break;
-        case StrategyKind::AamapSubsample:
-            require(s.spacing >= 1 && s.spacing <= 64, fmt::format("spacing must be in [1, 64], got {}", s.spacing));
-            require(s.threshold >= 0.0, fmt::format("threshold must be >= 0, got {}", s.threshold));
-            require(s.blockSums == nullptr || (s.blockSums->width() == width && s.blockSums->height() == height),
-                    "block sums do not match the render size");
-            strategy = makeSubsampleStrategy(n, s.mapping, s.spacing, s.threshold, requireMap(s, width, height),
-                                             s.blockSums);
-            break;
-        case StrategyKind::RpictAdaptive:
-            require(s.spacing >= 1 && s.spacing <= 64, fmt::format("spacing must be in [1, 64], got {}", s.spacing));
-            require(s.threshold >= 0.0, fmt::format("threshold must be >= 0, got {}", s.threshold));
-            strategy = makeRpictStrategy(s.spacing, s.threshold);
-            break;
-        case StrategyKind::SupersampleFilter:
-            require(s.supersample >= 1 && s.supersample <= 4,
-                    fmt::format("supersample factor must be in [1, 4], got {}", s.supersample));
-            require(std::isfinite(s.filterRadius) && s.filterRadius > 0.0,
-                    fmt::format("filter radius must be > 0, got {}", s.filterRadius));
-            strategy = makeSupersampleStrategy(n, s.supersample, s.filter, s.filterRadius);
-            break;
-        case StrategyKind::VarianceAdaptive:
-            require(s.noiseThreshold >= 0.0, fmt::format("noise threshold must be >= 0, got {}", s.noiseThreshold));
-            require(s.minSamples >= 1, fmt::format("min samples must be >= 1, got {}", s.minSamples));
-            require(s.sampleStep >= 1, fmt::format("sample step must be >= 1, got {}", s.sampleStep));
-            strategy = makeVarianceStrategy(n, s.noiseThreshold, s.minSamples, s.sampleStep);
-            break;
-        case StrategyKind::ShapeIdAdaptive:
-            require(s.minSamples >= 1, fmt::format("min samples must be >= 1, got {}", s.minSamples));
-            strategy = makeShapeIdStrategy(n, s.minSamples);
-            break;
-        case StrategyKind::Hybrid:
-            require(s.noiseThreshold >= 0.0, fmt::format("noise threshold must be >= 0, got {}", s.noiseThreshold));
-            require(s.sampleStep >= 1, fmt::format("sample step must be >= 1, got {}", s.sampleStep));
-            strategy = makeHybridStrategy(n, s.mapping, s.noiseThreshold, s.sampleStep, requireMap(s, width, height));
-            break;
+    const StrategyInputs inputs{width, height, n, s.aamap, s.blockSums};
+    if (d->usesAamap) {
+        require(s.aamap != nullptr, fmt::format("{} strategy needs an aamap image", d->name));
+        require(s.aamap->width() == width && s.aamap->height() == height,
+                fmt::format("aamap is {}x{} but the render is {}x{}", s.aamap->width(), s.aamap->height(), width,
+                            height));
     }
-    require(strategy != nullptr, "unknown sampling strategy");
+    if (d->needsBlockSums)
+        require(s.blockSums == nullptr || (s.blockSums->width() == width && s.blockSums->height() == height),
+                "block sums do not match the render size");
+    std::unique_ptr<SamplingStrategy> strategy = d->create(resolveParams(*d, s.params), inputs);
+    require(strategy != nullptr, fmt::format("strategy '{}' built nothing", d->name));
     require(strategy->maxRaysPerPixel() <= 65535,
             fmt::format("{}: up to {} rays per pixel do not fit the 16-bit ray map", strategy->describe(),
                         strategy->maxRaysPerPixel()));

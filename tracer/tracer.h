@@ -10,11 +10,10 @@
 #include "scene/scene.h"
 #include "tracer/irradiance_cache.h"
 #include "tracer/pixel_filter.h"
+#include "tracer/strategy.h"
 #include "core/pixel_facts.h"
 
 namespace aamap {
-
-class BlockSums;  // tracer/block_sums.h
 
 // How a hit is shaded (docs/tracer.md). Direct: emission + direct light + mirror/glass recursion,
 // no indirect diffuse. Path: unbiased path tracing (NEE + MIS + Russian roulette), the ground
@@ -63,63 +62,6 @@ struct CacheStats {
     RayCounts probeRays;                // the probe render's own rays; NOT in TraceResult::rays
     std::uint64_t misses = 0;           // lookups during the render that no record covered
     std::uint64_t missRays = 0;         // their hemisphere rays (counted in TraceResult::rays.other)
-};
-
-// tracer/strategy.h describes each strategy. Names (toString/parse): "uniform", "aamap",
-// "aamap-subsample", "rpict", "supersample", "variance", "shape-id", "hybrid".
-enum class StrategyKind {
-    Uniform,
-    Aamap,
-    AamapSubsample,
-    RpictAdaptive,
-    SupersampleFilter,
-    VarianceAdaptive,
-    ShapeIdAdaptive,
-    Hybrid,  // the aamap says where to look, sample contrast where to stop (strategies/hybrid.h)
-};
-const char* toString(StrategyKind kind);
-bool parse(const std::string& name, StrategyKind& kind);  // false for an unknown name
-
-// Map value a in [0,1] -> strata per axis k in [1, n]. Paper: k = 1 + round(a (n - 1)) (paper section 4).
-// LinearRays: k = round(sqrt(1 + a (n^2 - 1))), rays per pixel linear in a. Names "paper", "linear-rays".
-enum class StrataMapping { Paper, LinearRays };
-const char* toString(StrataMapping mapping);
-bool parse(const std::string& name, StrataMapping& mapping);
-
-// Filters for SupersampleFilter, as pfilt: box (mean of the f x f sub-pixels) or Gaussian.
-enum class DownFilter { Box, Gaussian };
-const char* toString(DownFilter filter);
-bool parse(const std::string& name, DownFilter& filter);
-
-struct StrategySettings {
-    StrategyKind kind = StrategyKind::Uniform;
-    int strata = 1;  // n: at most n x n rays per pixel
-    // Aamap, AamapSubsample (and optional elsewhere): pixel p gets k x k rays, k from `mapping`.
-    // Must match the render resolution. Not owned.
-    const ImageGrey* aamap = nullptr;
-
-    // Aamap, AamapSubsample: how the map value sets k.
-    StrataMapping mapping = StrataMapping::Paper;
-    // AamapSubsample: grid spacing s (paper "Space 8/16"), in [1, 64]; blocks whose aamap sum
-    // (corners included) exceeds `threshold` (>= 0) are split, the rest interpolated.
-    // RpictAdaptive: -ps spacing and -pt relative colour/depth threshold (rpict defaults 4, 0.05).
-    int spacing = 8;
-    double threshold = 0.0;
-    // AamapSubsample: block sums of `aamap` computed elsewhere (the Snapshot's GPU pass); null:
-    // the strategy builds them on the CPU. Must be of the same map. Not owned.
-    const BlockSums* blockSums = nullptr;
-    // SupersampleFilter: render at factor x the resolution (2 or 3), n x n strata per sub-pixel,
-    // then filter down. Gaussian: weight exp(-(d/r)^2), d in output pixels, r = filterRadius.
-    int supersample = 2;
-    DownFilter filter = DownFilter::Box;
-    double filterRadius = 0.6;
-    // VarianceAdaptive (Cycles): at most n^2 samples; at least minSamples (>= 2), then
-    // `sampleStep` more per round to every pixel whose error >= noiseThreshold (dilated by one).
-    // ShapeIdAdaptive (pbrt-v2): minSamples first (rounded down to a square), n^2 more where they
-    // hit different shapes.
-    double noiseThreshold = 0.01;
-    int minSamples = 4;
-    int sampleStep = 4;
 };
 
 // A finished tile, [x0, x1) x [y0, y1), of the render in progress (TraceSettings::onTileFinished).

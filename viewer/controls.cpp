@@ -15,7 +15,7 @@ const char* viewerControls() {
   B / Shift+B  blur radius +1 / -1                F / Shift+F  noise floor x1.25 / /1.25
   ] / [        spacing x2 / /2                    = / -        threshold +0.5 / -0.5
   . / ,        n +1 / -1 (n x n rays per pixel at most)
-  G            strategy: aamap <-> aamap-subsample
+  G            strategy: the next one that uses the aamap
   H            print these controls              Esc          quit
 Camera moves and Snapshot parameters re-run the Snapshot and the aamap at once; the trace runs only
 on T. The error map needs the reference: traced at the current view after the render (reference

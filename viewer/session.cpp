@@ -77,23 +77,33 @@ ViewerSession::ViewerSession(VulkanContext& context, const ExperimentConfig& con
     params_.blurRadius = config.snapshot.blurRadius;
     params_.noiseFloor = config.snapshot.noiseFloor;
     params_.strata = render.strata();
-    if (render.strategy == "aamap" || render.strategy == "aamap-subsample") params_.strategy = render.strategy;
-    for (const auto& [key, value] : render.params) {
-        if (key == "spacing") params_.spacing = static_cast<int>(value);
-        if (key == "threshold") params_.threshold = value;
-    }
+    const StrategyDescriptor* strategy = findStrategy(render.strategy);
+    if (strategy != nullptr && strategy->usesAamap) params_.strategy = render.strategy;
+    for (const auto& [key, value] : render.params.entries()) params_.strategyParams.set(key, value);
 }
 
 ViewerSession::~ViewerSession() { cancelTrace(); }
+
+std::string nextViewerStrategy(const std::string& current) {
+    std::vector<std::string> names;
+    for (const StrategyDescriptor& s : strategyRegistry())
+        if (s.usesAamap) names.push_back(s.name);
+    const auto at = std::find(names.begin(), names.end(), current);
+    return at == names.end() || at + 1 == names.end() ? names.front() : *(at + 1);
+}
 
 void ViewerSession::setParams(const ViewerParams& p) {
     ViewerParams c = p;
     c.blurRadius = std::clamp(c.blurRadius, 0, 16);
     c.noiseFloor = std::clamp(c.noiseFloor, 0.0, 1.0);
     c.strata = std::clamp(c.strata, 1, 16);
-    c.spacing = std::clamp(c.spacing, 1, 64);
-    c.threshold = std::max(c.threshold, 0.0);
-    if (c.strategy != "aamap") c.strategy = "aamap-subsample";
+    const StrategyDescriptor* strategy = findStrategy(c.strategy);
+    if (strategy == nullptr || !strategy->usesAamap) {  // the viewer tunes the map: strategies that use it
+        c.strategy = ViewerParams{}.strategy;
+        strategy = findStrategy(c.strategy);
+    }
+    for (const auto& [key, value] : p.strategyParams.entries())
+        if (const ParamSpec* spec = strategy->param(key)) c.strategyParams.set(key, spec->clamp(value));
     if (c.blurRadius != params_.blurRadius || c.noiseFloor != params_.noiseFloor) snapshotDirty_ = true;
     params_ = c;
 }
@@ -105,16 +115,12 @@ RenderConfig ViewerSession::renderFromParams() const {
     r.strategy = params_.strategy;
     r.rpp = params_.strata * params_.strata;
     r.shadingMode = baseRender_.shadingMode;
-    // The strategy's parameters in table order with their defaults, then the viewer's values.
-    if (const StrategyInfo* info = findStrategy(r.strategy))
-        for (const StrategyParam& sp : info->params) {
-            double value = sp.defaultValue;
-            for (const auto& [key, v] : baseRender_.params)
-                if (key == sp.name) value = v;
-            if (sp.name == "spacing") value = params_.spacing;
-            if (sp.name == "threshold") value = params_.threshold;
-            r.params.emplace_back(sp.name, value);
-        }
+    // The strategy's parameters in schema order: the viewer's values (seeded from the config's
+    // render), defaults for the rest.
+    for (const ParamSpec& spec : findStrategy(r.strategy)->params) {
+        const ParamValue* v = params_.strategyParams.find(spec.name);
+        r.params.set(spec.name, v != nullptr ? *v : spec.defaultParam());
+    }
     return r;
 }
 
@@ -333,7 +339,8 @@ std::string ViewerSession::status(ViewMode mode) const {
     }
     s += fmt::format(" | blur {} floor {:.3f} | {} n={} ({} rpp)", params_.blurRadius, params_.noiseFloor,
                      params_.strategy, params_.strata, params_.strata * params_.strata);
-    if (params_.strategy == "aamap-subsample") s += fmt::format(" s={} t={}", params_.spacing, params_.threshold);
+    const RenderConfig traced = renderFromParams();
+    for (const auto& [key, value] : traced.params.entries()) s += fmt::format(" {}={}", key, toString(value));
     std::lock_guard lock(mutex_);
     if (haveRender_) {
         if (running_ && traceStatus_ == "tracing" && tilesTotal_ > 0)

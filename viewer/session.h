@@ -34,9 +34,14 @@ struct ViewerParams {
     double noiseFloor = 0.02;
     std::string strategy = "aamap-subsample";
     int strata = 4;
-    int spacing = 8;
-    double threshold = 0.0;
+    // Parameters of the traced strategy (spacing, threshold, ...), by name; setParams clamps those
+    // the strategy declares into its schema's ranges and keeps the others for a switch back.
+    StrategyParams strategyParams = resolveParams(*findStrategy(strategy), {});
 };
+
+// The strategy G switches to: the next one in the registry that uses the aamap (the viewer
+// traces only those), after `current`.
+std::string nextViewerStrategy(const std::string& current);
 
 class ViewerSession {
 public:

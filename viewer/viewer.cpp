@@ -64,7 +64,7 @@ RenderConfig pickRender(const ExperimentConfig& config, const std::string& name)
     const RenderConfig* best = nullptr;
     for (const RenderConfig& r : config.renders) {
         if (!name.empty() && r.name == name) return r;
-        const StrategyInfo* info = findStrategy(r.strategy);
+        const StrategyDescriptor* info = findStrategy(r.strategy);
         if (name.empty() && info && info->usesAamap && (!best || r.rpp > best->rpp)) best = &r;
     }
     if (best) return *best;
@@ -93,6 +93,7 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) 
     auto& in = *static_cast<Input*>(glfwGetWindowUserPointer(window));
     ViewerSession& s = *in.session;
     ViewerParams p = s.params();
+    StrategyParams& sp = p.strategyParams;
     const bool shift = (mods & GLFW_MOD_SHIFT) != 0;
     switch (key) {
         case GLFW_KEY_1: in.mode = ViewMode::Snapshot; break;
@@ -106,13 +107,13 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) 
         case GLFW_KEY_R: s.camera().reset(); break;
         case GLFW_KEY_B: p.blurRadius += shift ? -1 : 1; break;
         case GLFW_KEY_F: p.noiseFloor *= shift ? 1.0 / 1.25 : 1.25; break;
-        case GLFW_KEY_RIGHT_BRACKET: p.spacing *= 2; break;
-        case GLFW_KEY_LEFT_BRACKET: p.spacing = std::max(1, p.spacing / 2); break;
-        case GLFW_KEY_EQUAL: p.threshold += 0.5; break;
-        case GLFW_KEY_MINUS: p.threshold -= 0.5; break;
+        case GLFW_KEY_RIGHT_BRACKET: sp.set("spacing", sp.integer("spacing") * 2); break;  // setParams clamps
+        case GLFW_KEY_LEFT_BRACKET: sp.set("spacing", std::max(1, sp.integer("spacing") / 2)); break;
+        case GLFW_KEY_EQUAL: sp.set("threshold", sp.real("threshold") + 0.5); break;
+        case GLFW_KEY_MINUS: sp.set("threshold", sp.real("threshold") - 0.5); break;
         case GLFW_KEY_PERIOD: p.strata += 1; break;
         case GLFW_KEY_COMMA: p.strata -= 1; break;
-        case GLFW_KEY_G: p.strategy = p.strategy == "aamap" ? "aamap-subsample" : "aamap"; break;
+        case GLFW_KEY_G: p.strategy = nextViewerStrategy(p.strategy); break;
         case GLFW_KEY_H: std::printf("%s\n", viewerControls()); break;
         case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window, GLFW_TRUE); break;
         default: return;

@@ -108,7 +108,7 @@ TEST_F(Outputs, ResultsJsonHasTheRequiredFields) {
                   r["rays"]["primary"].get<double>() + r["rays"]["shadow"].get<double>() +
                       r["rays"]["other"].get<double>());
         EXPECT_DOUBLE_EQ(r["mean_primary_rpp"].get<double>(), r["rays"]["primary"].get<double>() / pixels);
-        const StrategyInfo* info = findStrategy(rc.strategy);
+        const StrategyDescriptor* info = findStrategy(rc.strategy);
         ASSERT_NE(info, nullptr);
         if (rc.strategy == "uniform") {
             EXPECT_DOUBLE_EQ(r["mean_primary_rpp"].get<double>(), rc.rpp);
@@ -333,6 +333,8 @@ TEST_F(CliErrors, UsageErrorsAndHelp) {
                              "scene:", "view:", "view_index:", "lights:", "image:", "seed:", "threads:", "snapshot:",
                              "shading:", "renders:", "AAMAP_VALIDATION"})
         EXPECT_NE(help.find(word), std::string::npos) << word;
+    // The strategy lines, from the registry (tests/eval/test_strategy_registry.cpp checks them).
+    EXPECT_NE(help.find(strategyHelpLines()), std::string::npos) << help;
 }
 
 // `aamap diff`: the experiment's metrics for two image files, with exit code 2 for bad input.

@@ -65,11 +65,9 @@ struct Alternative {
 // --- Consumers -------------------------------------------------------------------------------
 
 std::string describe(const StrategySettings& s) {
-    return fmt::format("{} n={} map={} mapping={} spacing={} threshold={} supersample={} filter={} radius={} "
-                       "noise={} min={} step={}",
-                       toString(s.kind), s.strata, s.aamap != nullptr, toString(s.mapping), s.spacing, s.threshold,
-                       s.supersample, toString(s.filter), s.filterRadius, s.noiseThreshold, s.minSamples,
-                       s.sampleStep);
+    std::string text = fmt::format("{} n={} map={}", s.name, s.strata, s.aamap != nullptr);
+    for (const auto& [key, value] : s.params.entries()) text += fmt::format(" {}={}", key, toString(value));
+    return text;
 }
 
 std::string describe(const View& v) {
@@ -343,15 +341,16 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
 }
 
 // A value of a strategy parameter other than its default, inside its declared range.
-std::optional<std::string> otherValue(const StrategyParam& p) {
-    if (!p.choices.empty()) {
+std::optional<std::string> otherValue(const ParamSpec& p) {
+    if (p.type == ParamType::Choice) {
         if (p.choices.size() < 2) return std::nullopt;
-        return p.choices[p.defaultValue == 0 ? 1 : 0];
+        return p.choices[1];  // the first is the default
     }
     if (p.lo == p.hi) return std::nullopt;
-    double v = p.defaultValue < p.hi ? (p.integer ? p.defaultValue + 1 : (p.defaultValue + p.hi) / 2) : p.lo;
-    if (!p.integer && p.defaultValue < p.hi && p.hi > 1e3) v = p.defaultValue + 1;  // a finite, readable value
-    return formatParam(v);
+    const bool integer = p.type == ParamType::Int;
+    double v = p.defaultValue < p.hi ? (integer ? p.defaultValue + 1 : (p.defaultValue + p.hi) / 2) : p.lo;
+    if (!integer && p.defaultValue < p.hi && p.hi > 1e3) v = p.defaultValue + 1;  // a finite, readable value
+    return formatNumber(v);
 }
 
 // --- The walk --------------------------------------------------------------------------------
@@ -395,7 +394,7 @@ protected:
         dir_.write("other_lights.yaml", "- {type: point, name: bulb, position: [0, 1.5, 0], intensity: [3, 2, 2]}\n");
         // Every strategy once, every light type, the default sections.
         std::string renders;
-        for (const StrategyInfo& s : strategyTable()) renders += fmt::format("  - {{strategy: {}, rpp: 4}}\n", s.name);
+        for (const StrategyDescriptor& s : strategyRegistry()) renders += fmt::format("  - {{strategy: {}, rpp: 4}}\n", s.name);
         bases_["lists"] = "scene: builtin:cornell\n"
                           "lights:\n"
                           "  - {type: point, name: p, position: [0, 1.5, 0], intensity: [2, 2, 2]}\n"
@@ -445,8 +444,8 @@ protected:
 TEST_F(SettingsReach, EveryKeyChangesItsRendersItsSnapshotAndItsConsumer) {
     std::map<std::string, Alternative> table = alternatives(dir_.path());
     // Strategy parameters: an alternative for each, from the strategies table itself.
-    for (const StrategyInfo& s : strategyTable())
-        for (const StrategyParam& p : s.params) {
+    for (const StrategyDescriptor& s : strategyRegistry())
+        for (const ParamSpec& p : s.params) {
             const auto value = otherValue(p);
             if (!value) continue;  // reported below, as a key without an alternative
             table.try_emplace(
@@ -501,7 +500,7 @@ TEST_F(SettingsReach, EveryKeyChangesItsRendersItsSnapshotAndItsConsumer) {
         }
         ASSERT_EQ(before.renders.size(), changed.renders.size());
         for (std::size_t r = 0; r < before.renders.size(); ++r) {
-            const StrategyInfo* info = findStrategy(before.renders[r].strategy);
+            const StrategyDescriptor* info = findStrategy(before.renders[r].strategy);
             bool must = false;
             switch (alt.renders) {
                 case Renders::All: must = true; break;
@@ -523,8 +522,8 @@ TEST_F(SettingsReach, EveryKeyChangesItsRendersItsSnapshotAndItsConsumer) {
 }
 
 TEST_F(SettingsReach, EveryStrategyParameterHasAnAlternativeInRange) {
-    for (const StrategyInfo& s : strategyTable())
-        for (const StrategyParam& p : s.params) {
+    for (const StrategyDescriptor& s : strategyRegistry())
+        for (const ParamSpec& p : s.params) {
             const auto value = otherValue(p);
             ASSERT_TRUE(value) << s.name << "." << p.name << ": no second value in its range";
             EXPECT_NO_THROW(parse("camera", {fmt::format("renders.0.strategy={}", s.name),

@@ -12,13 +12,20 @@
 namespace aamap {
 namespace {
 
-// A strategy with parameters, as the adaptive subsampling one will be.
-void registerSpaced() {
-    registerStrategy({"spaced", true,
-                      {{"spacing", true, 2, 64, 8, "pixels between corner rays"},
-                       {"threshold", false, 0, 1e9, 0, "aamap sum that splits a block"}},
-                      "test strategy"});
-}
+// A strategy with parameters, registered for the scope of one test (others walk the registry).
+struct SpacedStrategy {
+    SpacedStrategy() {
+        StrategyDescriptor d;
+        d.name = "spaced";
+        d.doc = "test strategy";
+        d.usesAamap = true;
+        d.params = {intParam("spacing", 2, 64, 8, "pixels between corner rays"),
+                    realParam("threshold", 0, 1e9, 0, "aamap sum that splits a block")};
+        d.create = findStrategy("uniform")->create;
+        registerStrategy(std::move(d));
+    }
+    ~SpacedStrategy() { unregisterStrategy("spaced"); }
+};
 
 ExperimentConfig parse(const std::string& renders, const std::vector<std::string>& overrides = {}) {
     return parseConfig("scene: builtin:cornell\nrenders:\n" + renders, "exp.yaml", overrides);
@@ -34,7 +41,7 @@ TEST(Sweep, ListOfRppExpandsInOrderWithDefaultNames) {
 }
 
 TEST(Sweep, CartesianProductOfRppAndParameters) {
-    registerSpaced();
+    const SpacedStrategy spaced;
     const ExperimentConfig c =
         parse("  - {strategy: spaced, rpp: [1, 4, 16], spacing: [8, 16], threshold: 0, series: 'Space {spacing}'}\n");
     ASSERT_EQ(c.renders.size(), 6u);
@@ -49,23 +56,23 @@ TEST(Sweep, CartesianProductOfRppAndParameters) {
     EXPECT_EQ(c.renders[0].name, "spaced1_spacing8_threshold0");
     EXPECT_EQ(c.renders[1].name, "spaced1_spacing16_threshold0");
     EXPECT_EQ(c.renders[5].rpp, 16);
-    EXPECT_EQ(c.renders[5].param("spacing"), 16.0);
+    EXPECT_EQ(c.renders[5].params.integer("spacing"), 16);
     EXPECT_EQ(c.renders[5].series, "Space 16");
     EXPECT_EQ(c.renders[2].series, "Space 8");
 }
 
 TEST(Sweep, NameTemplatesAndUnmentionedSweptKeys) {
-    registerSpaced();
+    const SpacedStrategy spaced;
     const ExperimentConfig c = parse("  - {name: 'sel{rpp}', strategy: spaced, rpp: [4, 16], spacing: [8, 16]}\n");
     ASSERT_EQ(c.renders.size(), 4u);
     EXPECT_EQ(c.renders[0].name, "sel4_spacing8");  // spacing appended: names must stay unique
-    EXPECT_EQ(c.renders[0].param("threshold"), 0.0);  // default filled in
+    EXPECT_EQ(c.renders[0].params.real("threshold"), 0.0);  // default filled in
     const ExperimentConfig d = parse("  - {name: 'u{n}x{n}', strategy: uniform, rpp: [4, 9]}\n");
     EXPECT_EQ(d.renders[1].name, "u3x3");
 }
 
 TEST(Sweep, FractionalValuesMakeSafeDefaultNames) {
-    registerSpaced();
+    const SpacedStrategy spaced;
     const ExperimentConfig c = parse("  - {strategy: spaced, rpp: 4, threshold: [0.5, 2.5e-7, 1.25e8, 1234567.5]}\n");
     ASSERT_EQ(c.renders.size(), 4u);
     EXPECT_EQ(c.renders[0].name, "spaced4_threshold0p5");
@@ -76,7 +83,7 @@ TEST(Sweep, FractionalValuesMakeSafeDefaultNames) {
 }
 
 TEST(Sweep, DefaultsAreFilledAndKeysIgnoreNames) {
-    registerSpaced();
+    const SpacedStrategy spaced;
     const ExperimentConfig a = parse("  - {name: x, strategy: spaced, rpp: 4}\n");
     const ExperimentConfig b = parse("  - {name: y, series: z, strategy: spaced, rpp: 4, spacing: 8}\n");
     EXPECT_EQ(renderKey(a, a.renders[0]), renderKey(b, b.renders[0]));
@@ -91,7 +98,7 @@ TEST(Sweep, DefaultsAreFilledAndKeysIgnoreNames) {
 }
 
 TEST(Sweep, OverridesSetListsAndParameters) {
-    registerSpaced();
+    const SpacedStrategy spaced;
     const ExperimentConfig c =
         parse("  - {strategy: spaced, rpp: 4}\n", {"renders.0.rpp=[1,4]", "renders.0.spacing=[8,16,32]"});
     EXPECT_EQ(c.renders.size(), 6u);
@@ -106,8 +113,8 @@ TEST(Sweep, ShippedStrategiesAndChoices) {
     EXPECT_EQ(c.renders[1].name, "aamap-subsample4_spacing16");
     EXPECT_EQ(c.renders[1].series, "Space 16");
     EXPECT_EQ(c.renders[5].name, "supersample4_filtergaussian");
-    EXPECT_EQ(c.renders[5].param("filter"), 1.0);
-    EXPECT_EQ(c.renders[4].param("supersample"), 2.0);  // default
+    EXPECT_EQ(c.renders[5].params.choice("filter"), "gaussian");
+    EXPECT_EQ(c.renders[4].params.integer("supersample"), 2);  // default
     EXPECT_EQ(c.renders[6].name, "aamap4_mappinglinear-rays");
     EXPECT_NE(renderKeyJson(c, c.renders[6]).find("\"mapping\":\"linear-rays\""), std::string::npos);
     EXPECT_TRUE(c.usesAamap());
@@ -115,7 +122,7 @@ TEST(Sweep, ShippedStrategiesAndChoices) {
 }
 
 TEST(Sweep, ErrorsPointAtTheValue) {
-    registerSpaced();
+    const SpacedStrategy spaced;
     const auto error = [](const std::string& renders) {
         try {
             parse(renders);

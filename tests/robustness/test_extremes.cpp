@@ -34,7 +34,7 @@ TraceSettings settings(int width, int height, int threads = 0) {
 
 StrategySettings uniform(int strata) {
     StrategySettings s;
-    s.kind = StrategyKind::Uniform;
+    s.name = "uniform";
     s.strata = strata;
     return s;
 }
@@ -110,11 +110,11 @@ TEST_F(Extremes, LargeImage8192BySubsampling) {
     constexpr int kSize = 8192;
     const ImageGrey map(kSize, kSize, 0.0f);
     StrategySettings st;
-    st.kind = StrategyKind::AamapSubsample;
+    st.name = "aamap-subsample";
     st.strata = 1;
     st.aamap = &map;
-    st.spacing = 64;
-    st.threshold = std::numeric_limits<double>::infinity();
+    st.params.set("spacing", 64);
+    st.params.set("threshold", std::numeric_limits<double>::infinity());
     TraceSettings s = settings(kSize, kSize);
     s.shading.areaLightSamples = 1;
     const TraceResult r = tracer_->render(view(), s, st);
@@ -138,10 +138,10 @@ TEST_F(Extremes, SubsampleSpacing1AndLargerThanTheImage) {
     for (int y = 0; y < h; ++y) map.at(w / 2, y) = 1.0f;  // one vertical edge
     for (int spacing : {1, 2, 32, 64}) {
         StrategySettings st;
-        st.kind = StrategyKind::AamapSubsample;
+        st.name = "aamap-subsample";
         st.strata = 4;
         st.aamap = &map;
-        st.spacing = spacing;
+        st.params.set("spacing", spacing);
         const TraceResult r = tracer_->render(view(), settings(w, h), st);
         expectFinite(r);
         // Every pixel on the marked edge is traced with k = n strata.
@@ -152,14 +152,14 @@ TEST_F(Extremes, SubsampleSpacing1AndLargerThanTheImage) {
 TEST_F(Extremes, ThresholdZeroAndInfinity) {
     const int w = 24, h = 16;
     ImageGrey map(w, h, 0.25f);
-    for (StrategyKind kind : {StrategyKind::AamapSubsample, StrategyKind::RpictAdaptive}) {
+    for (const std::string kind : {"aamap-subsample", "rpict"}) {
         for (double threshold : {0.0, std::numeric_limits<double>::infinity()}) {
             StrategySettings st;
-            st.kind = kind;
+            st.name = kind;
             st.strata = 2;
             st.aamap = &map;
-            st.spacing = 4;
-            st.threshold = threshold;
+            st.params.set("spacing", 4);
+            st.params.set("threshold", threshold);
             const TraceResult r = tracer_->render(view(), settings(w, h), st);
             expectFinite(r);
             EXPECT_GT(r.rays.primary, 0u);
@@ -242,12 +242,12 @@ TEST_F(Extremes, OutputsBitIdenticalFor1And2And16Threads) {
     for (int y = 0; y < 30; ++y) map.at(20, y) = 1.0f;
     std::vector<std::string> exr, png;
     for (int threads : {1, 2, 16}) {
-        for (StrategyKind kind : {StrategyKind::Uniform, StrategyKind::AamapSubsample}) {
+        for (const std::string kind : {"uniform", "aamap-subsample"}) {
             StrategySettings st = uniform(3);
-            st.kind = kind;
+            st.name = kind;
             st.aamap = &map;
             const TraceResult r = tracer_->render(view(), settings(40, 30, threads), st);
-            const fs::path base = dir / (std::string(toString(kind)) + std::to_string(threads));
+            const fs::path base = dir / (kind + std::to_string(threads));
             writeExr(base.string() + ".exr", r.image);
             writePng(base.string() + ".png", toneMap(r.image));
             exr.push_back(fileBytes(base.string() + ".exr"));

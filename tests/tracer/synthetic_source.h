@@ -69,12 +69,17 @@ inline StrategyImages runStrategy(const StrategySettings& settings, const Sample
     return out;
 }
 
-inline StrategySettings strategy(StrategyKind kind, int n, const ImageGrey* map = nullptr) {
+inline StrategySettings strategy(const std::string& name, int n, const ImageGrey* map = nullptr) {
     StrategySettings s;
-    s.kind = kind;
+    s.name = name;
     s.strata = n;
     s.aamap = map;
     return s;
+}
+
+// Sets `key` only where the strategy declares it: tests that configure every strategy alike.
+inline void setIfDeclared(StrategySettings& s, const std::string& key, ParamValue value) {
+    if (findStrategy(s.name)->param(key) != nullptr) s.params.set(key, std::move(value));
 }
 
 inline std::uint64_t sumOf(const Image<std::uint16_t>& img) {

@@ -37,9 +37,9 @@ TEST(Rpict, DiffersIsRadiancesRelativeBigdiffOnColourAndDepth) {
 TEST(Rpict, TracesTheMidpointOnlyWhereTheEndsDiffer) {
     // One row, -ps 8: a step at x = 5 is found by bisection 0-8 -> 4 -> 6 -> 5.
     const SyntheticSource src(9, 1, [](float fx, float) { return glm::vec3(fx >= 5.0f ? 2.0f : 1.0f); }, true);
-    StrategySettings st = strategy(StrategyKind::RpictAdaptive, 1);
-    st.spacing = 8;
-    st.threshold = 0.05;
+    StrategySettings st = strategy("rpict", 1);
+    st.params.set("spacing", 8);
+    st.params.set("threshold", 0.05);
     const StrategyImages out = runStrategy(st, src);
     const int expected[9] = {1, 0, 0, 0, 1, 1, 1, 0, 1};
     for (int x = 0; x < 9; ++x) {
@@ -55,9 +55,9 @@ TEST(Rpict, AtMostOneRayPerPixelAndLinearBetweenSimilarEnds) {
     auto f = [](float fx, float fy) { return glm::vec3(1.0f + 0.01f * fx, 2.0f + 0.02f * fy, 3.0f); };
     for (double t : {0.0, 0.05, 1e9}) {
         const SyntheticSource src(w, h, f, true);
-        StrategySettings st = strategy(StrategyKind::RpictAdaptive, 4);  // n is ignored: one ray
-        st.spacing = 4;
-        st.threshold = t;
+        StrategySettings st = strategy("rpict", 4);  // n is ignored: one ray
+        st.params.set("spacing", 4);
+        st.params.set("threshold", t);
         const StrategyImages out = runStrategy(st, src);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
@@ -80,20 +80,20 @@ TEST(Supersample, FactorOneBoxIsUniformAndFiltersAreNormalised) {
     const int w = 11, h = 7, n = 2;
     auto f = [](float fx, float fy) { return glm::vec3(std::sin(fx) + 2.0f, fy, 1.0f); };
     const SyntheticSource a(w, h, f), b(w, h, f);
-    StrategySettings st = strategy(StrategyKind::SupersampleFilter, n);
-    st.supersample = 1;
+    StrategySettings st = strategy("supersample", n);
+    st.params.set("supersample", 1);
     const StrategyImages one = runStrategy(st, a);
-    const StrategyImages uni = runStrategy(strategy(StrategyKind::Uniform, n), b);
+    const StrategyImages uni = runStrategy(strategy("uniform", n), b);
     EXPECT_TRUE(one.image == uni.image);
     EXPECT_TRUE(one.primaryRays == uni.primaryRays);
 
     // A constant stays constant under both filters, at f^2 n^2 rays per pixel.
-    for (DownFilter filter : {DownFilter::Box, DownFilter::Gaussian})
+    for (const std::string filter : {"box", "gaussian"})
         for (int factor : {2, 3}) {
             const SyntheticSource c(w, h, [](float, float) { return glm::vec3(0.3f, 0.6f, 0.9f); });
-            st.supersample = factor;
-            st.filter = filter;
-            st.filterRadius = filter == DownFilter::Gaussian ? 0.6 : 1.0;
+            st.params.set("supersample", factor);
+            st.params.set("filter", filter);
+            st.params.set("filter_radius", filter == "gaussian" ? 0.6 : 1.0);
             const StrategyImages out = runStrategy(st, c);
             for (const glm::vec3& v : out.image.pixels()) EXPECT_NEAR(v.y, 0.6f, 1e-6f);
             for (auto r : out.primaryRays.pixels()) EXPECT_EQ(r, factor * factor * n * n);
@@ -104,13 +104,13 @@ TEST(Supersample, FactorOneBoxIsUniformAndFiltersAreNormalised) {
 TEST(Supersample, GaussianBlursAStepAndBoxDoesNot) {
     const int w = 8, h = 2;
     auto step = [](float fx, float) { return glm::vec3(fx >= 4.0f ? 1.0f : 0.0f); };
-    StrategySettings st = strategy(StrategyKind::SupersampleFilter, 1);
-    st.supersample = 2;
+    StrategySettings st = strategy("supersample", 1);
+    st.params.set("supersample", 2);
     const SyntheticSource a(w, h, step);
     const StrategyImages box = runStrategy(st, a);
     EXPECT_EQ(box.image.at(3, 0).x, 0.0f);
     EXPECT_EQ(box.image.at(4, 0).x, 1.0f);
-    st.filter = DownFilter::Gaussian;
+    st.params.set("filter", "gaussian");
     const SyntheticSource b(w, h, step);
     const StrategyImages gauss = runStrategy(st, b);
     EXPECT_GT(gauss.image.at(3, 0).x, 0.01f);
@@ -146,10 +146,10 @@ TEST(Variance, StopsWhereConvergedAndDilatesTheRest) {
         return glm::vec3(100.0f * (h - std::floor(h)));
     };
     const SyntheticSource src(w, h, f);
-    StrategySettings st = strategy(StrategyKind::VarianceAdaptive, n);
-    st.minSamples = 4;
-    st.sampleStep = 4;
-    st.noiseThreshold = 0.01;
+    StrategySettings st = strategy("variance", n);
+    st.params.set("min_samples", 4);
+    st.params.set("sample_step", 4);
+    st.params.set("noise_threshold", 0.01);
     const StrategyImages out = runStrategy(st, src);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -162,9 +162,9 @@ TEST(Variance, StopsWhereConvergedAndDilatesTheRest) {
         }
     // Threshold 0: nothing converges, every pixel takes n^2 and matches uniform.
     const SyntheticSource a(w, h, f), b(w, h, f);
-    st.noiseThreshold = 0.0;
+    st.params.set("noise_threshold", 0.0);
     const StrategyImages all = runStrategy(st, a);
-    const StrategyImages uni = runStrategy(strategy(StrategyKind::Uniform, n), b);
+    const StrategyImages uni = runStrategy(strategy("uniform", n), b);
     EXPECT_TRUE(all.primaryRays == uni.primaryRays);
     for (std::size_t i = 0; i < all.image.size(); ++i)
         EXPECT_NEAR(all.image.pixels()[i].x, uni.image.pixels()[i].x, 1e-6f);
@@ -182,10 +182,10 @@ TEST(ShapeId, SupersamplesExactlyWhereShapesDiffer) {
     auto shape = [](float fx, float) { return fx < 5.5f ? 1u : 2u; };  // an edge inside pixel 5
     auto f = [](float fx, float) { return glm::vec3(fx < 5.5f ? 0.2f : 0.8f); };
     const SyntheticSource src(w, h, f, false, shape), uniSrc(w, h, f);
-    StrategySettings st = strategy(StrategyKind::ShapeIdAdaptive, n);
-    st.minSamples = 4;
+    StrategySettings st = strategy("shape-id", n);
+    st.params.set("min_samples", 4);
     const StrategyImages out = runStrategy(st, src);
-    const StrategyImages uni = runStrategy(strategy(StrategyKind::Uniform, n), uniSrc);
+    const StrategyImages uni = runStrategy(strategy("uniform", n), uniSrc);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             EXPECT_EQ(out.primaryRays.at(x, y), x == 5 ? 4 + n * n : 4) << x;
@@ -224,9 +224,9 @@ TEST(Hybrid, TheMapSaysWhereToLookContrastWhereToStop) {
     for (int y = 0; y < h; ++y)
         for (int x = 6; x < w; ++x) map.at(x, y) = 1.0f / 3.0f;
     const SyntheticSource src(w, h, f);
-    StrategySettings st = strategy(StrategyKind::Hybrid, n, &map);
-    st.noiseThreshold = 0.01;
-    st.sampleStep = 3;
+    StrategySettings st = strategy("hybrid", n, &map);
+    st.params.set("noise_threshold", 0.01);
+    st.params.set("sample_step", 3);
     const StrategyImages out = runStrategy(st, src);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
@@ -244,10 +244,10 @@ TEST(Hybrid, AllOnesWithThresholdZeroIsUniform) {
     auto f = [](float fx, float fy) { return glm::vec3(std::sin(fx * 1.3f) + 2.0f, fy, 1.0f); };
     const ImageGrey ones(w, h, 1.0f);
     const SyntheticSource a(w, h, f), b(w, h, f);
-    StrategySettings st = strategy(StrategyKind::Hybrid, n, &ones);
-    st.noiseThreshold = 0.0;
+    StrategySettings st = strategy("hybrid", n, &ones);
+    st.params.set("noise_threshold", 0.0);
     const StrategyImages hybrid = runStrategy(st, a);
-    const StrategyImages uniform = runStrategy(strategy(StrategyKind::Uniform, n), b);
+    const StrategyImages uniform = runStrategy(strategy("uniform", n), b);
     EXPECT_TRUE(hybrid.primaryRays == uniform.primaryRays);
     for (std::size_t i = 0; i < hybrid.image.size(); ++i) {
         const glm::vec3 d = hybrid.image.pixels()[i] - uniform.image.pixels()[i];
@@ -256,36 +256,36 @@ TEST(Hybrid, AllOnesWithThresholdZeroIsUniform) {
 }
 
 TEST(Baselines, RejectBadSettings) {
-    StrategySettings st = strategy(StrategyKind::SupersampleFilter, 255);
+    StrategySettings st = strategy("supersample", 255);
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);  // 4 * 255^2 rays overflow the map
     st.strata = 2;
-    st.supersample = 0;
+    st.params.set("supersample", 0);
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
-    st.supersample = 2;
-    st.filterRadius = 0.0;
+    st.params.set("supersample", 2);
+    st.params.set("filter_radius", 0.0);
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
-    st = strategy(StrategyKind::VarianceAdaptive, 2);
-    st.sampleStep = 0;
+    st = strategy("variance", 2);
+    st.params.set("sample_step", 0);
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
-    st = strategy(StrategyKind::RpictAdaptive, 1);
-    st.threshold = -0.1;
+    st = strategy("rpict", 1);
+    st.params.set("threshold", -0.1);
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
-    st = strategy(StrategyKind::Hybrid, 2);
+    st = strategy("hybrid", 2);
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);  // no map
     const ImageGrey map(4, 4, 0.5f);
     st.aamap = &map;
-    st.sampleStep = 0;
+    st.params.set("sample_step", 0);
     EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
-    StrategyKind k{};
     for (const char* name :
-         {"uniform", "aamap", "aamap-subsample", "rpict", "supersample", "variance", "shape-id", "hybrid"}) {
-        ASSERT_TRUE(parse(name, k)) << name;
-        EXPECT_STREQ(toString(k), name);
-    }
-    EXPECT_FALSE(parse("adaptive", k));
-    DownFilter d{};
-    EXPECT_TRUE(parse("gaussian", d));
-    EXPECT_EQ(d, DownFilter::Gaussian);
+         {"uniform", "aamap", "aamap-subsample", "rpict", "supersample", "variance", "shape-id", "hybrid"})
+        EXPECT_NE(findStrategy(name), nullptr) << name;
+    EXPECT_EQ(findStrategy("adaptive"), nullptr);
+    st = strategy("supersample", 2);
+    st.params.set("filter", "lanczos");
+    EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
+    st = strategy("uniform", 2);
+    st.params.set("spacing", 4);  // another strategy's parameter
+    EXPECT_THROW(makeStrategy(st, 4, 4), std::invalid_argument);
 }
 
 }  // namespace

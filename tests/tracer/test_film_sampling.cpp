@@ -64,35 +64,35 @@ struct StratifyingStrategy {
 // `k` is the strata per axis the pixel should end up with.
 std::vector<StratifyingStrategy> stratifyingStrategies(int k, const ImageGrey* ones) {
     std::vector<StratifyingStrategy> all;
-    const auto add = [&](const std::string& name, StrategyKind kind, auto&& configure) {
+    const auto add = [&](const std::string& name, const std::string& kind, auto&& configure) {
         StrategySettings s;
-        s.kind = kind;
+        s.name = kind;
         s.strata = k;
         configure(s);
         all.push_back({name, s, k});
     };
-    add("uniform", StrategyKind::Uniform, [](StrategySettings&) {});
-    add("aamap", StrategyKind::Aamap, [&](StrategySettings& s) { s.aamap = ones; });
-    add("aamap-linear-rays", StrategyKind::Aamap, [&](StrategySettings& s) {
+    add("uniform", "uniform", [](StrategySettings&) {});
+    add("aamap", "aamap", [&](StrategySettings& s) { s.aamap = ones; });
+    add("aamap-linear-rays", "aamap", [&](StrategySettings& s) {
         s.aamap = ones;
-        s.mapping = StrataMapping::LinearRays;
+        s.params.set("mapping", std::string(toString(StrataMapping::LinearRays)));
     });
-    add("aamap-subsample", StrategyKind::AamapSubsample, [&](StrategySettings& s) {
+    add("aamap-subsample", "aamap-subsample", [&](StrategySettings& s) {
         s.aamap = ones;
-        s.spacing = 1;
-        s.threshold = 0.0;
+        s.params.set("spacing", 1);
+        s.params.set("threshold", 0.0);
     });
-    add("variance", StrategyKind::VarianceAdaptive, [](StrategySettings& s) {
-        s.noiseThreshold = 0.0;  // never converged: every stratum is taken
-        s.minSamples = 2;
-        s.sampleStep = 3;
+    add("variance", "variance", [](StrategySettings& s) {
+        s.params.set("noise_threshold", 0.0);  // never converged: every stratum is taken
+        s.params.set("min_samples", 2);
+        s.params.set("sample_step", 3);
     });
-    add("hybrid", StrategyKind::Hybrid, [&](StrategySettings& s) {
+    add("hybrid", "hybrid", [&](StrategySettings& s) {
         s.aamap = ones;
-        s.noiseThreshold = 0.0;
-        s.sampleStep = 3;
+        s.params.set("noise_threshold", 0.0);
+        s.params.set("sample_step", 3);
     });
-    add("shape-id", StrategyKind::ShapeIdAdaptive, [&](StrategySettings& s) { s.minSamples = k * k; });
+    add("shape-id", "shape-id", [&](StrategySettings& s) { s.params.set("min_samples", k * k); });
     return all;
 }
 
@@ -103,10 +103,10 @@ std::vector<StratifyingStrategy> supersampleStrategies() {
     for (int f = 1; f <= 3; ++f)
         for (int n = 1; f * n <= 8; ++n) {
             StrategySettings s;
-            s.kind = StrategyKind::SupersampleFilter;
+            s.name = "supersample";
             s.strata = n;
-            s.supersample = f;
-            s.filter = DownFilter::Box;
+            s.params.set("supersample", f);
+            s.params.set("filter", "box");
             all.push_back({fmt::format("supersample f={} n={}", f, n), s, f * n});
         }
     return all;

@@ -101,9 +101,9 @@ TEST(Subsample, HugeThresholdTracesOnlyTheGridAndIsExactOnARamp) {
     const ImageGrey map(w, h, 1.0f);
     for (int s : {1, 4, 8, 16, 64}) {
         const SyntheticSource src(w, h, ramp, true);
-        StrategySettings st = strategy(StrategyKind::AamapSubsample, 1, &map);
-        st.spacing = s;
-        st.threshold = std::numeric_limits<double>::infinity();
+        StrategySettings st = strategy("aamap-subsample", 1, &map);
+        st.params.set("spacing", s);
+        st.params.set("threshold", std::numeric_limits<double>::infinity());
         const StrategyImages out = runStrategy(st, src);
         const std::vector<int> xs = gridLines(w, s), ys = gridLines(h, s);
         for (int y = 0; y < h; ++y)
@@ -123,8 +123,8 @@ TEST(Subsample, RefinesOnlyWhereTheMapIsNonZeroWithoutCracks) {
     ImageGrey map(w, h, 0.0f);
     map.at(13, 21) = 0.3f;
     const SyntheticSource src(w, h, ramp, true);
-    StrategySettings st = strategy(StrategyKind::AamapSubsample, 3, &map);
-    st.spacing = 8;
+    StrategySettings st = strategy("aamap-subsample", 3, &map);
+    st.params.set("spacing", 8);
     const StrategyImages out = runStrategy(st, src);
     EXPECT_EQ(out.traced.at(13, 21), 1);
     EXPECT_EQ(out.primaryRays.at(13, 21), 4);  // k = 1 + round(0.3 * 2) = 2
@@ -148,10 +148,10 @@ TEST(Subsample, AllOnesIsUniformBitForBit) {
     const int w = 19, h = 11, n = 3;
     const ImageGrey ones(w, h, 1.0f);
     const SyntheticSource a(w, h, ramp), b(w, h, ramp);
-    StrategySettings st = strategy(StrategyKind::AamapSubsample, n, &ones);
-    st.spacing = 5;
+    StrategySettings st = strategy("aamap-subsample", n, &ones);
+    st.params.set("spacing", 5);
     const StrategyImages sub = runStrategy(st, a, 3);
-    const StrategyImages uni = runStrategy(strategy(StrategyKind::Uniform, n), b, 1);
+    const StrategyImages uni = runStrategy(strategy("uniform", n), b, 1);
     EXPECT_TRUE(sub.image == uni.image);
     EXPECT_TRUE(sub.primaryRays == uni.primaryRays);
     EXPECT_TRUE(sub.traced == uni.traced);
@@ -171,10 +171,10 @@ TEST(Subsample, ExtremesGiveFiniteImagesAndHonestCounts) {
         ImageGrey map(c.w, c.h, c.mapValue);
         if (c.mapValue > 0.0f) map.at(0, 0) = 0.0f;  // exact zeros next to non-zero values
         const SyntheticSource src(c.w, c.h, ramp);
-        StrategySettings st = strategy(StrategyKind::AamapSubsample, c.n, &map);
-        st.spacing = c.s;
-        st.threshold = c.t;
-        st.mapping = c.n == 32 ? StrataMapping::LinearRays : StrataMapping::Paper;
+        StrategySettings st = strategy("aamap-subsample", c.n, &map);
+        st.params.set("spacing", c.s);
+        st.params.set("threshold", c.t);
+        st.params.set("mapping", std::string(toString(c.n == 32 ? StrataMapping::LinearRays : StrataMapping::Paper)));
         const StrategyImages out = runStrategy(st, src);
         for (const glm::vec3& v : out.image.pixels()) EXPECT_TRUE(std::isfinite(v.x + v.y + v.z));
         EXPECT_EQ(src.totalCalls(), testing::sumOf(out.primaryRays)) << c.w << "x" << c.h;
@@ -190,15 +190,15 @@ TEST(Subsample, ExtremesGiveFiniteImagesAndHonestCounts) {
 
 TEST(Subsample, RejectsBadSettings) {
     const ImageGrey map(8, 8, 0.0f);
-    StrategySettings st = strategy(StrategyKind::AamapSubsample, 2, &map);
-    st.spacing = 0;
+    StrategySettings st = strategy("aamap-subsample", 2, &map);
+    st.params.set("spacing", 0);
     EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
-    st.spacing = 65;
+    st.params.set("spacing", 65);
     EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
-    st.spacing = 8;
-    st.threshold = -1.0;
+    st.params.set("spacing", 8);
+    st.params.set("threshold", -1.0);
     EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
-    st.threshold = 0.0;
+    st.params.set("threshold", 0.0);
     st.aamap = nullptr;
     EXPECT_THROW(makeStrategy(st, 8, 8), std::invalid_argument);
     st.aamap = &map;
@@ -214,8 +214,8 @@ TEST(Subsample, GivenBlockSumsDecideTheSplitsAndAreNamed) {
     const ImageGrey ones(w, h, 1.0f);
     const ImageGrey zeros(w, h, 0.0f);
     const BlockSums given(zeros);
-    StrategySettings st = strategy(StrategyKind::AamapSubsample, 2, &ones);
-    st.spacing = 8;
+    StrategySettings st = strategy("aamap-subsample", 2, &ones);
+    st.params.set("spacing", 8);
     const SyntheticSource a(w, h, [](float fx, float) { return glm::vec3(fx); }, true);
     const StrategyImages cpu = runStrategy(st, a);
     st.blockSums = &given;

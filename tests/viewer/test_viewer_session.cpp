@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <mutex>
+#include <set>
 #include <string>
 
 #include <fmt/format.h>
@@ -33,12 +34,26 @@ TraceSettings smallTrace(int w, int h) {
 
 // The tiles the hook reports cover the image once per phase, and copying their pixels as they
 // arrive rebuilds the final image exactly; the hook changes nothing in the result.
+TEST(ViewerStrategies, GCyclesThroughEveryStrategyThatUsesTheAamap) {
+    std::set<std::string> seen;
+    std::string s = "uniform";  // not one of them: G starts at the first
+    for (std::size_t i = 0; i < 2 * strategyRegistry().size(); ++i) {
+        s = nextViewerStrategy(s);
+        EXPECT_TRUE(findStrategy(s)->usesAamap) << s;
+        seen.insert(s);
+    }
+    std::size_t usingTheMap = 0;
+    for (const StrategyDescriptor& d : strategyRegistry()) usingTheMap += d.usesAamap ? 1 : 0;
+    EXPECT_EQ(seen.size(), usingTheMap);
+    EXPECT_EQ(nextViewerStrategy("aamap"), "aamap-subsample");
+}
+
 TEST(TileHook, TilesRebuildTheFinalImageAndChangeNothing) {
     const Scene scene = loadScene("builtin:cornell");
     const Tracer tracer(scene);
     const int W = 40, H = 37;  // not a multiple of the 16-pixel tile
     StrategySettings strategy;
-    strategy.kind = StrategyKind::Uniform;
+    strategy.name = "uniform";
     strategy.strata = 2;
     const TraceResult plain = tracer.render(scene.views[0], smallTrace(W, H), strategy);
 
@@ -65,7 +80,7 @@ TEST(TileHook, ThrowingCancelsTheRender) {
     const Scene scene = loadScene("builtin:cornell");
     const Tracer tracer(scene);
     StrategySettings strategy;
-    strategy.kind = StrategyKind::Uniform;
+    strategy.name = "uniform";
     TraceSettings ts = smallTrace(64, 64);
     ts.threads = 2;
     std::atomic<int> tiles{0};

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "tracer/strategies/strategies.h"
@@ -27,7 +29,6 @@ class HybridStrategy final : public SamplingStrategy {
 public:
     HybridStrategy(int n, StrataMapping mapping, double threshold, int step, const ImageGrey& map)
         : n_(n), mapping_(mapping), threshold_(threshold), step_(step), map_(map), order_(varianceOrder(n)) {}
-    StrategyKind kind() const override { return StrategyKind::Hybrid; }
     int maxRaysPerPixel() const override { return n_ * n_; }
     std::string describe() const override {
         return fmt::format("hybrid n={} mapping={} noise-threshold={} sample-step={}", n_, toString(mapping_),
@@ -92,9 +93,20 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SamplingStrategy> makeHybridStrategy(int n, StrataMapping mapping, double noiseThreshold,
-                                                     int sampleStep, const ImageGrey& map) {
-    return std::make_unique<HybridStrategy>(n, mapping, noiseThreshold, sampleStep, map);
+StrategyDescriptor hybridStrategy() {
+    StrategyDescriptor d;
+    d.name = "hybrid";
+    d.doc = "the aamap says where to look (1 ray elsewhere), sample contrast where to stop (beyond the paper)";
+    d.params = {mappingParam(),
+                realParam("noise_threshold", 0, std::numeric_limits<double>::infinity(), 0.01,
+                          "flagged pixels stop adding samples once their error is below it"),
+                intParam("sample_step", 1, 1024, 4, "samples added per round to a flagged pixel")};
+    d.usesAamap = true;
+    d.create = [](const StrategyParams& p, const StrategyInputs& in) {
+        return std::make_unique<HybridStrategy>(in.strata, mappingOf(p), p.real("noise_threshold"),
+                                                p.integer("sample_step"), *in.aamap);
+    };
+    return d;
 }
 
 }  // namespace aamap

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <vector>
 
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "tracer/strategies/strategies.h"
@@ -30,7 +32,6 @@ namespace {
 class RpictStrategy final : public SamplingStrategy {
 public:
     RpictStrategy(int spacing, double threshold) : spacing_(spacing), threshold_(threshold) {}
-    StrategyKind kind() const override { return StrategyKind::RpictAdaptive; }
     int maxRaysPerPixel() const override { return 1; }
     std::string describe() const override {
         return fmt::format("rpict spacing={} threshold={}", spacing_, threshold_);
@@ -106,8 +107,18 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SamplingStrategy> makeRpictStrategy(int spacing, double threshold) {
-    return std::make_unique<RpictStrategy>(spacing, threshold);
+StrategyDescriptor rpictStrategy() {
+    StrategyDescriptor d;
+    d.name = "rpict";
+    d.doc = "Radiance rpict-style adaptive subsampling by image contrast, one ray per pixel at most (no aamap)";
+    d.params = {intParam("spacing", 1, 64, 4, "-ps: initial sample spacing in pixels"),
+                realParam("threshold", 0, std::numeric_limits<double>::infinity(), 0.05,
+                          "-pt: relative colour/depth difference that forces a split")};
+    d.marksTraced = true;
+    d.create = [](const StrategyParams& p, const StrategyInputs&) {
+        return std::make_unique<RpictStrategy>(p.integer("spacing"), p.real("threshold"));
+    };
+    return d;
 }
 
 }  // namespace aamap

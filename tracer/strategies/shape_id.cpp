@@ -25,7 +25,6 @@ namespace {
 class ShapeIdStrategy final : public SamplingStrategy {
 public:
     ShapeIdStrategy(int n, int minSamples) : n_(n), m_(shapeIdMinStrata(minSamples, n)) {}
-    StrategyKind kind() const override { return StrategyKind::ShapeIdAdaptive; }
     int maxRaysPerPixel() const override { return m_ < n_ ? m_ * m_ + n_ * n_ : n_ * n_; }
     std::string describe() const override { return fmt::format("shape-id n={} min-samples={}", n_, m_ * m_); }
 
@@ -68,8 +67,15 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SamplingStrategy> makeShapeIdStrategy(int n, int minSamples) {
-    return std::make_unique<ShapeIdStrategy>(n, minSamples);
+StrategyDescriptor shapeIdStrategy() {
+    StrategyDescriptor d;
+    d.name = "shape-id";
+    d.doc = "n x n more samples where the first ones hit different shapes (pbrt-v2)";
+    d.params = {intParam("min_samples", 1, 1024, 4, "first samples per pixel (rounded down to a square)")};
+    d.create = [](const StrategyParams& p, const StrategyInputs& in) {
+        return std::make_unique<ShapeIdStrategy>(in.strata, p.integer("min_samples"));
+    };
+    return d;
 }
 
 }  // namespace aamap

@@ -1,19 +1,16 @@
 #pragma once
-// Factories for the multi-pass strategies (parameters already validated by makeStrategy).
-#include <memory>
-
+// The built-in strategies, each declared by its own file (tracer/strategy.cpp lists them).
 #include "tracer/strategy.h"
 
 namespace aamap {
 
-// sums: precomputed block sums of `map` (null: built on the CPU at render time).
-std::unique_ptr<SamplingStrategy> makeSubsampleStrategy(int n, StrataMapping mapping, int spacing, double threshold,
-                                                        const ImageGrey& map, const BlockSums* sums);
-std::unique_ptr<SamplingStrategy> makeRpictStrategy(int spacing, double threshold);
-std::unique_ptr<SamplingStrategy> makeSupersampleStrategy(int n, int factor, DownFilter filter, double radius);
-std::unique_ptr<SamplingStrategy> makeVarianceStrategy(int n, double noiseThreshold, int minSamples, int sampleStep);
-std::unique_ptr<SamplingStrategy> makeShapeIdStrategy(int n, int minSamples);
-std::unique_ptr<SamplingStrategy> makeHybridStrategy(int n, StrataMapping mapping, double noiseThreshold,
-                                                     int sampleStep, const ImageGrey& map);
+StrategyDescriptor uniformStrategy();      // strategies/uniform.cpp
+StrategyDescriptor aamapStrategy();        // strategies/aamap.cpp
+StrategyDescriptor subsampleStrategy();    // strategies/subsample.cpp
+StrategyDescriptor rpictStrategy();        // strategies/rpict.cpp
+StrategyDescriptor supersampleStrategy();  // strategies/supersample.cpp
+StrategyDescriptor varianceStrategy();     // strategies/variance.cpp
+StrategyDescriptor shapeIdStrategy();      // strategies/shape_id.cpp
+StrategyDescriptor hybridStrategy();       // strategies/hybrid.cpp
 
 }  // namespace aamap

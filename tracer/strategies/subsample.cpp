@@ -1,5 +1,6 @@
 #include "tracer/strategies/subsample.h"
 
+#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -113,7 +114,6 @@ public:
     SubsampleStrategy(int n, StrataMapping mapping, int spacing, double threshold, const ImageGrey& map,
                       const BlockSums* sums)
         : n_(n), mapping_(mapping), spacing_(spacing), threshold_(threshold), map_(map), sums_(sums) {}
-    StrategyKind kind() const override { return StrategyKind::AamapSubsample; }
     int maxRaysPerPixel() const override { return n_ * n_; }
     std::string describe() const override {
         return fmt::format("aamap-subsample n={} mapping={} spacing={} threshold={} block-sums={}", n_,
@@ -148,9 +148,23 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SamplingStrategy> makeSubsampleStrategy(int n, StrataMapping mapping, int spacing, double threshold,
-                                                        const ImageGrey& map, const BlockSums* sums) {
-    return std::make_unique<SubsampleStrategy>(n, mapping, spacing, threshold, map, sums);
+StrategyDescriptor subsampleStrategy() {
+    StrategyDescriptor d;
+    d.name = "aamap-subsample";
+    d.doc = "adaptive subsampling guided by the aamap, then k x k rays in traced pixels (paper section 4)";
+    d.params = {intParam("spacing", 1, 64, 8, "grid spacing s in pixels (the paper's Space 8 / Space 16)"),
+                // Infinity: never split (only the grid is traced); the config takes finite values.
+                realParam("threshold", 0, std::numeric_limits<double>::infinity(), 0,
+                          "blocks whose aamap sum exceeds it are split, the rest interpolated"),
+                mappingParam()};
+    d.usesAamap = true;
+    d.needsBlockSums = true;
+    d.marksTraced = true;
+    d.create = [](const StrategyParams& p, const StrategyInputs& in) {
+        return std::make_unique<SubsampleStrategy>(in.strata, mappingOf(p), p.integer("spacing"), p.real("threshold"),
+                                                   *in.aamap, in.blockSums);
+    };
+    return d;
 }
 
 }  // namespace aamap

@@ -14,11 +14,13 @@
 namespace aamap {
 namespace {
 
+enum class DownFilter { Box, Gaussian };
+const char* toString(DownFilter filter) { return filter == DownFilter::Gaussian ? "gaussian" : "box"; }
+
 class SupersampleStrategy final : public SamplingStrategy {
 public:
     SupersampleStrategy(int n, int factor, DownFilter filter, double radius)
         : n_(n), f_(factor), filter_(filter), radius_(radius) {}
-    StrategyKind kind() const override { return StrategyKind::SupersampleFilter; }
     int maxRaysPerPixel() const override { return f_ * f_ * n_ * n_; }
     int tilePhases() const override { return 2; }
     std::string describe() const override {
@@ -94,8 +96,19 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SamplingStrategy> makeSupersampleStrategy(int n, int factor, DownFilter filter, double radius) {
-    return std::make_unique<SupersampleStrategy>(n, factor, filter, radius);
+StrategyDescriptor supersampleStrategy() {
+    StrategyDescriptor d;
+    d.name = "supersample";
+    d.doc = "supersample and filter down (pfilt)";
+    d.params = {intParam("supersample", 1, 4, 2, "render at this factor of the resolution (1: uniform sampling)"),
+                choiceParam("filter", {toString(DownFilter::Box), toString(DownFilter::Gaussian)},
+                            "down filter, as pfilt"),
+                realParam("filter_radius", 0.01, 10, 0.6, "gaussian: radius in output pixels")};
+    d.create = [](const StrategyParams& p, const StrategyInputs& in) {
+        const DownFilter filter = p.choice("filter") == toString(DownFilter::Gaussian) ? DownFilter::Gaussian : DownFilter::Box;
+        return std::make_unique<SupersampleStrategy>(in.strata, p.integer("supersample"), filter, p.real("filter_radius"));
+    };
+    return d;
 }
 
 }  // namespace aamap

@@ -5,6 +5,8 @@
 #include <numeric>
 #include <vector>
 
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "tracer/sampler.h"
@@ -53,7 +55,6 @@ public:
     VarianceStrategy(int n, double threshold, int minSamples, int step)
         : n_(n), threshold_(threshold), min_(std::min(std::max(minSamples, 2), n * n)), step_(step),
           order_(varianceOrder(n)) {}
-    StrategyKind kind() const override { return StrategyKind::VarianceAdaptive; }
     int maxRaysPerPixel() const override { return n_ * n_; }
     int tilePhases() const override { return 1 + (n_ * n_ - min_ + step_ - 1) / step_; }
     std::string describe() const override {
@@ -127,8 +128,19 @@ private:
 
 }  // namespace
 
-std::unique_ptr<SamplingStrategy> makeVarianceStrategy(int n, double noiseThreshold, int minSamples, int sampleStep) {
-    return std::make_unique<VarianceStrategy>(n, noiseThreshold, minSamples, sampleStep);
+StrategyDescriptor varianceStrategy() {
+    StrategyDescriptor d;
+    d.name = "variance";
+    d.doc = "variance-driven adaptive sampling (Cycles)";
+    d.params = {realParam("noise_threshold", 0, std::numeric_limits<double>::infinity(), 0.01,
+                          "pixels whose error estimate is at least this get more samples"),
+                intParam("min_samples", 1, 1024, 4, "first round of samples per pixel (1 runs as 2: the error needs two)"),
+                intParam("sample_step", 1, 1024, 4, "samples added per round")};
+    d.create = [](const StrategyParams& p, const StrategyInputs& in) {
+        return std::make_unique<VarianceStrategy>(in.strata, p.real("noise_threshold"), p.integer("min_samples"),
+                                                  p.integer("sample_step"));
+    };
+    return d;
 }
 
 }  // namespace aamap
