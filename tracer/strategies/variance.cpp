@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <vector>
-
-#include <limits>
 
 #include <fmt/format.h>
 
