@@ -71,10 +71,10 @@ const ParamSpec* StrategyDescriptor::param(const std::string& key) const {
 
 namespace {
 
-// An explicit list rather than self-registering statics: aamap_tracer is a static library, and
-// the linker drops an object file nothing refers to, registrar and all. A new strategy is its
-// own file in tracer/strategies/ plus one line here. A deque: registerStrategy() keeps earlier
-// pointers valid.
+// An explicit list rather than self-registering statics: aamap_strategies is a static library,
+// and the linker drops an object file nothing refers to, registrar and all. A new strategy is
+// its own file in tracer/strategies/ plus one line here. A deque: registerStrategy() keeps
+// earlier pointers valid.
 std::deque<StrategyDescriptor>& registry() {
     static std::deque<StrategyDescriptor> all = {
         uniformStrategy(),     aamapStrategy(),    subsampleStrategy(), rpictStrategy(),

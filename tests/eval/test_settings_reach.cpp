@@ -394,7 +394,8 @@ protected:
         dir_.write("other_lights.yaml", "- {type: point, name: bulb, position: [0, 1.5, 0], intensity: [3, 2, 2]}\n");
         // Every strategy once, every light type, the default sections.
         std::string renders;
-        for (const StrategyDescriptor& s : strategyRegistry()) renders += fmt::format("  - {{strategy: {}, rpp: 4}}\n", s.name);
+        for (const StrategyDescriptor& s : strategyRegistry())
+            renders += fmt::format("  - {{strategy: {}, rpp: 4}}\n", s.name);
         bases_["lists"] = "scene: builtin:cornell\n"
                           "lights:\n"
                           "  - {type: point, name: p, position: [0, 1.5, 0], intensity: [2, 2, 2]}\n"

@@ -127,15 +127,15 @@ TEST(StrategyRegistry, ConfigAcceptsDefaultsAndRejectsOutOfRangeAtTheValue) {
                     EXPECT_EQ(e.line(), 5) << e.what();
                     EXPECT_EQ(e.column(), static_cast<int>(p.name.size()) + 7) << e.what();
                     const std::string what = e.what();
-                    EXPECT_EQ(what.rfind(fmt::format("exp.yaml:5:{}: renders.0.{}: ", p.name.size() + 7, p.name), 0), 0u)
-                        << what;
+                    const std::string where = fmt::format("exp.yaml:5:{}: renders.0.{}: ", p.name.size() + 7, p.name);
+                    EXPECT_EQ(what.rfind(where, 0), 0u) << what;
                     EXPECT_NE(what.find(p.type == ParamType::Choice ? p.choices.front() : p.rangeText()),
                               std::string::npos)
                         << what;
                 }
                 // --set goes through the same schema.
-                EXPECT_THROW(parse(configWith(s.name, p.name, fallback), {fmt::format("renders.0.{}={}", p.name, value)}),
-                             InputError);
+                const std::string set = fmt::format("renders.0.{}={}", p.name, value);
+                EXPECT_THROW(parse(configWith(s.name, p.name, fallback), {set}), InputError);
                 // And so does the tracer's own check.
                 EXPECT_THROW(resolveParams(s, StrategyParams{{p.name, p.type == ParamType::Choice
                                                                           ? ParamValue(value)

@@ -1,9 +1,8 @@
 #include "tracer/strategies/hybrid.h"
 
 #include <algorithm>
-#include <vector>
-
 #include <limits>
+#include <vector>
 
 #include <fmt/format.h>
 

@@ -1,9 +1,8 @@
 #include "tracer/strategies/rpict.h"
 
 #include <cmath>
-#include <vector>
-
 #include <limits>
+#include <vector>
 
 #include <fmt/format.h>
 

@@ -105,8 +105,10 @@ StrategyDescriptor supersampleStrategy() {
                             "down filter, as pfilt"),
                 realParam("filter_radius", 0.01, 10, 0.6, "gaussian: radius in output pixels")};
     d.create = [](const StrategyParams& p, const StrategyInputs& in) {
-        const DownFilter filter = p.choice("filter") == toString(DownFilter::Gaussian) ? DownFilter::Gaussian : DownFilter::Box;
-        return std::make_unique<SupersampleStrategy>(in.strata, p.integer("supersample"), filter, p.real("filter_radius"));
+        const DownFilter filter =
+            p.choice("filter") == toString(DownFilter::Gaussian) ? DownFilter::Gaussian : DownFilter::Box;
+        return std::make_unique<SupersampleStrategy>(in.strata, p.integer("supersample"), filter,
+                                                     p.real("filter_radius"));
     };
     return d;
 }

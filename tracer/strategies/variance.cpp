@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <vector>
-
-#include <limits>
 
 #include <fmt/format.h>
 
@@ -134,7 +133,8 @@ StrategyDescriptor varianceStrategy() {
     d.doc = "variance-driven adaptive sampling (Cycles)";
     d.params = {realParam("noise_threshold", 0, std::numeric_limits<double>::infinity(), 0.01,
                           "pixels whose error estimate is at least this get more samples"),
-                intParam("min_samples", 1, 1024, 4, "first round of samples per pixel (1 runs as 2: the error needs two)"),
+                intParam("min_samples", 1, 1024, 4,
+                         "first round of samples per pixel (1 runs as 2: the error estimate needs two)"),
                 intParam("sample_step", 1, 1024, 4, "samples added per round")};
     d.create = [](const StrategyParams& p, const StrategyInputs& in) {
         return std::make_unique<VarianceStrategy>(in.strata, p.real("noise_threshold"), p.integer("min_samples"),
