@@ -17,7 +17,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mitsuba_throughput import find_libllvm, mitsuba_scene_file  # noqa: E402
+from mitsuba_throughput import load_mitsuba, mitsuba_scene_file  # noqa: E402
 
 
 def main():
@@ -33,20 +33,14 @@ def main():
     strata = round(args.spp ** 0.5)
     if strata * strata != args.spp:
         sys.exit(f"--spp {args.spp} is not a perfect square")
-    if "DRJIT_LIBLLVM_PATH" not in os.environ:
-        lib = find_libllvm()
-        if lib is None:
-            sys.exit("no libLLVM found: apt-get install -y libllvm19, or set DRJIT_LIBLLVM_PATH")
-        os.environ["DRJIT_LIBLLVM_PATH"] = lib
-    import mitsuba as mi
+    mi, _ = load_mitsuba(args.scene)
     import numpy as np
 
     means = {}
     with tempfile.TemporaryDirectory() as tmp:
         path = mitsuba_scene_file(args.scene, args.size, args.spp, args.depth, "box", tmp)
         for variant in ("llvm_ad_rgb", "llvm_ad_spectral"):
-            mi.set_variant(variant)
-            mi.Thread.thread().file_resolver().append(os.path.dirname(os.path.abspath(args.scene)))
+            mi, _ = load_mitsuba(args.scene, variant)
             image = np.array(mi.render(mi.load_file(path), spp=args.spp))[:, :, :3]
             means[f"mitsuba {variant}"] = image.reshape(-1, 3).mean(0)
         exr = os.path.join(tmp, "aamap.exr")

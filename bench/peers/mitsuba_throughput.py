@@ -36,6 +36,26 @@ def find_libllvm():
     return None
 
 
+def load_mitsuba(scene, variant="llvm_ad_rgb"):
+    """Mitsuba 3 and Dr.Jit in `variant`, resolving files next to `scene`; exits with the setup
+    step that is missing."""
+    if not os.path.exists(scene):
+        sys.exit(f"{scene}: no such scene")
+    if "DRJIT_LIBLLVM_PATH" not in os.environ:
+        lib = find_libllvm()
+        if lib is None:
+            sys.exit("no libLLVM found: apt-get install -y libllvm19, or set DRJIT_LIBLLVM_PATH")
+        os.environ["DRJIT_LIBLLVM_PATH"] = lib
+    try:
+        import drjit as dr
+        import mitsuba as mi
+    except ImportError:
+        sys.exit("no mitsuba module: .venv/bin/pip install mitsuba==3.6.4")
+    mi.set_variant(variant)
+    mi.Thread.thread().file_resolver().append(os.path.dirname(os.path.abspath(scene)))
+    return mi, dr
+
+
 def mitsuba_scene_file(scene, size, spp, depth, rfilter, out_dir):
     """The scene with the film size, sample count, path depth and pixel filter replaced."""
     tree = ET.parse(scene)
@@ -90,20 +110,9 @@ def main():
     strata = round(args.spp ** 0.5)
     if strata * strata != args.spp:
         sys.exit(f"--spp {args.spp} is not a perfect square")
-    if not os.path.exists(args.scene):
-        sys.exit(f"{args.scene}: no such scene")
     if not os.path.exists(args.bench):
         sys.exit(f"{args.bench}: build it first (cmake --build --preset release)")
-
-    if "DRJIT_LIBLLVM_PATH" not in os.environ:
-        lib = find_libllvm()
-        if lib is None:
-            sys.exit("no libLLVM found: apt-get install -y libllvm19, or set DRJIT_LIBLLVM_PATH")
-        os.environ["DRJIT_LIBLLVM_PATH"] = lib
-    import drjit as dr
-    import mitsuba as mi
-    mi.set_variant("llvm_ad_rgb")
-    mi.Thread.thread().file_resolver().append(os.path.dirname(os.path.abspath(args.scene)))
+    mi, dr = load_mitsuba(args.scene)
     samples = args.size * args.size * args.spp
 
     with tempfile.TemporaryDirectory() as tmp:

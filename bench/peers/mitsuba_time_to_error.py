@@ -25,7 +25,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mitsuba_throughput import find_libllvm, mitsuba_scene_file  # noqa: E402
+from mitsuba_throughput import load_mitsuba, mitsuba_scene_file  # noqa: E402
 
 
 def ladder(text):
@@ -76,19 +76,9 @@ def main():
     ap.add_argument("--aamap", default=os.path.join(repo, "build", "release", "aamap"))
     ap.add_argument("--json", help="write every setting's times and errors here")
     args = ap.parse_args()
-    if not os.path.exists(args.scene):
-        sys.exit(f"{args.scene}: no such scene")
     if not os.path.exists(args.aamap):
         sys.exit(f"{args.aamap}: build it first (cmake --build --preset release)")
-    if "DRJIT_LIBLLVM_PATH" not in os.environ:
-        lib = find_libllvm()
-        if lib is None:
-            sys.exit("no libLLVM found: apt-get install -y libllvm19, or set DRJIT_LIBLLVM_PATH")
-        os.environ["DRJIT_LIBLLVM_PATH"] = lib
-    import drjit as dr
-    import mitsuba as mi
-    mi.set_variant("llvm_ad_rgb")
-    mi.Thread.thread().file_resolver().append(os.path.dirname(os.path.abspath(args.scene)))
+    mi, dr = load_mitsuba(args.scene)
 
     times = {}  # (renderer, setting) -> [seconds per round]
     errors = {}  # (renderer, setting) -> aamap diff / results.json metrics
