@@ -60,6 +60,14 @@ std::string errorKey(const std::vector<const ComparedRun*>& group) {
     return "pct_error_mse";
 }
 
+// What a run's errors are measured against: the traced reference's cache key, else the file.
+std::string referenceIdentity(const ComparedRun& run) {
+    const Json& ref = run.results.contains("reference") ? run.results["reference"] : Json();
+    if (!ref.is_object()) return "none";
+    if (ref.contains("render") && ref["render"].contains("key")) return ref["render"]["key"].get<std::string>();
+    return ref.value("type", std::string()) + ":" + ref.value("path", std::string());
+}
+
 double renderSeconds(const Json& r) {
     const Json& t = r["times_s"];
     return t.value("trace", 0.0) + t.value("snapshot_total", 0.0);
@@ -95,6 +103,11 @@ Table paretoTable(const std::vector<const ComparedRun*>& group, std::size_t scen
                         key == "pct_error_flip" ? "% pixels above the FLIP threshold" : "% pixels above the MSE threshold"),
             {"run", "series", "render", "time (s)", key == "pct_error_flip" ? "% error (FLIP)" : "% error (MSE)", "FLIP mean"},
             {}};
+    std::set<std::string> references;
+    for (const ComparedRun* run : group) references.insert(referenceIdentity(*run));
+    if (references.size() > 1)
+        t.note += "; the runs are measured against different references, so their errors do not compare: give them "
+                  "one (a `path` reference, or `reference.type: file`)";
     double best = std::numeric_limits<double>::infinity();
     for (const Point& p : points) {
         if (!(p.error < best)) continue;

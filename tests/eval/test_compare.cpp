@@ -105,6 +105,15 @@ TEST(Compare, ParetoFrontAcrossRunsHoldsExactlyTheUndominatedRenders) {
         EXPECT_GT(std::stod(t.rows[i - 1][4]), std::stod(t.rows[i][4]));
     }
     EXPECT_EQ(t.rows.back()[0], "shading.mode=path");  // the unbiased mode reaches the lowest error
+    EXPECT_EQ(t.note.find("different references"), std::string::npos) << t.note;  // one path reference for both
+    // Runs whose references differ (another seed traces another reference) are said not to compare.
+    {
+        FakeBackend backend;
+        const ExperimentConfig c = parseConfig(yaml, "exp.yaml", {"shading.mode=path", "seed=2"});
+        runExperimentWith(c, dir / "seed2", backend, RunnerOptions{"test-rev", false});
+    }
+    const std::vector<ComparedRun> mixed = loadComparedRuns({dirs[1], dir / "seed2"});
+    EXPECT_NE(paretoTable({&mixed[0], &mixed[1]}).note.find("different references"), std::string::npos);
     writeComparison(dirs, dir / "cmp", {}, false);
     EXPECT_NE(test::readText(dir / "cmp" / "compare.md").find("### Speed against accuracy across the runs"), std::string::npos);
 }
