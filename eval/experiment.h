@@ -10,7 +10,7 @@
 #include "eval/runner.h"
 #include "passes/snapshot.h"
 #include "scene/scene.h"
-#include "tracer/tracer.h"
+#include "tracer/tracer_types.h"
 
 namespace aamap {
 

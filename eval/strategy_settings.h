@@ -2,7 +2,8 @@
 // A render's config as the tracer's StrategySettings and ShadingSettings.
 #include "core/image.h"
 #include "eval/config.h"
-#include "tracer/tracer.h"
+#include "tracer/strategy.h"
+#include "tracer/tracer_types.h"
 
 namespace aamap {
 

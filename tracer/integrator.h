@@ -19,7 +19,7 @@
 #include "tracer/lights.h"
 #include "tracer/ray_offset.h"
 #include "tracer/sampler.h"
-#include "tracer/tracer.h"
+#include "tracer/tracer_types.h"
 
 namespace aamap {
 

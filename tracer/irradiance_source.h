@@ -10,7 +10,7 @@
 
 #include "tracer/integrator.h"
 #include "tracer/irradiance_cache.h"
-#include "tracer/tracer.h"
+#include "tracer/tracer_types.h"
 
 namespace aamap {
 

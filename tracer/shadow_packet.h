@@ -9,7 +9,7 @@
 #include <embree3/rtcore.h>
 #include <glm/vec3.hpp>
 
-#include "tracer/tracer.h"
+#include "tracer/tracer_types.h"
 
 namespace aamap {
 

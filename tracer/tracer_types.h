@@ -1,0 +1,99 @@
+#pragma once
+// The tracer's vocabulary: the plain settings, count and result types shared by the public entry
+// (tracer/tracer.h) and the tracer's internal headers. Internal code includes this header, not
+// tracer.h, so that it does not depend on the Tracer class it is part of.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "core/image.h"
+#include "tracer/irradiance_cache.h"
+#include "tracer/pixel_filter.h"
+
+namespace aamap {
+
+// How a hit is shaded (docs/tracer.md). Direct: emission + direct light + mirror/glass recursion,
+// no indirect diffuse. Path: unbiased path tracing (NEE + MIS + Russian roulette), the ground
+// truth. Cache: Direct plus indirect diffuse from the irradiance cache.
+enum class ShadingMode { Direct, Path, Cache };
+const char* toString(ShadingMode mode);
+
+// Direct/Cache with more than LightSet::kFewLights lights: how each shadow sample picks its light.
+// Power: the global power CDF (the pre-existing behaviour, kept for comparison). Contribution: a
+// per-hit CDF over each light's estimated unoccluded contribution there (docs/tracer.md).
+enum class LightSelection { Power, Contribution };
+
+struct ShadingSettings {
+    int areaLightSamples = 16;  // stratified shadow-ray samples per area light per hit (rounded to a square)
+    ShadingMode mode = ShadingMode::Direct;
+    // Path: longest path in segments, as Mitsuba's max_depth (1: emitters only, 2: direct light).
+    int maxDepth = 5;
+    bool russianRoulette = true;  // Path: from segment `rouletteDepth` on, paths die by throughput
+    int rouletteDepth = 5;        // Mitsuba's rr_depth default
+    // Direct/Cache: mirror and glass bounces followed per primary ray (glass splits into both).
+    int maxSpecularDepth = 8;
+    // Cache: the irradiance cache (-ab -ad -as -aa -ar; bounces 0 = no cache, shades as Direct).
+    // Its pre-pass takes the first hits of one camera ray per cacheGridStep x cacheGridStep pixels
+    // (at least a 32 x 32 grid, or the image size if smaller). docs/irradiance-cache.md, "Wiring".
+    IrradianceCacheSettings cache;
+    int cacheGridStep = 4;
+    LightSelection lightSelection = LightSelection::Contribution;  // many lights only (see above)
+};
+
+struct RayCounts {
+    std::uint64_t primary = 0;
+    std::uint64_t shadow = 0;
+    std::uint64_t other = 0;
+    std::uint64_t total() const { return primary + shadow + other; }
+};
+
+// Cache mode: the irradiance cache built for one render (docs/irradiance-cache.md, "Wiring").
+struct CacheStats {
+    bool built = false;                 // false: no cache (other modes, or bounces 0)
+    int gridWidth = 0, gridHeight = 0;  // the candidate grid of camera rays
+    std::size_t candidates = 0;         // its first hits offered to the pre-pass
+    std::size_t records = 0;            // records after the pre-pass (all levels)
+    std::size_t probed = 0;             // points the probe render found uncovered, offered as candidates too
+    double prepassSeconds = 0.0;        // candidates + pre-pass + probe; part of TraceResult::seconds
+    RayCounts prepassRays;              // candidate camera rays (primary) and pre-pass rays; NOT in TraceResult::rays
+    RayCounts probeRays;                // the probe render's own rays; NOT in TraceResult::rays
+    std::uint64_t misses = 0;           // lookups during the render that no record covered
+    std::uint64_t missRays = 0;         // their hemisphere rays (counted in TraceResult::rays.other)
+};
+
+// A finished tile, [x0, x1) x [y0, y1), of the render in progress (TraceSettings::onTileFinished).
+struct TileUpdate {
+    int x0, y0, x1, y1;
+    const ImageRGB& image;
+    const Image<std::uint16_t>& primaryRays;
+};
+
+struct TraceSettings {
+    int width = 512, height = 512;
+    std::uint64_t seed = 1;
+    int threads = 0;  // 0: all hardware threads
+    ShadingSettings shading;
+    // Where a pixel's primary rays land (tracer/pixel_filter.h): the pixel itself by default.
+    PixelFilterSettings filter;
+    // Called from worker threads as tiles finish (for progress bars); may be empty.
+    std::function<void(int tilesDone, int tilesTotal)> onTileDone;
+    // Live previews (the viewer): called from a worker thread as each tile of a tile phase
+    // finishes. Only the tile's own pixels may be read (other tiles are in flight); they are final
+    // for that phase (multi-phase strategies fill untraced pixels after the last tile). Reading
+    // never changes the result. Throwing from it cancels the render: render() rethrows.
+    std::function<void(const TileUpdate&)> onTileFinished;
+};
+
+struct TraceResult {
+    ImageRGB image;                    // linear radiance, finite everywhere
+    Image<std::uint16_t> primaryRays;  // primary rays traced per pixel
+    Image<std::uint8_t> traced;        // 1: estimated from rays at this pixel, 0: interpolated
+    std::string strategy;              // the strategy with its resolved parameters, one line
+    RayCounts rays;
+    std::uint64_t nonFiniteSamples = 0;  // NaN/Inf samples dropped (counted, never written)
+    double seconds = 0.0;
+    CacheStats cache;
+};
+
+}  // namespace aamap
