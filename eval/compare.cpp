@@ -69,6 +69,7 @@ std::string referenceIdentity(const ComparedRun& run) {
 }
 
 double renderSeconds(const Json& r) {
+    if (!r.contains("times_s") || !r["times_s"].is_object()) return 0.0;
     const Json& t = r["times_s"];
     return t.value("trace", 0.0) + t.value("snapshot_total", 0.0);
 }

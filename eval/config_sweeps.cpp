@@ -1,6 +1,8 @@
 #include "eval/config_sweeps.h"
 
 #include <algorithm>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -22,11 +24,24 @@ const std::vector<std::string>& sweptSections() {
 // MapReader then rejects with its position.
 std::string keyName(const YAML::Node& key) { return key.IsScalar() ? key.Scalar() : std::string(); }
 
+// The keys of a mapping a sweep may go through: the first of each name (a repeated key, which
+// the reader rejects as a duplicate with its line, must not be where a variant's value is put:
+// node[key] finds the first) and none holding the path separator (no setting's name does).
+std::vector<std::pair<std::string, YAML::Node>> sweepableEntries(const YAML::Node& map) {
+    std::vector<std::pair<std::string, YAML::Node>> entries;
+    for (const auto& kv : map) {
+        const std::string name = keyName(kv.first);
+        if (name.empty() || name.find('.') != std::string::npos) continue;
+        if (std::any_of(entries.begin(), entries.end(), [&](const auto& e) { return e.first == name; })) continue;
+        entries.emplace_back(name, kv.second);
+    }
+    return entries;
+}
+
 void collect(const yaml::Context& ctx, const YAML::Node& node, const std::string& path,
              std::vector<ConfigSweep>& out) {
     if (node.IsMap()) {
-        for (const auto& kv : node)
-            if (!keyName(kv.first).empty()) collect(ctx, kv.second, path + "." + keyName(kv.first), out);
+        for (const auto& [name, value] : sweepableEntries(node)) collect(ctx, value, path + "." + name, out);
         return;
     }
     if (!node.IsSequence()) return;
@@ -59,14 +74,12 @@ void setAt(YAML::Node root, const std::string& key, const YAML::Node& value) {
 std::vector<ConfigSweep> findConfigSweeps(const yaml::Context& ctx, const YAML::Node& root) {
     std::vector<ConfigSweep> sweeps;
     if (!root.IsMap()) return sweeps;
-    for (const auto& kv : root) {
-        const std::string key = keyName(kv.first);
+    for (const auto& [key, value] : sweepableEntries(root)) {
         const bool scalarKey = std::find(topLevelScalars().begin(), topLevelScalars().end(), key) != topLevelScalars().end();
         const bool section = std::find(sweptSections().begin(), sweptSections().end(), key) != sweptSections().end();
-        if (scalarKey && kv.second.IsSequence()) collect(ctx, kv.second, key, sweeps);
-        if (section && kv.second.IsMap())
-            for (const auto& inner : kv.second)
-                if (!keyName(inner.first).empty()) collect(ctx, inner.second, key + "." + keyName(inner.first), sweeps);
+        if (scalarKey && value.IsSequence()) collect(ctx, value, key, sweeps);
+        if (section && value.IsMap())
+            for (const auto& [name, inner] : sweepableEntries(value)) collect(ctx, inner, key + "." + name, sweeps);
     }
     return sweeps;
 }
