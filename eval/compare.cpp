@@ -68,12 +68,6 @@ std::string referenceIdentity(const ComparedRun& run) {
     return ref.value("type", std::string()) + ":" + ref.value("path", std::string());
 }
 
-double renderSeconds(const Json& r) {
-    if (!r.contains("times_s") || !r["times_s"].is_object()) return 0.0;
-    const Json& t = r["times_s"];
-    return t.value("trace", 0.0) + t.value("snapshot_total", 0.0);
-}
-
 // "mitsuba-cbox/scene.xml" rather than the whole path, or a bare "scene.xml".
 std::string sceneTitle(const std::string& scene) {
     const fs::path p(scene);

@@ -17,14 +17,19 @@ namespace aamap {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
+double renderSeconds(const Json& r) {
+    if (!r.contains("times_s") || !r["times_s"].is_object()) return 0.0;
+    const Json& t = r["times_s"];
+    const auto seconds = [&](const char* key) { return t.contains(key) && t[key].is_number() ? t[key].get<double>() : 0.0; };
+    return seconds("trace") + seconds("snapshot_total");
+}
+
 namespace {
 
 double num(const Json& j, const char* key, double fallback = NAN) {
     return j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
 }
 
-// Cost of a render's image: the trace plus, for aamap-driven strategies, the Snapshot.
-double renderSeconds(const Json& r) { return num(r["times_s"], "trace", 0) + num(r["times_s"], "snapshot_total", 0); }
 
 // The render time's median and the range its timed runs spanned (timing.repeats): the trace runs
 // plus the Snapshot's per-frame cost. One run (or a record without trace_runs): min = max = median.

@@ -25,6 +25,10 @@ struct Table {
 // cost, without the scene load and BVH build that every render shares.
 std::vector<Table> reportTables(const nlohmann::ordered_json& results);
 
+// Cost of a render's image (a results.json render record): the trace plus, for aamap-driven
+// strategies, the Snapshot's per-frame time; 0 for a record without times.
+double renderSeconds(const nlohmann::ordered_json& render);
+
 // A number as people write it: the shortest text that reads back as the same float when the value
 // is one (0.1, not 0.10000000149011612), else 3 significant digits ("1.23e+04" only past 1e6);
 // "—" when not finite.
