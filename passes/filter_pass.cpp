@@ -14,18 +14,20 @@ FilterPass::FilterPass(VulkanContext& context, std::span<const std::uint32_t> sp
 graph::PassId FilterPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& name,
                               const std::string& input, const std::string& output, const gpu::FilterPush& push,
                               std::string purpose, const std::vector<std::uint32_t>& constants) const {
-    vk::Pipeline& pipeline = pipelines_[constants];
-    if (!pipeline.handle())
-        pipeline = vk::Pipeline(*context_, spirv_,
-                                vk::LayoutDesc{{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-                                               static_cast<std::uint32_t>(sizeof(gpu::FilterPush)),
-                                               VK_SHADER_STAGE_COMPUTE_BIT},
-                                constants);
     const graph::PassId id = graph.addPass({name,
                                             graph::QueueKind::Compute,
                                             {graph::reads(input, graph::Usage::StorageRead),
                                              graph::writes(output, graph::Usage::StorageWrite)},
                                             std::move(purpose)});
+    vk::Pipeline& pipeline = pipelines_[constants];  // built only if the graph keeps the pass
+    executor.setPrepare(name, [this, &pipeline, constants] {
+        if (!pipeline.handle())
+            pipeline = vk::Pipeline(*context_, spirv_,
+                                    vk::LayoutDesc{{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                                                   static_cast<std::uint32_t>(sizeof(gpu::FilterPush)),
+                                                   VK_SHADER_STAGE_COMPUTE_BIT},
+                                    constants);
+    });
     executor.setRecord(name, [this, input, output, push, &pipeline](vk::PassContext& pc) {
         const vk::Image& in = pc.image(input);
         const vk::Image& out = pc.image(output);

@@ -144,44 +144,14 @@ FlatMesh flatten(const Scene& scene, const TextureAtlas& atlas, bool textured) {
     return flat;
 }
 
-// The atlas as a sampled RGBA8 sRGB array image, uploaded once.
+// The atlas as a sampled RGBA8 sRGB array image, uploaded once, read by the fragment shader.
 vk::Image uploadAtlas(VulkanContext& context, const TextureAtlas& atlas) {
     vk::ImageInfo info;
     info.format = VK_FORMAT_R8G8B8A8_SRGB;
     info.width = info.height = atlas.pageSide;
     info.layers = atlas.layers;
-    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    vk::Image image(context, info);
-    const VkDeviceSize bytes = atlas.texels.size() * sizeof(std::uint32_t);
-    vk::Buffer staging(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
-    std::memcpy(staging.mapped(), atlas.texels.data(), bytes);
-    vk::submitAndWait(context, [&](VkCommandBuffer cmd) {
-        VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-        barrier.srcStageMask = VK_PIPELINE_STAGE_2_NONE;
-        barrier.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        barrier.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        barrier.image = image.handle();
-        barrier.subresourceRange = image.range();
-        VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dependency.imageMemoryBarrierCount = 1;
-        dependency.pImageMemoryBarriers = &barrier;
-        vkCmdPipelineBarrier2(cmd, &dependency);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, atlas.layers};
-        region.imageExtent = {atlas.pageSide, atlas.pageSide, 1};
-        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        barrier.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        barrier.dstStageMask = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-        barrier.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
-        barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-        barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-        vkCmdPipelineBarrier2(cmd, &dependency);
-    });
-    return image;
+    return vk::uploadImage(context, info, std::as_bytes(std::span<const std::uint32_t>(atlas.texels)),
+                           VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
 }
 
 template <class T>
@@ -387,7 +357,7 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
                   ? fmt::format("; {} glass triangles seen through (they only cast shadows)",
                                 (occluderVertexCount_ - vertexCount_) / 3)
                   : std::string())});
-    const vk::Pipeline& pipeline = pipelineFor(shadowed, false, !grey.resource.empty(), shadows.pcf);
+    const vk::Pipeline& pipeline = pipelineFor(executor, "gbuffer", shadowed, false, !grey.resource.empty(), shadows.pcf);
     gpu::GBufferPush push{};
     push.exposure = grey.exposure;
     push.viewProj = reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), camera.viewMatrix());
@@ -422,12 +392,15 @@ std::vector<std::uint32_t> GBufferPass::lightingConstants(std::uint32_t pcf) con
     return constants;
 }
 
-const vk::Pipeline& GBufferPass::pipelineFor(bool shadowed, bool mirrored, bool grey, std::uint32_t pcf) {
+const vk::Pipeline& GBufferPass::pipelineFor(vk::GraphExecutor& executor, const std::string& pass, bool shadowed,
+                                             bool mirrored, bool grey, std::uint32_t pcf) {
     const PipelineKey key{shadowed, mirrored, grey, shadowed ? std::max(pcf, 1u) : 1u, lightsVersion_};
     vk::Pipeline& pipeline = pipelines_[key];
-    if (!pipeline.handle())
-        pipeline = makePipeline(*context_, shadowed, textured_, mirrored, grey, !mirrored && hasDepthPrepass(),
-                                lightingConstants(key.pcf));
+    executor.setPrepare(pass, [this, &pipeline, key] {
+        if (!pipeline.handle())
+            pipeline = makePipeline(*context_, key.shadowed, textured_, key.mirrored, key.grey,
+                                    !key.mirrored && hasDepthPrepass(), lightingConstants(key.pcf));
+    });
     return pipeline;
 }
 
@@ -449,7 +422,7 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
                                         graph::writes(depth, graph::Usage::DepthAttachment)};
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
     const graph::PassId id = graph.addPass({pass, graph::QueueKind::Graphics, accesses, std::move(purpose)});
-    const vk::Pipeline& pipeline = pipelineFor(shadowed, true, false, shadows.pcf);
+    const vk::Pipeline& pipeline = pipelineFor(executor, pass, shadowed, true, false, shadows.pcf);
     std::vector<gpu::GBufferPush> pushes;
     for (std::size_t i = 0; i < views.size(); ++i) {
         gpu::GBufferPush push{};

@@ -145,15 +145,17 @@ private:
                 bool prepass) const;
 
     // The shading pipeline of each variant, specialised for the light list of setLights call
-    // `lightsVersion` (setLights drops the others); built on first use (a scene without lights
-    // never builds a shadowed one). A std::map, so the references that recordings hold stay valid.
+    // `lightsVersion` (setLights drops the others); built by the executor's prepare step of a kept
+    // pass (a scene without lights never builds a shadowed one). A std::map, so the references
+    // that recordings hold stay valid.
     struct PipelineKey {
         bool shadowed = false, mirrored = false, grey = false;
         std::uint32_t pcf = 1;
         std::uint64_t lightsVersion = 0;
         auto operator<=>(const PipelineKey&) const = default;
     };
-    const vk::Pipeline& pipelineFor(bool shadowed, bool mirrored, bool grey, std::uint32_t pcf);
+    const vk::Pipeline& pipelineFor(vk::GraphExecutor& executor, const std::string& pass, bool shadowed,
+                                    bool mirrored, bool grey, std::uint32_t pcf);
 
     VulkanContext* context_;
     std::map<PipelineKey, vk::Pipeline> pipelines_;

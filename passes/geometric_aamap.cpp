@@ -52,7 +52,7 @@ bool parse(const std::string& name, AamapSource& source) {
 }
 
 GeometricEdgePass::GeometricEdgePass(VulkanContext& context)
-    : context_(&context), geometric_(edgePipeline(context, false)), combined_(edgePipeline(context, true)) {}
+    : context_(&context) {}
 
 graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
                                      const std::string& normalDepth, const std::string& ids,
@@ -66,6 +66,10 @@ graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecuto
         {"geometric_edges", graph::QueueKind::Compute, accesses,
          combined ? "edges: max of G-buffer discontinuities and the luminance |L|"
                   : "edges: G-buffer discontinuities (depth, normal, object and material id, shadow mask)"});
+    executor.setPrepare("geometric_edges", [this, combined] {
+        vk::Pipeline& pipeline = combined ? combined_ : geometric_;
+        if (!pipeline.handle()) pipeline = edgePipeline(*context_, combined);
+    });
     executor.setRecord("geometric_edges", [this, normalDepth, ids, laplacian, output, combined](vk::PassContext& pc) {
         const vk::Image& out = pc.image(output);
         gpu::FilterPush push{};

@@ -36,7 +36,7 @@ public:
 
 private:
     VulkanContext* context_;
-    vk::Pipeline geometric_, combined_;
+    mutable vk::Pipeline geometric_, combined_;  // built when the pass is kept
 };
 
 struct MapChainInputs {
@@ -51,8 +51,7 @@ struct MapChainInputs {
 
 // Declares grey, laplacian, map and aamap (gpu_aamap.h) and the passes that make the aamap from
 // `source`. The geometry raster and edge pass are declared in every mode, so that a luminance
-// Snapshot culls them (CompiledGraph::explain says why); call geometry.prepare() before
-// executing a graph that keeps "geometry_buffer".
+// Snapshot culls them (CompiledGraph::explain says why) and builds nothing for them.
 void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const FilterChain& chain,
                    GeometryBufferPass& geometry, const GeometricEdgePass& edges, AamapSource source,
                    const MapChainInputs& in);

@@ -122,9 +122,10 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
     push.cameraForward = glm::vec4(camera.forward, 0.0f);
     push.shadow =
         glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias, static_cast<float>(shadows.faceSize));
+    executor.setPrepare("geometry_buffer", [this] { prepare(); });
     executor.setRecord("geometry_buffer", [this, push, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
         if (!prepared() || !pipeline.handle())
-            throw std::logic_error("GeometryBufferPass::prepare() was not called before execution");
+            throw std::logic_error("GeometryBufferPass recorded before its prepare step");
         const vk::Image& normalDepth = pc.image(kGeometryNormalDepth);
         const vk::Image& z = pc.image(kGeometryDepth);
         const VkExtent2D extent{normalDepth.info().width, normalDepth.info().height};

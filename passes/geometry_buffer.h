@@ -36,15 +36,16 @@ public:
 
     // Declares kGeometryNormalDepth, kGeometryIds and kGeometryDepth sized like `like` and the
     // pass "geometry_buffer", which also reads shadows.resource when that is not empty (the same
-    // GBufferShadows the G-buffer got). Must outlive execution; call prepare() before executing
-    // a graph that keeps the pass.
+    // GBufferShadows the G-buffer got). Must outlive execution. Nothing is uploaded or built
+    // unless the graph keeps the pass (the executor's prepare step).
     void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& like,
              const PinholeCamera& camera, float nearPlane, float farPlane, const GBufferShadows& shadows = {});
-    void prepare();  // uploads the triangle ids once, builds the pipeline the last add() chose
-                     // (variant and lighting constants)
     bool prepared() const { return static_cast<bool>(ids_) || triangleCount_ == 0; }
 
 private:
+    void prepare();  // uploads the triangle ids once, builds the pipeline the last add() chose
+                     // (variant and lighting constants)
+
     VulkanContext* context_;
     const GBufferPass* gbuffer_;
     vk::Pipeline pipelines_[2];  // unshadowed, shadowed: built on first use

@@ -101,7 +101,7 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
 
 MirrorPass::MirrorPass(VulkanContext& context, const Scene& scene)
     : context_(&context), mirrors_(findPlanarMirrors(scene)) {
-    if (mirrors_.planar.empty()) return;  // no pipelines for scenes that never use them
+    if (mirrors_.planar.empty()) return;  // nothing to test or draw for scenes without one
     // The reflected views go to their layers through gl_Layer from the vertex shader.
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
@@ -113,7 +113,11 @@ MirrorPass::MirrorPass(VulkanContext& context, const Scene& scene)
     }
     positions_ = scene.mesh.positions;
     triangles_ = scene.mesh.triangles;
+}
 
+// Built by the executor's prepare step, so a scene whose mirrors are never in view builds neither.
+void MirrorPass::buildMaskPipeline() {
+    if (maskPipeline_.handle()) return;
     vk::GraphicsDesc mask;
     mask.vertexSpirv = spirv::mirror_mask_vert;
     mask.fragmentSpirv = spirv::mirror_mask_frag;
@@ -125,14 +129,18 @@ MirrorPass::MirrorPass(VulkanContext& context, const Scene& scene)
     };
     mask.colorFormats = {vk::toVkFormat(graph::Format::RGBA32Float)};
     static_assert(MIRROR_MASK_BINDING_DEPTH == 0);
-    maskPipeline_ = vk::Pipeline(context, mask,
+    maskPipeline_ = vk::Pipeline(*context_, mask,
                                  vk::LayoutDesc{{VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE},
                                                 static_cast<std::uint32_t>(sizeof(gpu::MirrorMaskPush)),
                                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT});
+}
+
+void MirrorPass::buildCompositePipeline() {
+    if (compositePipeline_.handle()) return;
     static_assert(MIRROR_COMPOSITE_BINDING_SNAPSHOT == 0 && MIRROR_COMPOSITE_BINDING_MASK == 1 &&
                   MIRROR_COMPOSITE_BINDING_COLOUR == 2);
     compositePipeline_ = vk::Pipeline(
-        context, spirv::mirror_composite_comp,
+        *context_, spirv::mirror_composite_comp,
         vk::LayoutDesc{{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE},
                        static_cast<std::uint32_t>(sizeof(gpu::MirrorCompositePush)), VK_SHADER_STAGE_COMPUTE_BIT});
 }
@@ -261,6 +269,7 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
                    "mark the pixels where a planar mirror is the visible surface, with its reflectance"});
     gpu::MirrorMaskPush maskPush{};
     maskPush.viewProj = viewProj;
+    executor.setPrepare(kMirrorMaskPass, [this] { buildMaskPipeline(); });
     executor.setRecord(kMirrorMaskPass, [this, depth, maskPush](vk::PassContext& pc) {
         const vk::Image& target = pc.image(kMirrorMask);
         const VkExtent2D extent{target.info().width, target.info().height};
@@ -290,6 +299,7 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
                    {graph::updates(snapshot, graph::Usage::StorageWrite), graph::reads(kMirrorMask, graph::Usage::StorageRead),
                     graph::reads(kMirrorColour, graph::Usage::Sampled)},
                    "add each visible mirror's reflection, times its reflectance, into the snapshot"});
+    executor.setPrepare(kMirrorCompositePass, [this] { buildCompositePipeline(); });
     executor.setRecord(kMirrorCompositePass, [this, snapshot](vk::PassContext& pc) {
         const vk::Image& target = pc.image(snapshot);
         gpu::MirrorCompositePush push{};

@@ -82,13 +82,15 @@ private:
     };
     std::vector<VisibleMirror> visibleMirrors(const PinholeCamera& camera, float nearPlane, float farPlane,
                                               float sceneSize) const;
+    void buildMaskPipeline();  // the executor's prepare steps
+    void buildCompositePipeline();
 
     VulkanContext* context_;
     MirrorGroups mirrors_;
     std::string unsupported_;  // why the device cannot render mirrors, if it cannot
     std::vector<glm::vec3> positions_;  // the mesh's, for visibility tests
     std::vector<glm::uvec3> triangles_;
-    vk::Pipeline maskPipeline_, compositePipeline_;
+    vk::Pipeline maskPipeline_, compositePipeline_;  // built when their pass is kept
     vk::Buffer maskVertices_;            // rebuilt per view: only the visible mirrors, with layers
     std::uint32_t maskVertexCount_ = 0;
 };

@@ -25,10 +25,10 @@ ShadowCubePass::ShadowCubePass(VulkanContext& context) : context_(&context) {
     maxLayers_ = std::min(props.limits.maxFramebufferLayers, props.limits.maxImageArrayLayers);
 }
 
-const vk::Pipeline& ShadowCubePass::pipelineFor(const GBufferPass& geometry) const {
+void ShadowCubePass::buildPipeline(const GBufferPass& geometry) const {
     const bool masked = geometry.alphaMasked();  // else sharedPositions(), or nothing to draw
     vk::Pipeline& pipeline = pipelines_[masked ? 1 : 0];
-    if (pipeline.handle()) return pipeline;
+    if (pipeline.handle()) return;
     vk::GraphicsDesc desc;
     desc.vertexSpirv = masked ? spirv::shadow_cube_masked_vert : spirv::shadow_cube_vert;
     desc.fragmentSpirv = masked ? spirv::shadow_cube_masked_frag : spirv::shadow_cube_frag;
@@ -53,7 +53,6 @@ const vk::Pipeline& ShadowCubePass::pipelineFor(const GBufferPass& geometry) con
                                            static_cast<VkShaderStageFlags>(
                                                masked ? VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT
                                                       : VK_SHADER_STAGE_VERTEX_BIT)});
-    return pipeline;
 }
 
 ShadowCubePass::FaceLists ShadowCubePass::cullPerFace(std::span<const glm::vec3> positions,
@@ -156,7 +155,8 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
 
     gpu::ShadowPush push{};
     push.nearPlane = nearPlane;
-    const vk::Pipeline& pipeline = pipelineFor(geometry);
+    const vk::Pipeline& pipeline = pipelines_[geometry.alphaMasked() ? 1 : 0];
+    executor.setPrepare(kShadowPass, [this, &geometry] { buildPipeline(geometry); });
     executor.setRecord(kShadowPass, [this, &geometry, &pipeline, resource, push, layers](vk::PassContext& pc) {
         const vk::Image& target = pc.image(resource);
         const VkExtent2D extent{target.info().width, target.info().height};

@@ -71,11 +71,11 @@ public:
                                  float nearPlane, std::span<const std::uint8_t> directional = {});
 
 private:
-    const vk::Pipeline& pipelineFor(const GBufferPass& geometry) const;
+    void buildPipeline(const GBufferPass& geometry) const;  // the executor's prepare step
     void updateFaceLists(const GBufferPass& geometry, float nearPlane);
 
     VulkanContext* context_;
-    // Built on first use: shared positions (12-byte stride), or masked (alpha test, the
+    // Built when the pass is kept: shared positions (12-byte stride), or masked (alpha test, the
     // G-buffer's textured vertices). Index: 0, 1.
     mutable vk::Pipeline pipelines_[2];
     std::uint32_t maxLayers_ = 0;

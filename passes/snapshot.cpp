@@ -227,8 +227,6 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     }
     const graph::CompiledGraph compiled = graph.compile(outputs);
     if (spdlog::should_log(spdlog::level::debug)) spdlog::debug("Snapshot {}", compiled.explain());
-    for (const graph::CompiledPass& p : compiled.passes)
-        if (p.name == "geometry_buffer") s.geometry.prepare();
     const vk::ExecutionResult run = s.executor.execute(compiled);
 
     SnapshotResult result;

@@ -134,6 +134,7 @@ const Buffer& PassContext::buffer(const std::string& name) const { return find(n
 struct GraphExecutor::Impl {
     VulkanContext& context;
     std::map<std::string, RecordFn> records;
+    std::map<std::string, PrepareFn> prepares;
     std::map<std::string, std::vector<std::byte>> uploads;
     std::map<std::string, LiveResource> live;
     std::map<std::string, Buffer> staging;  // host-visible, per resource name (uploads and readbacks)
@@ -263,11 +264,15 @@ GraphExecutor::GraphExecutor(VulkanContext& context) : impl_(std::make_unique<Im
 GraphExecutor::~GraphExecutor() = default;
 
 void GraphExecutor::setRecord(const std::string& pass, RecordFn record) { impl_->records[pass] = std::move(record); }
+void GraphExecutor::setPrepare(const std::string& pass, PrepareFn prepare) {
+    impl_->prepares[pass] = std::move(prepare);
+}
 void GraphExecutor::setUpload(const std::string& resource, std::vector<std::byte> bytes) {
     impl_->uploads[resource] = std::move(bytes);
 }
 void GraphExecutor::clear() {
     impl_->records.clear();
+    impl_->prepares.clear();
     impl_->uploads.clear();
 }
 
@@ -277,6 +282,8 @@ ExecutionResult GraphExecutor::execute(const graph::CompiledGraph& g) {
     for (const graph::CompiledPass& p : g.passes)
         if (!s.records.count(p.name))
             throw std::logic_error(fmt::format("pass '{}' is kept but has no record callback", p.name));
+    for (const graph::CompiledPass& p : g.passes)
+        if (const auto it = s.prepares.find(p.name); it != s.prepares.end()) it->second();
 
     ExecutionResult result;
     auto t0 = Clock::now();

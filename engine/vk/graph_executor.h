@@ -61,6 +61,9 @@ private:
 };
 
 using RecordFn = std::function<void(PassContext&)>;
+// Work a pass needs once it is known to run (pipelines, static buffers): called by execute()
+// for kept passes only, before recording, so a culled pass builds nothing.
+using PrepareFn = std::function<void()>;
 
 // An output brought back to the host: tightly packed texels (images) or the raw bytes (buffers).
 struct HostData {
@@ -95,9 +98,11 @@ public:
 
     // The callback recording pass `pass` (by name). A kept pass without one is an error.
     void setRecord(const std::string& pass, RecordFn record);
+    // Optional: what pass `pass` builds before it can be recorded (see PrepareFn).
+    void setPrepare(const std::string& pass, PrepareFn prepare);
     // Host contents of an imported resource: tightly packed texels of layer 0, or buffer bytes.
     void setUpload(const std::string& resource, std::vector<std::byte> bytes);
-    void clear();  // forgets callbacks and uploads (live resources stay for reuse)
+    void clear();  // forgets callbacks (record and prepare) and uploads (live resources stay for reuse)
 
     // Throws std::logic_error when the compiled barriers disagree with the executor's own state
     // tracking, a kept pass has no callback or an imported resource has no upload.

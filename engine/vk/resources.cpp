@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 #include <utility>
 
 #include <fmt/format.h>
@@ -216,6 +217,49 @@ VkBufferImageCopy wholeImage(const Image& image) {
     return region;
 }
 }  // namespace
+
+Image uploadImage(VulkanContext& context, ImageInfo info, std::span<const std::byte> texels,
+                  VkPipelineStageFlags2 readStages) {
+    const std::size_t texelCount = static_cast<std::size_t>(info.width) * info.height * info.layers;
+    if (texelCount == 0 || texels.empty() || texels.size() % texelCount != 0)
+        throw std::logic_error("uploadImage: the texels do not fill the image");
+    info.usage |= VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    Image image(context, info);
+    Buffer staging(context, texels.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memcpy(staging.mapped(), texels.data(), texels.size());
+    submitAndWait(context, [&](VkCommandBuffer cmd) {
+        recordImageTransition(cmd, image.handle(), image.range(),
+                              {VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
+                               VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT});
+        VkBufferImageCopy region{};
+        region.imageSubresource = {image.aspect(), 0, 0, info.layers};
+        region.imageExtent = {info.width, info.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        recordImageTransition(cmd, image.handle(), image.range(),
+                              {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                               VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, readStages,
+                               VK_ACCESS_2_SHADER_SAMPLED_READ_BIT});
+    });
+    return image;
+}
+
+void recordImageTransition(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range,
+                           const ImageTransition& transition) {
+    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = transition.srcStage;
+    barrier.srcAccessMask = transition.srcAccess;
+    barrier.dstStageMask = transition.dstStage;
+    barrier.dstAccessMask = transition.dstAccess;
+    barrier.oldLayout = transition.from;
+    barrier.newLayout = transition.to;
+    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image;
+    barrier.subresourceRange = range;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
 
 void recordMemoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                          VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {

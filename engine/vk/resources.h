@@ -84,6 +84,24 @@ void submitAndWait(VulkanContext& context, const std::function<void(VkCommandBuf
 // A device-local buffer filled with `bytes` through a staging buffer (usage gains TRANSFER_DST).
 Buffer uploadBuffer(VulkanContext& context, std::span<const std::byte> bytes, VkBufferUsageFlags usage);
 
+// A sampled image filled with tightly packed texels of every layer (mip 0) through a staging
+// buffer, left in SHADER_READ_ONLY_OPTIMAL and visible to `readStages` (usage gains
+// TRANSFER_DST and SAMPLED). For static inputs the render graph does not own, e.g. a texture atlas.
+Image uploadImage(VulkanContext& context, ImageInfo info, std::span<const std::byte> texels,
+                  VkPipelineStageFlags2 readStages);
+
+// One layout transition of an image the render graph does not own (an upload, a swapchain image):
+// the graph derives its own barriers, everything else records them through here.
+struct ImageTransition {
+    VkImageLayout from = VK_IMAGE_LAYOUT_UNDEFINED, to = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkPipelineStageFlags2 srcStage = VK_PIPELINE_STAGE_2_NONE;
+    VkAccessFlags2 srcAccess = VK_ACCESS_2_NONE;
+    VkPipelineStageFlags2 dstStage = VK_PIPELINE_STAGE_2_NONE;
+    VkAccessFlags2 dstAccess = VK_ACCESS_2_NONE;
+};
+void recordImageTransition(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range,
+                           const ImageTransition& transition);
+
 // Image copies for tightly packed texels of layer 0, mip 0 (layout must be TRANSFER_SRC/DST).
 // One global memory dependency (synchronization2): for hazards that are not about one
 // resource, e.g. making copies visible to the host or to every later stage.

@@ -70,6 +70,13 @@ TEST_F(ExecutorTest, CulledPassDoesNotRun) {
     executor.setRecord("fill", clearTo("a", 3.5f, &fillCalls));
     executor.setRecord("copy", copy("a", "out", &copyCalls));
     executor.setRecord("debugFill", clearTo("debug", 1.0f, &debugCalls));
+    // Preparation (pipeline builds) runs for kept passes only, before any pass is recorded.
+    int copyPrepares = 0, debugPrepares = 0;
+    executor.setPrepare("copy", [&] {
+        EXPECT_EQ(fillCalls, copyCalls) << "prepared after recording began";
+        ++copyPrepares;
+    });
+    executor.setPrepare("debugFill", [&] { ++debugPrepares; });
     for (int run = 0; run < 2; ++run) {  // the second run reuses the live resources
         const vk::ExecutionResult result = executor.execute(compiled);
         ASSERT_EQ(result.passTimes.size(), 2u);
@@ -85,6 +92,8 @@ TEST_F(ExecutorTest, CulledPassDoesNotRun) {
     EXPECT_EQ(fillCalls, 2);
     EXPECT_EQ(copyCalls, 2);
     EXPECT_EQ(debugCalls, 0);
+    EXPECT_EQ(copyPrepares, 2);
+    EXPECT_EQ(debugPrepares, 0);
 }
 
 TEST_F(ExecutorTest, ImportedResourceIsUploadedAndReadBack) {
