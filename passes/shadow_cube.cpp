@@ -27,7 +27,7 @@ ShadowCubePass::ShadowCubePass(VulkanContext& context) : context_(&context) {
 
 void ShadowCubePass::buildPipeline(const GBufferPass& geometry) const {
     const bool masked = geometry.alphaMasked();  // else sharedPositions(), or nothing to draw
-    vk::Pipeline& pipeline = pipelines_[masked ? 1 : 0];
+    vk::Pipeline& pipeline = pipelineSlot(geometry);
     if (pipeline.handle()) return;
     vk::GraphicsDesc desc;
     desc.vertexSpirv = masked ? spirv::shadow_cube_masked_vert : spirv::shadow_cube_vert;
@@ -155,7 +155,7 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
 
     gpu::ShadowPush push{};
     push.nearPlane = nearPlane;
-    const vk::Pipeline& pipeline = pipelines_[geometry.alphaMasked() ? 1 : 0];
+    const vk::Pipeline& pipeline = pipelineSlot(geometry);
     executor.setPrepare(kShadowPass, [this, &geometry] { buildPipeline(geometry); });
     executor.setRecord(kShadowPass, [this, &geometry, &pipeline, resource, push, layers](vk::PassContext& pc) {
         const vk::Image& target = pc.image(resource);

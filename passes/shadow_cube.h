@@ -71,6 +71,8 @@ public:
                                  float nearPlane, std::span<const std::uint8_t> directional = {});
 
 private:
+    // The variant `geometry` needs: shared positions, or masked when it has alpha masks.
+    vk::Pipeline& pipelineSlot(const GBufferPass& geometry) const { return pipelines_[geometry.alphaMasked() ? 1 : 0]; }
     void buildPipeline(const GBufferPass& geometry) const;  // the executor's prepare step
     void updateFaceLists(const GBufferPass& geometry, float nearPlane);
 

@@ -49,17 +49,8 @@ public:
             buffers_.push_back(b);
             return;
         }
-        VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-        b.srcStageMask = src.stages;
-        b.srcAccessMask = src.access;
-        b.dstStageMask = dst.stages;
-        b.dstAccessMask = dst.access;
-        b.oldLayout = src.layout;
-        b.newLayout = dst.layout;
-        b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        b.image = r.image.handle();
-        b.subresourceRange = r.image.range();
-        images_.push_back(b);
+        images_.push_back(imageBarrier(r.image.handle(), r.image.range(),
+                                       {src.layout, dst.layout, src.stages, src.access, dst.stages, dst.access}));
     }
     void record(VkCommandBuffer cmd) {
         if (images_.empty() && buffers_.empty()) return;

@@ -229,8 +229,9 @@ Image uploadImage(VulkanContext& context, ImageInfo info, std::span<const std::b
     std::memcpy(staging.mapped(), texels.data(), texels.size());
     submitAndWait(context, [&](VkCommandBuffer cmd) {
         recordImageTransition(cmd, image.handle(), image.range(),
-                              {VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
-                               VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT});
+                              {VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
+                               VK_ACCESS_2_TRANSFER_WRITE_BIT});
         VkBufferImageCopy region{};
         region.imageSubresource = {image.aspect(), 0, 0, info.layers};
         region.imageExtent = {info.width, info.height, 1};
@@ -243,8 +244,8 @@ Image uploadImage(VulkanContext& context, ImageInfo info, std::span<const std::b
     return image;
 }
 
-void recordImageTransition(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range,
-                           const ImageTransition& transition) {
+VkImageMemoryBarrier2 imageBarrier(VkImage image, const VkImageSubresourceRange& range,
+                                   const ImageTransition& transition) {
     VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     barrier.srcStageMask = transition.srcStage;
     barrier.srcAccessMask = transition.srcAccess;
@@ -255,6 +256,12 @@ void recordImageTransition(VkCommandBuffer cmd, VkImage image, const VkImageSubr
     barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image;
     barrier.subresourceRange = range;
+    return barrier;
+}
+
+void recordImageTransition(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range,
+                           const ImageTransition& transition) {
+    const VkImageMemoryBarrier2 barrier = imageBarrier(image, range, transition);
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &barrier;

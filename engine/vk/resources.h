@@ -99,6 +99,9 @@ struct ImageTransition {
     VkPipelineStageFlags2 dstStage = VK_PIPELINE_STAGE_2_NONE;
     VkAccessFlags2 dstAccess = VK_ACCESS_2_NONE;
 };
+// The barrier for `transition` (the graph executor batches these; the rest record one at a time).
+VkImageMemoryBarrier2 imageBarrier(VkImage image, const VkImageSubresourceRange& range,
+                                   const ImageTransition& transition);
 void recordImageTransition(VkCommandBuffer cmd, VkImage image, const VkImageSubresourceRange& range,
                            const ImageTransition& transition);
 
