@@ -8,12 +8,11 @@
 #include "engine/vk/context.h"
 #include "glsl/shared/snapshot_interface.h"
 #include "passes/gpu_aamap.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
 namespace {
 
-const std::string kRowSums = "block_sum_row_prefixes";
-const std::string kRowCounts = "block_count_row_prefixes";
 
 vk::LayoutDesc storageLayout(std::vector<VkDescriptorType> bindings) {
     return {std::move(bindings), static_cast<std::uint32_t>(sizeof(gpu::BlockSumPush)), VK_SHADER_STAGE_COMPUTE_BIT};
@@ -39,40 +38,40 @@ void BlockSumPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, c
     if (width <= 0 || height <= 0) throw std::invalid_argument("BlockSumPass: non-positive map size");
     const std::uint64_t prefixes = static_cast<std::uint64_t>(width + 1) * static_cast<std::uint64_t>(height);
     const std::uint64_t table = tableSize(width, height);
-    graph.addResource(graph::bufferResource(kRowSums, prefixes * 2 * sizeof(float)));
-    graph.addResource(graph::bufferResource(kRowCounts, prefixes * sizeof(std::uint32_t)));
+    graph.addResource(graph::bufferResource(kBlockSumRowPrefixes, prefixes * 2 * sizeof(float)));
+    graph.addResource(graph::bufferResource(kBlockCountRowPrefixes, prefixes * sizeof(std::uint32_t)));
     graph.addResource(graph::bufferResource(kBlockSums, table * 2 * sizeof(float)));
     graph.addResource(graph::bufferResource(kBlockCounts, table * sizeof(std::uint32_t)));
     const gpu::BlockSumPush push{{width, height}, {0, 0}};
 
-    graph.addPass({"block_sum_rows",
+    graph.addPass({kBlockSumRowsPass,
                    graph::QueueKind::Compute,
-                   {graph::reads(map, graph::Usage::StorageRead), graph::writes(kRowSums, graph::Usage::StorageWrite),
-                    graph::writes(kRowCounts, graph::Usage::StorageWrite)},
+                   {graph::reads(map, graph::Usage::StorageRead), graph::writes(kBlockSumRowPrefixes, graph::Usage::StorageWrite),
+                    graph::writes(kBlockCountRowPrefixes, graph::Usage::StorageWrite)},
                    purpose + " (row prefixes)"});
-    executor.setRecord("block_sum_rows", [this, map, push](vk::PassContext& pc) {
+    executor.setRecord(kBlockSumRowsPass, [this, map, push](vk::PassContext& pc) {
         rows_.bind(pc.cmd());
         vk::DescriptorPush()
             .storageImage(BLOCKSUM_ROWS_BINDING_MAP, pc.image(map).view())
-            .storageBuffer(BLOCKSUM_ROWS_BINDING_SUMS, pc.buffer(kRowSums).handle())
-            .storageBuffer(BLOCKSUM_ROWS_BINDING_COUNTS, pc.buffer(kRowCounts).handle())
+            .storageBuffer(BLOCKSUM_ROWS_BINDING_SUMS, pc.buffer(kBlockSumRowPrefixes).handle())
+            .storageBuffer(BLOCKSUM_ROWS_BINDING_COUNTS, pc.buffer(kBlockCountRowPrefixes).handle())
             .push(*context_, pc.cmd(), rows_);
         rows_.pushConstants(pc.cmd(), push);
         vk::dispatch2D(pc.cmd(), static_cast<std::uint32_t>(push.size.y), 1, BLOCKSUM_GROUP, 1);
     });
 
-    graph.addPass({"block_sum_columns",
+    graph.addPass({kBlockSumColumnsPass,
                    graph::QueueKind::Compute,
-                   {graph::reads(kRowSums, graph::Usage::StorageRead),
-                    graph::reads(kRowCounts, graph::Usage::StorageRead),
+                   {graph::reads(kBlockSumRowPrefixes, graph::Usage::StorageRead),
+                    graph::reads(kBlockCountRowPrefixes, graph::Usage::StorageRead),
                     graph::writes(kBlockSums, graph::Usage::StorageWrite),
                     graph::writes(kBlockCounts, graph::Usage::StorageWrite)},
                    std::move(purpose)});
-    executor.setRecord("block_sum_columns", [this, push](vk::PassContext& pc) {
+    executor.setRecord(kBlockSumColumnsPass, [this, push](vk::PassContext& pc) {
         columns_.bind(pc.cmd());
         vk::DescriptorPush()
-            .storageBuffer(BLOCKSUM_COLUMNS_BINDING_ROW_SUMS, pc.buffer(kRowSums).handle())
-            .storageBuffer(BLOCKSUM_COLUMNS_BINDING_ROW_COUNTS, pc.buffer(kRowCounts).handle())
+            .storageBuffer(BLOCKSUM_COLUMNS_BINDING_ROW_SUMS, pc.buffer(kBlockSumRowPrefixes).handle())
+            .storageBuffer(BLOCKSUM_COLUMNS_BINDING_ROW_COUNTS, pc.buffer(kBlockCountRowPrefixes).handle())
             .storageBuffer(BLOCKSUM_COLUMNS_BINDING_SUMS, pc.buffer(kBlockSums).handle())
             .storageBuffer(BLOCKSUM_COLUMNS_BINDING_COUNTS, pc.buffer(kBlockCounts).handle())
             .push(*context_, pc.cmd(), columns_);

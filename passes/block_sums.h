@@ -12,12 +12,11 @@
 #include "engine/graph/render_graph.h"
 #include "engine/vk/graph_executor.h"
 #include "engine/vk/pipeline.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
 
 // Graph resources (buffers) of the block-sum tables.
-inline const std::string kBlockSums = "block_sums";      // (W + 1) x (H + 1) float pairs (hi, lo)
-inline const std::string kBlockCounts = "block_counts";  // (W + 1) x (H + 1) uint
 
 // The tables as read back: sums widened to double (hi + lo).
 struct BlockSumTables {

@@ -8,6 +8,7 @@
 #include "engine/vk/context.h"
 #include "glsl/shared/aamap_filter.h"
 #include "glsl/shared/snapshot_interface.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
 namespace {
@@ -63,14 +64,14 @@ graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecuto
                                         graph::writes(output, graph::Usage::StorageWrite)};
     if (combined) accesses.push_back(graph::reads(laplacian, graph::Usage::StorageRead));
     const graph::PassId id = graph.addPass(
-        {"geometric_edges", graph::QueueKind::Compute, accesses,
+        {kGeometricEdgesPass, graph::QueueKind::Compute, accesses,
          combined ? "edges: max of G-buffer discontinuities and the luminance |L|"
                   : "edges: G-buffer discontinuities (depth, normal, object and material id, shadow mask)"});
-    executor.setPrepare("geometric_edges", [this, combined] {
+    executor.setPrepare(kGeometricEdgesPass, [this, combined] {
         vk::Pipeline& pipeline = combined ? combined_ : geometric_;
         if (!pipeline.handle()) pipeline = edgePipeline(*context_, combined);
     });
-    executor.setRecord("geometric_edges", [this, normalDepth, ids, laplacian, output, combined](vk::PassContext& pc) {
+    executor.setRecord(kGeometricEdgesPass, [this, normalDepth, ids, laplacian, output, combined](vk::PassContext& pc) {
         const vk::Image& out = pc.image(output);
         gpu::FilterPush push{};
         push.inSize = {static_cast<int>(out.info().width), static_cast<int>(out.info().height)};
@@ -92,8 +93,7 @@ graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecuto
 void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const FilterChain& chain,
                    GeometryBufferPass& geometry, const GeometricEdgePass& edges, AamapSource source,
                    const MapChainInputs& in) {
-    if (in.camera == nullptr) throw std::invalid_argument("addAamapChain: no camera");
-    geometry.add(graph, executor, in.colour, *in.camera, in.nearPlane, in.farPlane, in.shadows);
+    geometry.add(graph, executor, in.colour, in.view, in.shadows);
     graph.addResource(graph::imageResource(kEdges, graph::Format::R32Float, graph::Size::relative(in.colour)));
     if (source == AamapSource::Luminance) {
         chain.add(graph, executor, in.colour, in.width, in.height, in.params, in.greyFromGBuffer);

@@ -15,7 +15,7 @@
 #include "passes/filter_params.h"
 #include "passes/geometry_buffer.h"
 #include "passes/gpu_aamap.h"
-#include "scene/camera.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
 
@@ -23,8 +23,6 @@ namespace aamap::passes {
 enum class AamapSource { Luminance, Geometric, Combined };
 const char* toString(AamapSource source);                   // "luminance", "geometric", "combined"
 bool parse(const std::string& name, AamapSource& source);  // false for an unknown name
-
-inline const std::string kEdges = "edges";  // what the blur reads in the geometric and combined chains
 
 class GeometricEdgePass {
 public:
@@ -41,8 +39,7 @@ private:
 
 struct MapChainInputs {
     std::string colour;  // the Snapshot's RGBA32F raster
-    const PinholeCamera* camera = nullptr;
-    float nearPlane = 0.0f, farPlane = 0.0f;
+    SnapshotView view;   // the geometry raster's camera, as the G-buffer's
     int width = 0, height = 0;  // render resolution
     FilterParams params;
     GBufferShadows shadows;  // the G-buffer's shadow maps (none: empty resource), for the occlusion mask

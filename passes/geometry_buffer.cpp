@@ -11,15 +11,16 @@
 
 #include "engine/vk/context.h"
 #include "glsl/shared/snapshot_interface.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
 
 namespace {
 
 // (object, material) of each triangle the G-buffer's camera draws, in its vertex-buffer order.
-std::vector<glm::uvec2> drawnTriangleIds(const Scene& scene, const GBufferPass& gbuffer) {
+std::vector<glm::uvec2> drawnTriangleIds(const Scene& scene, const SceneGpu& sceneGpu) {
     const TriangleMesh& mesh = scene.mesh;
-    const std::span<const std::uint32_t> drawn = gbuffer.drawnTriangles().first(gbuffer.vertexCount() / 3);
+    const std::span<const std::uint32_t> drawn = sceneGpu.drawnTriangles().first(sceneGpu.vertexCount() / 3);
     std::vector<glm::uvec2> out;
     out.reserve(drawn.size());
     for (const std::uint32_t t : drawn) {
@@ -30,11 +31,11 @@ std::vector<glm::uvec2> drawnTriangleIds(const Scene& scene, const GBufferPass& 
     return out;
 }
 
-// The G-buffer's vertex layout (passes/gbuffer.h): position and normal, and in the textured
+// The scene's vertex layout (passes/scene_gpu.h): position and normal, and in the textured
 // layout uv and atlas entry for the alpha test.
-vk::Pipeline makePipeline(VulkanContext& context, const GBufferPass& gbuffer, bool shadowed,
+vk::Pipeline makePipeline(VulkanContext& context, const SceneGpu& scene, bool shadowed,
                           std::vector<std::uint32_t> lightingConstants) {
-    const bool textured = gbuffer.textured();
+    const bool textured = scene.textured();
     vk::GraphicsDesc desc;
     desc.fragmentConstants = std::move(lightingConstants);
     desc.vertexSpirv = textured ? spirv::geometry_buffer_textured_vert : spirv::geometry_buffer_vert;
@@ -43,18 +44,18 @@ vk::Pipeline makePipeline(VulkanContext& context, const GBufferPass& gbuffer, bo
             shadowed ? spirv::geometry_buffer_textured_shadowed_frag : spirv::geometry_buffer_textured_frag;
     else
         desc.fragmentSpirv = shadowed ? spirv::geometry_buffer_shadowed_frag : spirv::geometry_buffer_frag;
-    desc.vertexInput.stride = gbuffer.vertexStride();
+    desc.vertexInput.stride = scene.vertexStride();
     desc.vertexInput.attributes = {
         {GEOMETRY_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-        {GEOMETRY_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, 12},
+        {GEOMETRY_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kNormalOffset},
     };
     if (textured) {
         desc.vertexInput.attributes.push_back(
-            {GEOMETRY_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kUvOffset});
+            {GEOMETRY_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, SceneGpu::kUvOffset});
         desc.vertexInput.attributes.push_back(
-            {GEOMETRY_LOCATION_TEX_RECT, 0, VK_FORMAT_R16G16B16A16_UINT, GBufferPass::kTexRectOffset});
+            {GEOMETRY_LOCATION_TEX_RECT, 0, VK_FORMAT_R16G16B16A16_UINT, SceneGpu::kTexRectOffset});
         desc.vertexInput.attributes.push_back(
-            {GEOMETRY_LOCATION_TEX_PARAMS, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kTexParamsOffset});
+            {GEOMETRY_LOCATION_TEX_PARAMS, 0, VK_FORMAT_R32G32_SFLOAT, SceneGpu::kTexParamsOffset});
     }
     const VkFormat f = vk::toVkFormat(GeometryBufferPass::kFormat);
     desc.colorFormats = {f, f};
@@ -75,8 +76,8 @@ vk::Pipeline makePipeline(VulkanContext& context, const GBufferPass& gbuffer, bo
 
 }  // namespace
 
-GeometryBufferPass::GeometryBufferPass(VulkanContext& context, const Scene& scene, const GBufferPass& gbuffer)
-    : context_(&context), gbuffer_(&gbuffer), pendingIds_(drawnTriangleIds(scene, gbuffer)) {
+GeometryBufferPass::GeometryBufferPass(VulkanContext& context, const Scene& scene, const SceneGpu& sceneGpu)
+    : context_(&context), scene_(&sceneGpu), pendingIds_(drawnTriangleIds(scene, sceneGpu)) {
     triangleCount_ = static_cast<std::uint32_t>(pendingIds_.size());
 }
 
@@ -85,7 +86,7 @@ GeometryBufferPass::~GeometryBufferPass() = default;
 void GeometryBufferPass::prepare() {
     const int slot = shadowed_ ? 1 : 0;
     if (!pipelines_[slot].handle() || builtConstants_[slot] != constants_) {
-        pipelines_[slot] = makePipeline(*context_, *gbuffer_, shadowed_, constants_);
+        pipelines_[slot] = makePipeline(*context_, *scene_, shadowed_, constants_);
         builtConstants_[slot] = constants_;
     }
     if (triangleCount_ == 0 || ids_) return;
@@ -96,8 +97,7 @@ void GeometryBufferPass::prepare() {
 }
 
 void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& like,
-                             const PinholeCamera& camera, float nearPlane, float farPlane,
-                             const GBufferShadows& shadows) {
+                             const SnapshotView& view, const GBufferShadows& shadows) {
     const bool shadowed = !shadows.resource.empty();
     graph.addResource(graph::imageResource(kGeometryNormalDepth, kFormat, graph::Size::relative(like)));
     graph.addResource(graph::imageResource(kGeometryIds, kFormat, graph::Size::relative(like)));
@@ -106,24 +106,21 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
                                         graph::writes(kGeometryIds, graph::Usage::ColorAttachment),
                                         graph::writes(kGeometryDepth, graph::Usage::DepthAttachment)};
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
-    graph.addPass({"geometry_buffer", graph::QueueKind::Graphics, accesses,
+    graph.addPass({kGeometryBufferPass, graph::QueueKind::Graphics, accesses,
                    shadowed ? "rasterise normals, view depth, object/material ids and the shadow occlusion mask "
                               "for the geometric aamap"
                             : "rasterise normals, view depth and object/material ids for the geometric aamap"});
     shadowed_ = shadowed;
-    constants_ = gbuffer_->lightingConstants(shadows.pcf);
+    constants_ = scene_->lightingConstants(shadows.pcf);
     const vk::Pipeline& pipeline = pipelines_[shadowed ? 1 : 0];  // built by prepare()
     gpu::GeometryPush push{};
-    glm::mat4 reverse(1.0f);  // reversed depth, as GBufferPass
-    reverse[2][2] = -1.0f;
-    reverse[3][2] = 1.0f;
-    push.viewProj = reverse * camera.projectionMatrix(nearPlane, farPlane) * camera.viewMatrix();
-    push.cameraPos = glm::vec4(camera.origin, 1.0f);
-    push.cameraForward = glm::vec4(camera.forward, 0.0f);
+    push.viewProj = view.reversedViewProjection();  // reversed depth, as the G-buffer
+    push.cameraPos = glm::vec4(view.camera.origin, 1.0f);
+    push.cameraForward = glm::vec4(view.camera.forward, 0.0f);
     push.shadow =
         glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias, static_cast<float>(shadows.faceSize));
-    executor.setPrepare("geometry_buffer", [this] { prepare(); });
-    executor.setRecord("geometry_buffer", [this, push, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
+    executor.setPrepare(kGeometryBufferPass, [this] { prepare(); });
+    executor.setRecord(kGeometryBufferPass, [this, push, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
         if (!prepared() || !pipeline.handle())
             throw std::logic_error("GeometryBufferPass recorded before its prepare step");
         const vk::Image& normalDepth = pc.image(kGeometryNormalDepth);
@@ -152,16 +149,16 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
             vk::DescriptorPush descriptors;
             descriptors.storageBuffer(GEOMETRY_BINDING_IDS, ids_.handle());
             if (!shadow.empty())
-                descriptors.uniformBuffer(GEOMETRY_BINDING_LIGHTS, gbuffer_->lightBuffer().handle())
+                descriptors.uniformBuffer(GEOMETRY_BINDING_LIGHTS, scene_->lightBuffer().handle())
                     .sampledImage(GEOMETRY_BINDING_SHADOW, pc.image(shadow).view(),
                                   VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL);
-            if (gbuffer_->textured())
+            if (scene_->textured())
                 descriptors.sampledImage(
                     shadow.empty() ? GEOMETRY_BINDING_ATLAS_UNSHADOWED : GEOMETRY_BINDING_ATLAS_SHADOWED,
-                    gbuffer_->atlas().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+                    scene_->atlas().view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
             descriptors.push(*context_, cmd, pipeline);
             pipeline.pushConstants(cmd, push);
-            const VkBuffer vb = gbuffer_->vertexBuffer().handle();
+            const VkBuffer vb = scene_->vertexBuffer().handle();
             const VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
             vkCmdDraw(cmd, triangleCount_ * 3, 1, 0, 0);

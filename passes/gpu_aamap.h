@@ -14,14 +14,9 @@
 #include "passes/laplacian.h"
 #include "passes/luminance.h"
 #include "passes/reduce.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
-
-// Resource names of the filter chain in the graph.
-inline const std::string kGrey = "grey";
-inline const std::string kLaplacian = "laplacian";  // |L|
-inline const std::string kMap = "map";              // blurred and dead-zoned, snapshot resolution
-inline const std::string kAamap = "aamap";          // render resolution
 
 struct FilterChain {
     explicit FilterChain(VulkanContext& context)

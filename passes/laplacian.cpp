@@ -3,15 +3,16 @@
 #include <aamap/spirv.h>
 
 #include "glsl/shared/aamap_filter.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
 
 LaplacianPass::LaplacianPass(VulkanContext& context)
-    : pass_(context, spirv::laplacian_comp, "laplacian", AAMAP_FILTER_ROWS) {}
+    : pass_(context, spirv::laplacian_comp, kLaplacianPass, AAMAP_FILTER_ROWS) {}
 
 graph::PassId LaplacianPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
                                  const std::string& grey, const std::string& edges) const {
-    return pass_.add(graph, executor, "laplacian", grey, edges, gpu::FilterPush{},
+    return pass_.add(graph, executor, kLaplacianPass, grey, edges, gpu::FilterPush{},
                      "5x5 Laplacian: the edges to antialias");
 }
 

@@ -2,15 +2,17 @@
 
 #include <aamap/spirv.h>
 
+#include "passes/snapshot_graph.h"
+
 namespace aamap::passes {
 
-LuminancePass::LuminancePass(VulkanContext& context) : pass_(context, spirv::luminance_comp, "luminance") {}
+LuminancePass::LuminancePass(VulkanContext& context) : pass_(context, spirv::luminance_comp, kLuminancePass) {}
 
 graph::PassId LuminancePass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
                                  const std::string& colour, const std::string& grey, float exposure) const {
     gpu::FilterPush push{};
     push.exposure = exposure;
-    return pass_.add(graph, executor, "luminance", colour, grey, push,
+    return pass_.add(graph, executor, kLuminancePass, colour, grey, push,
                      "greyscale of the snapshot for the edge filter (in a Snapshot only after a mirror "
                      "composite: otherwise the G-buffer writes it)");
 }

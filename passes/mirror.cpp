@@ -12,13 +12,11 @@
 
 #include "engine/vk/context.h"
 #include "glsl/shared/snapshot_interface.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
 namespace {
 
-const std::string kMirrorColour = "mirror.colour";
-const std::string kMirrorDepth = "mirror.depth";
-const std::string kMirrorMask = "mirror.mask";
 
 struct MaskVertex {
     glm::vec3 position;
@@ -145,16 +143,16 @@ void MirrorPass::buildCompositePipeline() {
                        static_cast<std::uint32_t>(sizeof(gpu::MirrorCompositePush)), VK_SHADER_STAGE_COMPUTE_BIT});
 }
 
-bool MirrorPass::anyInView(const PinholeCamera& camera, float nearPlane, float farPlane, float sceneSize) const {
-    return unsupported_.empty() && !visibleMirrors(camera, nearPlane, farPlane, sceneSize).empty();
+bool MirrorPass::anyInView(const SnapshotView& view) const {
+    return unsupported_.empty() && !visibleMirrors(view).empty();
 }
 
 // Visible mirrors, nearest first: the eye off the plane and some part of a triangle inside the
 // frustum (conservative: no vertex set entirely beyond one side plane of the frustum).
-std::vector<MirrorPass::VisibleMirror> MirrorPass::visibleMirrors(const PinholeCamera& camera, float nearPlane,
-                                                                  float farPlane, float sceneSize) const {
-    const glm::mat4 viewProj =
-        GBufferPass::reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), camera.viewMatrix());
+std::vector<MirrorPass::VisibleMirror> MirrorPass::visibleMirrors(const SnapshotView& view) const {
+    const PinholeCamera& camera = view.camera;
+    const float sceneSize = view.sceneSize;
+    const glm::mat4 viewProj = view.reversedViewProjection();
     std::vector<VisibleMirror> visible;
     for (const PlanarMirror& m : mirrors_.planar) {
         const float side = glm::dot(m.normal, camera.origin) - m.offset;
@@ -182,10 +180,12 @@ std::vector<MirrorPass::VisibleMirror> MirrorPass::visibleMirrors(const PinholeC
     return visible;
 }
 
-void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBufferPass& geometry,
-                     const std::string& snapshot, const std::string& depth, const PinholeCamera& camera,
-                     float nearPlane, float farPlane, float sceneSize, const GBufferShadows& shadows,
-                     std::string* why) {
+void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBufferPass& gbuffer,
+                     const std::string& snapshot, const std::string& depth, const SnapshotView& snapshotView,
+                     const GBufferShadows& shadows, std::string* why) {
+    const PinholeCamera& camera = snapshotView.camera;
+    const float nearPlane = snapshotView.nearPlane, farPlane = snapshotView.farPlane;
+    const float sceneSize = snapshotView.sceneSize;
     const auto explain = [&](std::string text) {
         if (why) *why = std::move(text);
     };
@@ -200,15 +200,14 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
                                                       mirrors_.curved.size()));
         return;
     }
-    std::vector<VisibleMirror> visible = visibleMirrors(camera, nearPlane, farPlane, sceneSize);
+    std::vector<VisibleMirror> visible = visibleMirrors(snapshotView);
     if (visible.empty()) {
         explain(fmt::format("no mirror pass: none of the {} planar mirror(s) is in view", mirrors_.planar.size()));
         return;
     }
     if (visible.size() > kMaxMirrors) visible.resize(kMaxMirrors);
     const glm::mat4 view = camera.viewMatrix();
-    const glm::mat4 viewProj =
-        GBufferPass::reversedViewProjection(camera.projectionMatrix(nearPlane, farPlane), view);
+    const glm::mat4 viewProj = snapshotView.reversedViewProjection();
 
     // One reflected view per mirror; the clip plane keeps the eye's side, a hair off the mirror
     // itself so that the mirror does not reflect its own surface.
@@ -258,7 +257,7 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
     mask.size = graph::Size::relative(snapshot);
     graph.addResource(mask);
 
-    geometry.addReflected(graph, executor, kMirrorPass, kMirrorColour, kMirrorDepth, views, shadows,
+    gbuffer.addReflected(graph, executor, kMirrorPass, kMirrorColour, kMirrorDepth, views, shadows,
                           fmt::format("the scene seen in {} planar mirror{} (camera reflected in each mirror plane, "
                                       "clipped to it): {}",
                                       visible.size(), visible.size() == 1 ? "" : "s", names));

@@ -25,14 +25,10 @@
 #include "engine/vk/pipeline.h"
 #include "engine/vk/resources.h"
 #include "passes/gbuffer.h"
-#include "scene/camera.h"
 #include "scene/scene.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
-
-inline const std::string kMirrorPass = "mirror";
-inline const std::string kMirrorMaskPass = "mirror.mask";
-inline const std::string kMirrorCompositePass = "mirror.composite";
 
 struct PlanarMirror {
     std::string name;                      // "object/material"
@@ -65,14 +61,15 @@ public:
 
     bool hasPlanarMirrors() const { return !mirrors_.planar.empty(); }
     // Whether add() would declare the mirror passes for this camera (a planar mirror in view).
-    bool anyInView(const PinholeCamera& camera, float nearPlane, float farPlane, float sceneSize) const;
+    bool anyInView(const SnapshotView& view) const;
 
     // Declares the three passes for the mirrors `camera` sees (none: nothing is declared and the
-    // reason is returned in `why`). `snapshot` and `depth` are the G-buffer's outputs.
-    // `geometry` and this object must outlive execution.
-    void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBufferPass& geometry,
-             const std::string& snapshot, const std::string& depth, const PinholeCamera& camera, float nearPlane,
-             float farPlane, float sceneSize, const GBufferShadows& shadows, std::string* why = nullptr);
+    // reason is returned in `why`). `snapshot` and `depth` are the G-buffer's outputs; the
+    // reflected views are drawn with `gbuffer`'s shading (GBufferPass::addReflected). `gbuffer`
+    // and this object must outlive execution.
+    void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBufferPass& gbuffer,
+             const std::string& snapshot, const std::string& depth, const SnapshotView& view,
+             const GBufferShadows& shadows, std::string* why = nullptr);
 
 private:
     struct VisibleMirror {
@@ -80,8 +77,7 @@ private:
         float sign;      // of the eye's side of the plane
         float distance;  // of the nearest corner to the eye
     };
-    std::vector<VisibleMirror> visibleMirrors(const PinholeCamera& camera, float nearPlane, float farPlane,
-                                              float sceneSize) const;
+    std::vector<VisibleMirror> visibleMirrors(const SnapshotView& view) const;
     void buildMaskPipeline();  // the executor's prepare steps
     void buildCompositePipeline();
 

@@ -2,13 +2,15 @@
 
 #include <aamap/spirv.h>
 
+#include "passes/snapshot_graph.h"
+
 namespace aamap::passes {
 
-ReducePass::ReducePass(VulkanContext& context) : pass_(context, spirv::reduce_comp, "reduce") {}
+ReducePass::ReducePass(VulkanContext& context) : pass_(context, spirv::reduce_comp, kReducePass) {}
 
 graph::PassId ReducePass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor,
                               const std::string& map, const std::string& aamap) const {
-    return pass_.add(graph, executor, "reduce", map, aamap, gpu::FilterPush{},
+    return pass_.add(graph, executor, kReducePass, map, aamap, gpu::FilterPush{},
                      "reduce to the render resolution");
 }
 

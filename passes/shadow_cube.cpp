@@ -25,25 +25,25 @@ ShadowCubePass::ShadowCubePass(VulkanContext& context) : context_(&context) {
     maxLayers_ = std::min(props.limits.maxFramebufferLayers, props.limits.maxImageArrayLayers);
 }
 
-void ShadowCubePass::buildPipeline(const GBufferPass& geometry) const {
-    const bool masked = geometry.alphaMasked();  // else sharedPositions(), or nothing to draw
-    vk::Pipeline& pipeline = pipelineSlot(geometry);
+void ShadowCubePass::buildPipeline(const SceneGpu& scene) const {
+    const bool masked = scene.alphaMasked();  // else sharedPositions(), or nothing to draw
+    vk::Pipeline& pipeline = pipelineSlot(scene);
     if (pipeline.handle()) return;
     vk::GraphicsDesc desc;
     desc.vertexSpirv = masked ? spirv::shadow_cube_masked_vert : spirv::shadow_cube_vert;
     desc.fragmentSpirv = masked ? spirv::shadow_cube_masked_frag : spirv::shadow_cube_frag;
-    // Masked: the G-buffer's vertices, position at 0; else the shared positions.
-    desc.vertexInput.stride = masked ? geometry.vertexStride() : static_cast<std::uint32_t>(sizeof(glm::vec3));
+    // Masked: the scene's full vertices, position at 0; else the shared positions.
+    desc.vertexInput.stride = masked ? scene.vertexStride() : static_cast<std::uint32_t>(sizeof(glm::vec3));
     desc.vertexInput.attributes = {{SHADOW_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}};
     std::vector<VkDescriptorType> bindings{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER};
     static_assert(SHADOW_BINDING_LIGHTS == 0 && SHADOW_BINDING_ATLAS == 1);
     if (masked) {
         desc.vertexInput.attributes.push_back(
-            {SHADOW_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kUvOffset});
+            {SHADOW_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, SceneGpu::kUvOffset});
         desc.vertexInput.attributes.push_back(
-            {SHADOW_LOCATION_TEX_RECT, 0, VK_FORMAT_R16G16B16A16_UINT, GBufferPass::kTexRectOffset});
+            {SHADOW_LOCATION_TEX_RECT, 0, VK_FORMAT_R16G16B16A16_UINT, SceneGpu::kTexRectOffset});
         desc.vertexInput.attributes.push_back(
-            {SHADOW_LOCATION_TEX_PARAMS, 0, VK_FORMAT_R32G32_SFLOAT, GBufferPass::kTexParamsOffset});
+            {SHADOW_LOCATION_TEX_PARAMS, 0, VK_FORMAT_R32G32_SFLOAT, SceneGpu::kTexParamsOffset});
         bindings.push_back(VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);
     }
     desc.depthFormat = vk::toVkFormat(kFormat);
@@ -101,29 +101,29 @@ ShadowCubePass::FaceLists ShadowCubePass::cullPerFace(std::span<const glm::vec3>
     return lists;
 }
 
-void ShadowCubePass::updateFaceLists(const GBufferPass& geometry, float nearPlane) {
-    if (listsGeometry_ == &geometry && listsVersion_ == geometry.lightsVersion() && listsNear_ == nearPlane) return;
+void ShadowCubePass::updateFaceLists(const SceneGpu& scene, float nearPlane) {
+    if (listsScene_ == &scene && listsVersion_ == scene.lightsVersion() && listsNear_ == nearPlane) return;
     FaceLists lists =
-        cullPerFace(geometry.vertexPositions(), geometry.lightPositions(), nearPlane, geometry.lightDirectional());
-    if (geometry.sharedPositions()) {
-        const std::span<const std::uint32_t> shared = geometry.positionIndex();
+        cullPerFace(scene.vertexPositions(), scene.lightPositions(), nearPlane, scene.lightDirectional());
+    if (scene.sharedPositions()) {
+        const std::span<const std::uint32_t> shared = scene.positionIndex();
         for (std::uint32_t& i : lists.indices) i = shared[i];
     }
     faceRanges_ = std::move(lists.ranges);
     if (lists.indices.empty()) lists.indices.push_back(0);  // a buffer needs a size; no range reads it
     faceIndices_ = vk::uploadBuffer(*context_, std::as_bytes(std::span<const std::uint32_t>(lists.indices)),
                                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    listsGeometry_ = &geometry;
-    listsVersion_ = geometry.lightsVersion();
+    listsScene_ = &scene;
+    listsVersion_ = scene.lightsVersion();
     listsNear_ = nearPlane;
 }
 
 graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& resource,
-                                  const GBufferPass& geometry, std::span<const std::string> lightNames,
+                                  const SceneGpu& scene, std::span<const std::string> lightNames,
                                   std::uint32_t faceSize, float nearPlane) {
     const auto lights = static_cast<std::uint32_t>(lightNames.size());
-    if (lights == 0 || lights != geometry.lightCount())
-        throw std::logic_error("ShadowCubePass::add: one name per light of the G-buffer, and at least one");
+    if (lights == 0 || lights != scene.lightCount())
+        throw std::logic_error("ShadowCubePass::add: one name per light of the scene, and at least one");
     const std::uint32_t layers = 6 * lights;
     if (layers > maxLayers_)
         throw std::invalid_argument(fmt::format("{} shadow cube maps need {} layers; '{}' allows {}: fewer lights or "
@@ -137,11 +137,11 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
     graph.addResource(desc);
 
     std::uint64_t kept = 0;
-    if (geometry.occluderVertexCount() > 0) {
-        updateFaceLists(geometry, nearPlane);
+    if (scene.occluderVertexCount() > 0) {
+        updateFaceLists(scene, nearPlane);
         for (const auto& range : faceRanges_) kept += range.second;
     }
-    const std::uint32_t occluders = geometry.occluderVertexCount();
+    const std::uint32_t occluders = scene.occluderVertexCount();
     const double keptShare = occluders > 0 ? static_cast<double>(kept) / (6.0 * lights * occluders) : 0.0;
     std::string names;
     for (std::uint32_t i = 0; i < lights && i < 6; ++i) names += fmt::format("{}'{}'", i ? ", " : "", lightNames[i]);
@@ -151,13 +151,13 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
          fmt::format("shadow cube maps ({}^2 per face, 6 layers each; a directional light's orthographic map fills "
                      "the first) for {} light{}: {}; per-face culling draws {:.1f}% of triangles x faces{}",
                      faceSize, lights, lights == 1 ? "" : "s", names, 100.0 * keptShare,
-                     geometry.alphaMasked() ? "; alpha test from the G-buffer's atlas (the scene has masks)" : "")});
+                     scene.alphaMasked() ? "; alpha test from the texture atlas (the scene has masks)" : "")});
 
     gpu::ShadowPush push{};
     push.nearPlane = nearPlane;
-    const vk::Pipeline& pipeline = pipelineSlot(geometry);
-    executor.setPrepare(kShadowPass, [this, &geometry] { buildPipeline(geometry); });
-    executor.setRecord(kShadowPass, [this, &geometry, &pipeline, resource, push, layers](vk::PassContext& pc) {
+    const vk::Pipeline& pipeline = pipelineSlot(scene);
+    executor.setPrepare(kShadowPass, [this, &scene] { buildPipeline(scene); });
+    executor.setRecord(kShadowPass, [this, &scene, &pipeline, resource, push, layers](vk::PassContext& pc) {
         const vk::Image& target = pc.image(resource);
         const VkExtent2D extent{target.info().width, target.info().height};
         VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -174,16 +174,16 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
         VkCommandBuffer cmd = pc.cmd();
         vkCmdBeginRendering(cmd, &rendering);
         vk::setFullViewport(cmd, extent);
-        if (geometry.occluderVertexCount() > 0) {
+        if (scene.occluderVertexCount() > 0) {
             pipeline.bind(cmd);
             vk::DescriptorPush descriptors;
-            descriptors.uniformBuffer(SHADOW_BINDING_LIGHTS, geometry.lightBuffer().handle());
-            if (geometry.alphaMasked())
-                descriptors.sampledImage(SHADOW_BINDING_ATLAS, geometry.atlas().view(),
+            descriptors.uniformBuffer(SHADOW_BINDING_LIGHTS, scene.lightBuffer().handle());
+            if (scene.alphaMasked())
+                descriptors.sampledImage(SHADOW_BINDING_ATLAS, scene.atlas().view(),
                                          VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
             descriptors.push(*context_, cmd, pipeline);
             pipeline.pushConstants(cmd, push);
-            const VkBuffer vb = geometry.sharedPositions() ? geometry.positionBuffer().handle() : geometry.vertexBuffer().handle();
+            const VkBuffer vb = scene.sharedPositions() ? scene.positionBuffer().handle() : scene.vertexBuffer().handle();
             const VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
             vkCmdBindIndexBuffer(cmd, faceIndices_.handle(), 0, VK_INDEX_TYPE_UINT32);

@@ -16,15 +16,15 @@
 // its layer). A triangle lies in one or two faces of most lights, so large scenes shade about a
 // quarter of the vertices an instanced draw of every triangle to every face would (the
 // conference room: 331k triangles x 36 faces).
-// Shared positions: the G-buffer's vertices are unindexed (three per triangle, each with its
+// Shared positions: the scene's vertices (passes/scene_gpu.h) are unindexed (three per triangle, each with its
 // triangle's normal and material), but the depth raster needs only positions. Unless the scene
-// has alpha masks, the pass draws the G-buffer's distinct positions (12-byte stride,
-// GBufferPass::positionBuffer) through the face lists remapped onto them, so lavapipe's vertex
+// has alpha masks, the pass draws the distinct positions (12-byte stride,
+// SceneGpu::positionBuffer) through the face lists remapped onto them, so lavapipe's vertex
 // cache (per batch of indices) shades a shared corner once rather than once per triangle: the
 // vertex stage, single-threaded there, is what limits this pass on large scenes.
 // The pass exists only when the scene has lights and shadows are on; each face stores near/ma
 // (see glsl/shared/snapshot_interface.h). A scene with alpha-masked textures gets the masked
-// variant (shadow_cube.masked.*), which binds the G-buffer's atlas and discards cut-out texels.
+// variant (shadow_cube.masked.*), which binds the scene's atlas and discards cut-out texels.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -36,12 +36,10 @@
 #include "engine/graph/render_graph.h"
 #include "engine/vk/graph_executor.h"
 #include "engine/vk/pipeline.h"
-#include "passes/gbuffer.h"
+#include "passes/scene_gpu.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap::passes {
-
-inline const std::string kShadowPass = "shadow";
-inline const std::string kShadowCubes = "shadow.cubes";
 
 class ShadowCubePass {
 public:
@@ -51,11 +49,11 @@ public:
     explicit ShadowCubePass(VulkanContext& context);
 
     // Declares `resource` (faceSize^2, 6 layers per light) and the pass "shadow" that renders the
-    // cube maps of `geometry`'s lights (lightNames: one per light, for --explain) from its
-    // vertices. Throws std::invalid_argument past the device's layer limits. `geometry` and this
+    // cube maps of `scene`'s lights (lightNames: one per light, for --explain) from its
+    // vertices. Throws std::invalid_argument past the device's layer limits. `scene` and this
     // object must outlive execution.
     graph::PassId add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& resource,
-                      const GBufferPass& geometry, std::span<const std::string> lightNames, std::uint32_t faceSize,
+                      const SceneGpu& scene, std::span<const std::string> lightNames, std::uint32_t faceSize,
                       float nearPlane);
 
     // The index list of each face (layer 6i+f): triangles of `positions` (three vertices each) not
@@ -71,20 +69,20 @@ public:
                                  float nearPlane, std::span<const std::uint8_t> directional = {});
 
 private:
-    // The variant `geometry` needs: shared positions, or masked when it has alpha masks.
-    vk::Pipeline& pipelineSlot(const GBufferPass& geometry) const { return pipelines_[geometry.alphaMasked() ? 1 : 0]; }
-    void buildPipeline(const GBufferPass& geometry) const;  // the executor's prepare step
-    void updateFaceLists(const GBufferPass& geometry, float nearPlane);
+    // The variant `scene` needs: shared positions, or masked when it has alpha masks.
+    vk::Pipeline& pipelineSlot(const SceneGpu& scene) const { return pipelines_[scene.alphaMasked() ? 1 : 0]; }
+    void buildPipeline(const SceneGpu& scene) const;  // the executor's prepare step
+    void updateFaceLists(const SceneGpu& scene, float nearPlane);
 
     VulkanContext* context_;
     // Built when the pass is kept: shared positions (12-byte stride), or masked (alpha test, the
-    // G-buffer's textured vertices). Index: 0, 1.
+    // scene's textured vertices). Index: 0, 1.
     mutable vk::Pipeline pipelines_[2];
     std::uint32_t maxLayers_ = 0;
-    // Face lists for (geometry, its light set, near plane), rebuilt when any of them changes.
+    // Face lists for (scene, its light set, near plane), rebuilt when any of them changes.
     vk::Buffer faceIndices_;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> faceRanges_;
-    const GBufferPass* listsGeometry_ = nullptr;
+    const SceneGpu* listsScene_ = nullptr;
     std::uint64_t listsVersion_ = 0;
     float listsNear_ = -1.0f;
 };

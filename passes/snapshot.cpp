@@ -17,18 +17,17 @@
 #include "passes/gbuffer.h"
 #include "passes/mirror.h"
 #include "passes/gpu_aamap.h"
+#include "passes/scene_gpu.h"
 #include "passes/shadow_cube.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
+#include "passes/snapshot_graph.h"
 
 namespace aamap {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-const std::string kSnapshot = "snapshot";
-const std::string kDepth = "depth";
 
 // Only what the light approximation needs (the mesh without UVs and ids, and the lights), so
 // the renderer does not depend on the caller keeping the Scene alive.
@@ -87,11 +86,12 @@ struct SnapshotRenderer::Impl {
     Scene lighting;
     Bounds bounds;
     bool emptyMesh;
+    passes::SceneGpu sceneGpu;  // meshes, lights and atlas, read by every raster pass
     passes::GBufferPass gbuffer;
     passes::MirrorPass mirrors;  // planar mirrors: passes only when one is in view
     passes::FilterChain chain;
     passes::BlockSumPass blockSums;
-    passes::GeometryBufferPass geometry;  // draws gbuffer's vertices; uploads its ids on first use
+    passes::GeometryBufferPass geometry;  // uploads its ids on first use
     passes::GeometricEdgePass geometricEdges;
     vk::GraphExecutor executor;
     int lightSamples = -1;  // k the light buffer was built for
@@ -104,11 +104,12 @@ struct SnapshotRenderer::Impl {
           lighting(lightingCopy(scene)),
           bounds(sceneBounds(scene)),
           emptyMesh(scene.mesh.triangles.empty()),
-          gbuffer(c, scene),
+          sceneGpu(c, scene),
+          gbuffer(c, sceneGpu),
           mirrors(c, scene),
           chain(c),
           blockSums(c),
-          geometry(c, scene, gbuffer),
+          geometry(c, scene, sceneGpu),
           geometricEdges(c),
           executor(c) {}
 
@@ -131,8 +132,8 @@ struct SnapshotRenderer::Impl {
             env = passes::prepareEnvironmentLighting(*lighting.environment, fromEnvironment);
             directionals.insert(directionals.end(), env->lights.begin(), env->lights.end());
         }
-        gbuffer.setLights(lights, directionals, env ? &env->irradianceSH : nullptr);
-        gbuffer.setBackground(env ? env->background : glm::vec3(0.0f));
+        sceneGpu.setLights(lights, directionals, env ? &env->irradianceSH : nullptr);
+        sceneGpu.setBackground(env ? env->background : glm::vec3(0.0f));
         lightNames.clear();
         for (const PointLight& l : lights) lightNames.push_back(l.name);
         for (const DirectionalLight& d : directionals)
@@ -161,25 +162,26 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         return static_cast<std::uint32_t>(std::max(1L, std::lround(settings.scale * static_cast<float>(v))));
     };
     const std::uint32_t snapW = scaled(width), snapH = scaled(height);
-    const PinholeCamera camera = PinholeCamera::fromView(view);
-    float nearPlane = 0.0f, farPlane = 0.0f;
-    clipPlanes(s.bounds, camera.origin, s.emptyMesh, nearPlane, farPlane);
+    passes::SnapshotView snapshotView;
+    snapshotView.camera = PinholeCamera::fromView(view);
+    clipPlanes(s.bounds, snapshotView.camera.origin, s.emptyMesh, snapshotView.nearPlane, snapshotView.farPlane);
+    snapshotView.sceneSize = glm::length(s.bounds.extent());
 
     s.executor.clear();
     graph::RenderGraph graph;
     graph::ResourceDesc colour;
-    colour.name = kSnapshot;
+    colour.name = passes::kSnapshot;
     colour.format = passes::GBufferPass::kColourFormat;
     colour.size = graph::Size::absolute(snapW, snapH);
     graph.addResource(colour);
     graph::ResourceDesc depth;
-    depth.name = kDepth;
+    depth.name = passes::kDepth;
     depth.format = passes::GBufferPass::kDepthFormat;
-    depth.size = graph::Size::relative(kSnapshot);
+    depth.size = graph::Size::relative(passes::kSnapshot);
     graph.addResource(depth);
     // Shadow maps only for what is there: no lights (or no geometry to cast), no shadow pass.
     passes::GBufferShadows shadows;
-    const bool shadowed = settings.shadows.enabled && s.gbuffer.lightCount() > 0 && !s.emptyMesh;
+    const bool shadowed = settings.shadows.enabled && s.sceneGpu.lightCount() > 0 && !s.emptyMesh;
     if (shadowed) {
         if (!s.shadows) s.shadows.emplace(s.context);
         shadows.resource = passes::kShadowCubes;
@@ -190,24 +192,22 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         shadows.depthBias = settings.shadows.depthBias;
         shadows.slopeBias = settings.shadows.slopeBias;
         shadows.pcf = static_cast<std::uint32_t>(settings.shadows.pcf);
-        s.shadows->add(graph, s.executor, shadows.resource, s.gbuffer, s.lightNames, shadows.faceSize,
+        s.shadows->add(graph, s.executor, shadows.resource, s.sceneGpu, s.lightNames, shadows.faceSize,
                        shadows.nearPlane);
     }
     // The G-buffer writes the aamap's grey itself unless a mirror composite changes the snapshot
     // after it or the map does not read the grey: one compute pass fewer.
-    const float sceneSize = glm::length(s.bounds.extent());
     passes::GBufferGrey grey;
-    if (!s.mirrors.anyInView(camera, nearPlane, farPlane, sceneSize) &&
+    if (!s.mirrors.anyInView(snapshotView) &&
         settings.map != passes::AamapSource::Geometric) {
         graph.addResource(
-            graph::imageResource(passes::kGrey, passes::GBufferPass::kGreyFormat, graph::Size::relative(kSnapshot)));
+            graph::imageResource(passes::kGrey, passes::GBufferPass::kGreyFormat, graph::Size::relative(passes::kSnapshot)));
         grey = {passes::kGrey, settings.filter.exposure};
     }
-    s.gbuffer.add(graph, s.executor, kSnapshot, kDepth, camera, nearPlane, farPlane, shadows, grey);
+    s.gbuffer.add(graph, s.executor, passes::kSnapshot, passes::kDepth, snapshotView, shadows, grey);
     std::string mirrorWhy;
-    s.mirrors.add(graph, s.executor, s.gbuffer, kSnapshot, kDepth, camera, nearPlane, farPlane,
-                  sceneSize, shadows, &mirrorWhy);
-    passes::MapChainInputs mapInputs{kSnapshot, &camera, nearPlane, farPlane, width, height, settings.filter};
+    s.mirrors.add(graph, s.executor, s.gbuffer, passes::kSnapshot, passes::kDepth, snapshotView, shadows, &mirrorWhy);
+    passes::MapChainInputs mapInputs{passes::kSnapshot, snapshotView, width, height, settings.filter};
     mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
     mapInputs.greyFromGBuffer = !grey.resource.empty();
     passes::addAamapChain(graph, s.executor, s.chain, s.geometry, s.geometricEdges, settings.map, mapInputs);
@@ -217,7 +217,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
 
     std::vector<std::string> outputs{passes::kAamap};
     if (settings.keepDebugImages) {
-        outputs.push_back(kSnapshot);
+        outputs.push_back(passes::kSnapshot);
         if (settings.map != passes::AamapSource::Geometric) outputs.push_back(passes::kLaplacian);
         if (settings.map != passes::AamapSource::Luminance) outputs.push_back(passes::kEdges);
     }
@@ -233,7 +233,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     const auto convert = Clock::now();
     result.aamap = passes::toImageGrey(run.outputs.at(passes::kAamap));
     if (settings.keepDebugImages) {
-        result.snapshot = passes::toImageRGB(run.outputs.at(kSnapshot));
+        result.snapshot = passes::toImageRGB(run.outputs.at(passes::kSnapshot));
         if (settings.map != passes::AamapSource::Geometric)
             result.laplacian = passes::toImageGrey(run.outputs.at(passes::kLaplacian));
         if (settings.map != passes::AamapSource::Luminance)
@@ -247,7 +247,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     result.deviceName = s.context.deviceName();
     result.explain = explainWithPurposes(graph, compiled) + "mirrors: " + mirrorWhy + "\n";
     result.dot = compiled.toDot();
-    result.shadowCubeMaps = shadowed ? static_cast<int>(s.gbuffer.lightCount()) : 0;
+    result.shadowCubeMaps = shadowed ? static_cast<int>(s.sceneGpu.lightCount()) : 0;
     result.totalSeconds = secondsSince(start);
     return result;
 }

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "gpu_fixture.h"
-#include "passes/gbuffer.h"
+#include "passes/scene_gpu.h"
 #include "passes/snapshot.h"
 #include "test_scenes.h"
 
@@ -68,10 +68,10 @@ TEST_F(DepthPrepass, SharedPositionsMergeExactlyTheBitEqualCorners) {
     scene.mesh.normals.resize(scene.mesh.positions.size(), glm::vec3(0, 0, 1));
     scene.mesh.materialIds.push_back(0);
     scene.mesh.objectIds.push_back(0);
-    passes::GBufferPass gbuffer(context(), scene);
-    ASSERT_TRUE(gbuffer.sharedPositions());
-    const auto positions = gbuffer.vertexPositions();
-    const auto index = gbuffer.positionIndex();
+    const passes::SceneGpu sceneGpu(context(), scene);
+    ASSERT_TRUE(sceneGpu.sharedPositions());
+    const auto positions = sceneGpu.vertexPositions();
+    const auto index = sceneGpu.positionIndex();
     ASSERT_EQ(index.size(), positions.size());
     ASSERT_EQ(positions.size(), 15u);
     std::uint32_t distinct = 0;

@@ -3,7 +3,10 @@
 // mirror passes exist only when a planar mirror is in view, and --explain says why.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <regex>
 #include <set>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 
@@ -226,6 +229,46 @@ TEST(MirrorGeometry, LimitationsNameCurvedMirrorsAndGlass) {
     notes = snapshotLimitations(s);
     ASSERT_EQ(notes.size(), 1u);
     EXPECT_NE(notes[0].find("2 glass triangle(s)"), std::string::npos) << notes[0];
+}
+
+// passes/snapshot_graph.h names every pass and resource of the Snapshot graph, and nothing else:
+// the nodes of the DOT graphs of a scene with every feature (a light, a planar mirror in view,
+// each map source, block sums, debug images) are exactly the header's names.
+TEST_F(SnapshotMirror, EveryPassAndResourceIsNamedInTheSnapshotGraphHeader) {
+    std::ifstream in(std::string(AAMAP_SOURCE_DIR) + "/passes/snapshot_graph.h");
+    ASSERT_TRUE(in.good());
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string header = text.str();
+    std::set<std::string> declared;
+    const std::regex constant(R"re(inline const std::string k\w+ = "([^"]+)";)re");
+    for (auto it = std::sregex_iterator(header.begin(), header.end(), constant); it != std::sregex_iterator(); ++it)
+        declared.insert((*it)[1]);  // a pass may share its output's name (laplacian, mirror.mask)
+
+    Scene scene = mirrorScene(MaterialKind::Mirror);
+    PointLight light;
+    light.name = "bulb";
+    light.position = {0.9f, 0.6f, 1.0f};
+    light.intensity = glm::vec3(5.0f);
+    scene.pointLights.push_back(light);
+    SnapshotRenderer renderer(context(), scene);
+    std::set<std::string> used;
+    // A node's label starts with its name: "name\n<size>" for a resource, "i: name" for a kept
+    // pass, "name (culled)" for a culled one.
+    const std::regex node(R"re(\[shape=\w+[^\]]*label="(\d+: )?([^"\\ ]+))re");
+    for (const passes::AamapSource source :
+         {passes::AamapSource::Luminance, passes::AamapSource::Geometric, passes::AamapSource::Combined}) {
+        SnapshotSettings settings;
+        settings.map = source;
+        settings.blockSums = true;
+        const SnapshotResult r = renderer.render(frontView(), 32, 32, settings);
+        for (auto it = std::sregex_iterator(r.dot.begin(), r.dot.end(), node); it != std::sregex_iterator(); ++it) {
+            const std::string name = (*it)[2];
+            EXPECT_TRUE(declared.count(name)) << name << " is not in passes/snapshot_graph.h";
+            used.insert(name);
+        }
+    }
+    for (const std::string& name : declared) EXPECT_TRUE(used.count(name)) << name << " is declared but never used";
 }
 
 }  // namespace

@@ -342,7 +342,7 @@ TEST_F(SnapshotTextures, SceneFeaturesAddExactlyTheirPassesAndBindings) {
     EXPECT_EQ(rPlain.explain.find("atlas"), std::string::npos);
     EXPECT_EQ(rLit.explain.find("atlas"), std::string::npos);
     EXPECT_NE(rTex.explain.find("atlas"), std::string::npos);
-    EXPECT_NE(rBoth.explain.find("alpha test from the G-buffer's atlas"), std::string::npos);
+    EXPECT_NE(rBoth.explain.find("alpha test from the texture atlas"), std::string::npos);
     EXPECT_EQ(rLit.explain.find("alpha test"), std::string::npos);
 
     // Textured but opaque: the atlas, and no alpha test anywhere.
