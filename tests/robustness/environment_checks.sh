@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Failures of the environment, through the `aamap` command (issue 9):
+# Failures of the environment, through the `aamap` command:
 #   no-device    no Vulkan driver at all: the run succeeds with the CPU aamap, results.json says so
 #   wrong-device a device named by AAMAP_DEVICE is absent: an error listing the devices, nothing written
 #   geometric-no-device  snapshot.map: geometric without a device: an error (the CPU path is luminance only)

@@ -100,7 +100,7 @@ TEST_F(Extremes, LargeImage2048) {
     EXPECT_EQ(r.rays.primary, 2048u * 2048u);
 }
 
-// 8192 x 8192, the largest size, through the cheapest strategy that still writes every
+// 8192 x 8192, the largest supported size, through the cheapest strategy that still writes every
 // pixel: aamap-subsample with s = 64 and t = infinity traces only the grid (129 x 129 rays, one
 // per grid pixel) and interpolates the rest. Budget, stated up front: 64 Mpx x (12 B RGB + 2 B rays
 // + 1 B traced + 4 B aamap + 12 B block sums: a double table and a uint32 count table) = 1.9 GiB
