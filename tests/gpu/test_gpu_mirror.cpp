@@ -63,6 +63,15 @@ Scene mirrorScene(MaterialKind mirrorKind) {
     return s;
 }
 
+// A point light between the mirror and the object.
+void addBulb(Scene& scene) {
+    PointLight light;
+    light.name = "bulb";
+    light.position = {0.9f, 0.6f, 1.0f};
+    light.intensity = glm::vec3(5.0f);
+    scene.pointLights.push_back(light);
+}
+
 View frontView() {
     View v;
     v.position = {0.1f, -0.2f, 4.0f};
@@ -167,11 +176,7 @@ TEST_F(SnapshotMirror, MirrorUnderALightWithShadowsAndAlphaMaskedTextures) {
     scene.materials[1].diffuseTexture = scene.materials[1].alphaTexture = 0;
     scene.materials[1].alphaMode = AlphaMode::Mask;
     scene.mesh.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}, {0, 1}, {1, 1}, {1, 0}, {0, 0}};
-    PointLight light;
-    light.name = "bulb";
-    light.position = {0.9f, 0.6f, 1.0f};
-    light.intensity = glm::vec3(5.0f);
-    scene.pointLights.push_back(light);
+    addBulb(scene);
     SnapshotRenderer renderer(context(), scene);
     const SnapshotResult r = renderer.render(frontView(), 64, 64, SnapshotSettings{});
     std::set<std::string> names;
@@ -246,11 +251,7 @@ TEST_F(SnapshotMirror, EveryPassAndResourceIsNamedInTheSnapshotGraphHeader) {
         declared.insert((*it)[1]);  // a pass may share its output's name (laplacian, mirror.mask)
 
     Scene scene = mirrorScene(MaterialKind::Mirror);
-    PointLight light;
-    light.name = "bulb";
-    light.position = {0.9f, 0.6f, 1.0f};
-    light.intensity = glm::vec3(5.0f);
-    scene.pointLights.push_back(light);
+    addBulb(scene);
     SnapshotRenderer renderer(context(), scene);
     std::set<std::string> used;
     // A node's label starts with its name: "name\n<size>" for a resource, "i: name" for a kept
