@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -233,6 +234,56 @@ TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
     std::sort(names.begin(), names.end());
     std::sort(schema.begin(), schema.end());
     EXPECT_EQ(names, schema);
+}
+
+}  // namespace
+}  // namespace aamap
+
+namespace aamap {
+namespace {
+
+// The type cell docs/config.md writes for a key: "int in [1, 64]", "number in (0, 1]", "bool",
+// "`a`, `b` or `c`".
+std::string docType(const ParamSpec& p) {
+    if (p.type == ParamType::Bool) return "bool";
+    if (p.type == ParamType::Choice) {
+        std::string t;
+        for (std::size_t i = 0; i < p.choices.size(); ++i)
+            t += (i == 0 ? "" : i + 1 == p.choices.size() ? " or " : ", ") + ("`" + p.choices[i] + "`");
+        return t;
+    }
+    return fmt::format("{} in {}", p.type == ParamType::Int ? "int" : "number", p.rangeText());
+}
+
+// Every schema key has a row in docs/config.md's key table whose type, range and default are the
+// schema's (a row may name several keys of one spec: "`image.width`, `image.height`").
+TEST(ConfigSchema, DocsTableRowsMatchTheSchema) {
+    std::map<std::string, std::string> typeCells;  // key -> "Type, default" cell
+    std::istringstream doc(test::readText(std::string(AAMAP_SOURCE_DIR) + "/docs/config.md"));
+    for (std::string line; std::getline(doc, line);) {
+        if (!line.starts_with("| `")) continue;
+        const std::size_t a = line.find(" | "), b = line.find(" | ", a + 3);
+        if (a == std::string::npos || b == std::string::npos) continue;
+        const std::string names = line.substr(2, a - 2), cell = line.substr(a + 3, b - a - 3);
+        for (std::size_t q = names.find('`'); q != std::string::npos; q = names.find('`', names.find('`', q + 1) + 1)) {
+            const std::size_t end = names.find('`', q + 1);
+            if (end == std::string::npos) break;
+            typeCells.emplace(names.substr(q + 1, end - q - 1), cell);
+        }
+    }
+    for (const Key& k : allKeys()) {
+        ASSERT_TRUE(typeCells.count(k.dotted)) << k.dotted << " has no row in docs/config.md";
+        const std::string& cell = typeCells.at(k.dotted);
+        const std::size_t split = cell.rfind(", `");
+        ASSERT_NE(split, std::string::npos) << k.dotted << ": " << cell;
+        EXPECT_EQ(cell.substr(0, split), docType(*k.spec)) << k.dotted;
+        const std::string def = cell.substr(split + 3, cell.size() - split - 4);
+        if (k.spec->type == ParamType::Int || k.spec->type == ParamType::Real)
+            EXPECT_NEAR(std::strtod(def.c_str(), nullptr), k.spec->defaultValue, 1e-5 * std::fabs(k.spec->defaultValue))
+                << k.dotted << ": " << cell;
+        else
+            EXPECT_EQ(def, toString(k.spec->defaultParam())) << k.dotted << ": " << cell;
+    }
 }
 
 }  // namespace
