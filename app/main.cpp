@@ -25,6 +25,7 @@
 #include "engine/vk/context.h"
 #include "eval/compare.h"
 #include "eval/config.h"
+#include "eval/config_schema.h"
 #include "eval/experiment.h"
 #include "eval/report.h"
 #include "eval/sweep_runner.h"
@@ -39,22 +40,15 @@ constexpr int kExitValidation = 3;
 const char* const kRunFooter = R"(CONFIG is a YAML experiment (configs/cornell.yaml is the default one; full schema in
 docs/config.md). Paths in it are relative to the config file. Keys:
   scene: builtin:cornell | path to .obj/.gltf/.glb/.xml (Mitsuba)
-  view: path to a Radiance .vf, or null (scene's view)    view_index: 0
+  view: path to a Radiance .vf, or null (scene's view)    seed: 1
   camera: {position: [x,y,z], look_at: [x,y,z], up: [0,1,0], fov: 45 (horizontal)} instead of view
-  seed: 1          threads: 0 (all cores)
   light_file: lights.yaml (docs/lights.md)  lights: [{type: point|spot|quad|disk, name, position: [x,y,z],
             intensity|radiance|power: [r,g,b], normal, direction, inner_angle, outer_angle, size, radius}]
-  image: {width: 512, height: 512, exposure: 1.0,   (the view's aspect ratio fits inside)
-         filter: box|tent|gaussian, filter_radius: 0 (the filter's own), filter_stddev: 0.5}
-  snapshot: {scale: 1.5, area_light_samples: 5, blur_radius: 1, noise_floor: 0.02, gain: 1.0}
-  shading: {area_light_samples: 16, mode: direct|path|cache, max_depth: 5, russian_roulette: true,
-            roulette_depth: 5, max_specular_depth: 8}
+@SECTIONS@
   renders: [{name: NAME, series: LABEL, strategy: S, rpp: n*n or a list (a sweep),
              <strategy parameter>: value or list}]     lists sweep: the cartesian product
 @STRATEGIES@
   reference: {type: uniform|file|none, rpp: max of renders, mode: shading mode, path: EXR}
-  metrics: {flip: true, flip_hdr: false, flip_threshold: 0.1, mse_threshold: 6.15e-5, ppd: 67.02,
-            map_quality: true}          report: {plots: true}
 --set overrides one value, e.g. --set image.width=256 --set renders.1.rpp=[1,4,16] (the value is YAML).
 
 Writes into OUTDIR: report.html, report.md, results.csv, results.json; snapshot.png, laplacian.png,
@@ -66,12 +60,15 @@ Environment: AAMAP_VALIDATION=1 turns on --validation; AAMAP_DEVICE sets the def
 Exit codes: 0 success, 1 environment error (no GPU, disk), 2 bad input (config, scene, options),
 3 Vulkan validation messages.)";
 
-// The strategy lines come from the registry, so new strategies show up here by themselves.
+// The section and strategy lines come from their schemas, so new keys and strategies show up
+// here by themselves.
 std::string runFooter() {
-    const std::string lines = aamap::strategyHelpLines();
     std::string footer = kRunFooter;
-    const std::string token = "@STRATEGIES@\n";
-    footer.replace(footer.find(token), token.size(), lines);
+    const auto fill = [&](const std::string& token, const std::string& lines) {
+        footer.replace(footer.find(token), token.size(), lines);
+    };
+    fill("@SECTIONS@\n", aamap::sectionHelpLines());
+    fill("@STRATEGIES@\n", aamap::strategyHelpLines());
     return footer;
 }
 

@@ -13,12 +13,15 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "eval/config_schema.h"
 #include "eval/config_sections.h"
 #include "eval/config_sweeps.h"
 #include "eval/file_digest.h"
 #include "eval/light_list.h"
 #include "eval/strategies.h"
 #include "eval/yaml_reader.h"
+#include "passes/snapshot_params.h"
+#include "tracer/shading_params.h"
 
 namespace aamap {
 namespace {
@@ -27,32 +30,21 @@ using yaml::MapReader;
 
 }  // namespace
 
-// Every value --set can reach; '#' is a list index. Keep in step with the readers.
+// Every value --set can reach; '#' is a list index. The schema sections' keys come from the
+// schema (eval/config_schema.h); the rest are read by hand and listed here.
 std::vector<std::string> settableKeys() {
     std::vector<std::string> l = {
-        "scene", "view", "view_index", "seed", "threads",
-        "camera.position", "camera.look_at", "camera.up", "camera.fov",
-        "image.width", "image.height", "image.exposure", "image.filter", "image.filter_radius", "image.filter_stddev",
-        "snapshot.scale", "snapshot.area_light_samples", "snapshot.environment_lights", "snapshot.blur_radius", "snapshot.noise_floor",
-        "snapshot.gain", "snapshot.map", "shading.area_light_samples", "shading.mode", "shading.max_depth",
-        "shading.russian_roulette", "shading.roulette_depth", "shading.max_specular_depth", "shading.light_selection",
-        "shading.cache.bounces", "shading.cache.divisions", "shading.cache.supersamples", "shading.cache.accuracy",
-        "shading.cache.resolution", "shading.cache.grid_step",
-        "light_file",
+        "scene", "view", "seed", "camera.position", "camera.look_at", "camera.up", "camera.fov", "light_file",
         "renders.#.name", "renders.#.series", "renders.#.strategy", "renders.#.rpp",
         "reference.type", "reference.rpp", "reference.mode", "reference.path",
-        "metrics.flip", "metrics.flip_hdr", "metrics.flip_threshold", "metrics.mse_threshold", "metrics.ppd",
-        "metrics.map_quality", "metrics.causes", "report.plots", "timing.repeats", "timing.interleave",
-        "timing.same_machine",
     };
+    for (const std::string& k : sectionKeys()) l.push_back(k);
     for (const std::string& p : allStrategyParamNames()) l.push_back("renders.#." + p);
     for (const std::string& k : lightKeys()) l.push_back("lights.#." + k);
     return l;
 }
 
 namespace {
-
-constexpr int kMaxSide = 16384;
 
 SourceLocation locationOf(const yaml::Context& ctx, MapReader& map, const std::string& key) {
     const YAML::Node n = map.node(key);
@@ -63,8 +55,9 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     if (root.IsNull() || !root.IsDefined())
         throw InputError(ctx.file(), 1, 1, "the config is empty; it needs at least 'scene' and 'renders'");
     MapReader top(ctx, root, "",
-                  {"scene", "view", "view_index", "camera", "light_file", "lights", "image", "seed", "threads", "snapshot",
-                   "shading", "renders", "reference", "metrics", "report", "timing"});
+                  sectionKeyNames(topLevelParams(), {"scene", "view", "camera", "light_file", "lights", "image", "seed",
+                                                     "snapshot", "shading", "renders", "reference", "metrics", "report",
+                                                     "timing"}));
     ExperimentConfig c;
     c.file = ctx.file();
     top.require("scene");
@@ -77,7 +70,9 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
         c.view = view;
     }
     c.viewLocation = locationOf(ctx, top, "view");
-    top.getInt("view_index", c.viewIndex, 0, 1000000);
+    const ParamValues scalars = readSection(ctx, top, topLevelParams());
+    c.viewIndex = scalars.integer("view_index");
+    c.threads = scalars.integer("threads");
     c.viewIndexLocation = locationOf(ctx, top, "view_index");
     if (top.has("camera") && !top.node("camera").IsNull()) {
         c.camera = detail::readCamera(ctx, top.node("camera"));
@@ -86,7 +81,6 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     }
     c.cameraLocation = locationOf(ctx, top, "camera");
     top.getUInt64("seed", c.seed);
-    top.getInt("threads", c.threads, 0, 4096);
 
     // One schema and parser for the light file and the inline list (eval/light_list.h).
     if (top.has("light_file") && !top.node("light_file").IsNull()) {
@@ -111,63 +105,59 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
         c.lights.push_back(std::move(l));
     }
 
-    MapReader image(ctx, top.node("image"), "image",
-                    {"width", "height", "exposure", "filter", "filter_radius", "filter_stddev"});
+    // Each section: its schema's keys read generically, then the struct filled from the values.
+    MapReader image(ctx, top.node("image"), "image", sectionKeyNames(imageParams()));
     c.image.sizeGiven = image.has("width") || image.has("height");
-    image.getInt("width", c.image.width, 1, kMaxSide);
-    image.getInt("height", c.image.height, 1, kMaxSide);
-    image.getDouble("exposure", c.image.exposure, 0.0, 1e6, true);
-    image.getString("filter", c.image.filter);
-    detail::checkOneOf(ctx, image.node("filter"), "image.filter", c.image.filter, {"box", "tent", "gaussian"});
-    image.getDouble("filter_radius", c.image.filterRadius, 0.0, 8.0);
-    image.getDouble("filter_stddev", c.image.filterStddev, 0.0, 4.0, true);
+    const ParamValues iv = readSection(ctx, image, imageParams());
+    c.image.width = iv.integer("width");
+    c.image.height = iv.integer("height");
+    c.image.exposure = iv.real("exposure");
+    c.image.filter = iv.choice("filter");
+    c.image.filterRadius = iv.real("filter_radius");
+    c.image.filterStddev = iv.real("filter_stddev");
     if (image.has("filter_stddev") && c.image.filter != "gaussian")
         ctx.fail(image.node("filter_stddev"), "image.filter_stddev",
                  fmt::format("image.filter_stddev: only the gaussian filter has a stddev (image.filter is '{}')",
                              c.image.filter));
 
-    MapReader snap(ctx, top.node("snapshot"), "snapshot",
-                   {"scale", "area_light_samples", "environment_lights", "blur_radius", "noise_floor", "gain", "map"});
-    snap.getDouble("scale", c.snapshot.scale, 1.0, 4.0);
-    snap.getInt("area_light_samples", c.snapshot.areaLightSamples, 1, 64);
-    snap.getInt("environment_lights", c.snapshot.environmentLights, 0, 16);
-    snap.getInt("blur_radius", c.snapshot.blurRadius, 0, 16);
-    snap.getDouble("noise_floor", c.snapshot.noiseFloor, 0.0, 1.0);
-    snap.getDouble("gain", c.snapshot.gain, 0.0, 1e6, true);
-    snap.getString("map", c.snapshot.map);
-    detail::checkOneOf(ctx, snap.node("map"), "snapshot.map", c.snapshot.map, {"luminance", "geometric", "combined"});
+    MapReader snap(ctx, top.node("snapshot"), "snapshot", sectionKeyNames(snapshotParams()));
+    const ParamValues sv = readSection(ctx, snap, snapshotParams());
+    c.snapshot.scale = sv.real("scale");
+    c.snapshot.areaLightSamples = sv.integer("area_light_samples");
+    c.snapshot.environmentLights = sv.integer("environment_lights");
+    c.snapshot.blurRadius = sv.integer("blur_radius");
+    c.snapshot.noiseFloor = sv.real("noise_floor");
+    c.snapshot.gain = sv.real("gain");
+    c.snapshot.map = sv.choice("map");
 
-    MapReader shading(ctx, top.node("shading"), "shading",
-                      {"area_light_samples", "mode", "max_depth", "russian_roulette", "roulette_depth",
-                       "max_specular_depth", "light_selection", "cache"});
-    shading.getInt("area_light_samples", c.shading.areaLightSamples, 1, 4096);
-    shading.getString("mode", c.shading.mode);
-    detail::checkShadingMode(ctx, shading.node("mode"), "shading.mode", c.shading.mode);
-    shading.getInt("max_depth", c.shading.maxDepth, 1, 1024);
-    c.shading.russianRoulette = detail::readBool(ctx, shading, "russian_roulette", c.shading.russianRoulette);
-    shading.getInt("roulette_depth", c.shading.rouletteDepth, 1, 1024);
-    shading.getInt("max_specular_depth", c.shading.maxSpecularDepth, 0, 1024);
-    shading.getString("light_selection", c.shading.lightSelection);
-    detail::checkOneOf(ctx, shading.node("light_selection"), "shading.light_selection", c.shading.lightSelection,
-                       {"contribution", "power"});
-    MapReader cache(ctx, shading.node("cache"), "shading.cache",
-                    {"bounces", "divisions", "supersamples", "accuracy", "resolution", "grid_step"});
+    MapReader shading(ctx, top.node("shading"), "shading", sectionKeyNames(shadingParams(), {"cache"}));
+    const ParamValues hv = readSection(ctx, shading, shadingParams());
+    c.shading.areaLightSamples = hv.integer("area_light_samples");
+    c.shading.mode = hv.choice("mode");
+    c.shading.maxDepth = hv.integer("max_depth");
+    c.shading.russianRoulette = hv.boolean("russian_roulette");
+    c.shading.rouletteDepth = hv.integer("roulette_depth");
+    c.shading.maxSpecularDepth = hv.integer("max_specular_depth");
+    c.shading.lightSelection = hv.choice("light_selection");
+    MapReader cache(ctx, shading.node("cache"), "shading.cache", sectionKeyNames(shadingCacheParams()));
+    const ParamValues cv = readSection(ctx, cache, shadingCacheParams());
     ShadingConfig::Cache& ic = c.shading.cache;
-    cache.getInt("bounces", ic.bounces, 0, 16);
-    cache.getInt("divisions", ic.divisions, 4, 1 << 16);
-    cache.getInt("supersamples", ic.supersamples, 0, 1 << 16);
-    cache.getDouble("accuracy", ic.accuracy, 0.0, 1.0, true);
-    cache.getInt("resolution", ic.resolution, 0, 1 << 16);
-    cache.getInt("grid_step", ic.gridStep, 1, 64);
+    ic.bounces = cv.integer("bounces");
+    ic.divisions = cv.integer("divisions");
+    ic.supersamples = cv.integer("supersamples");
+    ic.accuracy = cv.real("accuracy");
+    ic.resolution = cv.integer("resolution");
+    ic.gridStep = cv.integer("grid_step");
 
     c.renders = detail::readRenders(ctx, top.node("renders"));
     c.reference = detail::readReference(ctx, top.node("reference"), c.renders);
     c.metrics = detail::readMetrics(ctx, top.node("metrics"));
     c.report = detail::readReport(ctx, top.node("report"));
-    MapReader timing(ctx, top.node("timing"), "timing", {"repeats", "interleave", "same_machine"});
-    timing.getInt("repeats", c.timing.repeats, 1, 100);
-    c.timing.interleave = detail::readBool(ctx, timing, "interleave", c.timing.interleave);
-    c.timing.sameMachine = detail::readBool(ctx, timing, "same_machine", c.timing.sameMachine);
+    MapReader timing(ctx, top.node("timing"), "timing", sectionKeyNames(timingParams()));
+    const ParamValues tv = readSection(ctx, timing, timingParams());
+    c.timing.repeats = tv.integer("repeats");
+    c.timing.interleave = tv.boolean("interleave");
+    c.timing.sameMachine = tv.boolean("same_machine");
     return c;
 }
 
@@ -226,6 +216,8 @@ Json lightsJson(const ExperimentConfig& c) {
     return lights;
 }
 
+// The schema's snapshot keys, in the order the key format fixed. Rule for keys added later: they
+// enter only when not their default, so the keys of configs that do not set them stay as they were.
 Json snapshotJson(const ExperimentConfig& c) {
     Json j = {{"scale", c.snapshot.scale}, {"area_light_samples", c.snapshot.areaLightSamples},
               {"blur_radius", c.snapshot.blurRadius}, {"noise_floor", c.snapshot.noiseFloor},

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "eval/config_schema.h"
 #include "eval/strategies.h"
 
 namespace aamap::detail {
@@ -284,22 +285,23 @@ ReferenceConfig readReference(const yaml::Context& ctx, const YAML::Node& node, 
 }
 
 MetricsConfig readMetrics(const yaml::Context& ctx, const YAML::Node& node) {
-    MapReader m(ctx, node, "metrics", {"flip", "flip_hdr", "flip_threshold", "mse_threshold", "ppd", "map_quality", "causes"});
+    MapReader m(ctx, node, "metrics", sectionKeyNames(metricsParams()));
+    const ParamValues v = readSection(ctx, m, metricsParams());
     MetricsConfig c;
-    c.flip = readBool(ctx, m, "flip", c.flip);
-    c.flipHdr = readBool(ctx, m, "flip_hdr", c.flipHdr);
-    m.getDouble("flip_threshold", c.flipThreshold, 0.0, 1.0, true);
-    m.getDouble("mse_threshold", c.mseThreshold, 0.0, 1.0, true);
-    m.getDouble("ppd", c.ppd, 0.0, 1000.0, true);
-    c.mapQuality = readBool(ctx, m, "map_quality", c.mapQuality);
-    c.causes = readBool(ctx, m, "causes", c.causes);
+    c.flip = v.boolean("flip");
+    c.flipHdr = v.boolean("flip_hdr");
+    c.flipThreshold = v.real("flip_threshold");
+    c.mseThreshold = v.real("mse_threshold");
+    c.ppd = v.real("ppd");
+    c.mapQuality = v.boolean("map_quality");
+    c.causes = v.boolean("causes");
     return c;
 }
 
 ReportConfig readReport(const yaml::Context& ctx, const YAML::Node& node) {
-    MapReader m(ctx, node, "report", {"plots"});
+    MapReader m(ctx, node, "report", sectionKeyNames(reportParams()));
     ReportConfig c;
-    c.plots = readBool(ctx, m, "plots", c.plots);
+    c.plots = readSection(ctx, m, reportParams()).boolean("plots");
     return c;
 }
 

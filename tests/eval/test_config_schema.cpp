@@ -1,0 +1,290 @@
+// The schema-declared config sections (eval/config_schema.h), walked key by key: every default
+// parses and is what the config's structs hold, the range ends are accepted and the values just
+// outside rejected at the key's file:line, --set reaches the field, and the key is in --help and
+// the docs. The field table below is this test's own: it checks the reader's struct mapping.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "eval/config.h"
+#include "eval/config_schema.h"
+#include "passes/snapshot_params.h"
+#include "tests/common/read_text.h"
+
+namespace aamap {
+namespace {
+
+using Field = std::function<ParamValue(const ExperimentConfig&)>;
+
+const std::map<std::string, Field>& fields() {
+    static const std::map<std::string, Field> f = {
+        {"view_index", [](const ExperimentConfig& c) { return ParamValue(c.viewIndex); }},
+        {"threads", [](const ExperimentConfig& c) { return ParamValue(c.threads); }},
+        {"image.width", [](const ExperimentConfig& c) { return ParamValue(c.image.width); }},
+        {"image.height", [](const ExperimentConfig& c) { return ParamValue(c.image.height); }},
+        {"image.exposure", [](const ExperimentConfig& c) { return ParamValue(c.image.exposure); }},
+        {"image.filter", [](const ExperimentConfig& c) { return ParamValue(c.image.filter); }},
+        {"image.filter_radius", [](const ExperimentConfig& c) { return ParamValue(c.image.filterRadius); }},
+        {"image.filter_stddev", [](const ExperimentConfig& c) { return ParamValue(c.image.filterStddev); }},
+        {"snapshot.scale", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.scale); }},
+        {"snapshot.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.areaLightSamples); }},
+        {"snapshot.environment_lights", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.environmentLights); }},
+        {"snapshot.blur_radius", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.blurRadius); }},
+        {"snapshot.noise_floor", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.noiseFloor); }},
+        {"snapshot.gain", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.gain); }},
+        {"snapshot.map", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.map); }},
+        {"shading.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.shading.areaLightSamples); }},
+        {"shading.mode", [](const ExperimentConfig& c) { return ParamValue(c.shading.mode); }},
+        {"shading.max_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxDepth); }},
+        {"shading.russian_roulette", [](const ExperimentConfig& c) { return ParamValue(c.shading.russianRoulette); }},
+        {"shading.roulette_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.rouletteDepth); }},
+        {"shading.max_specular_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxSpecularDepth); }},
+        {"shading.light_selection", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSelection); }},
+        {"shading.cache.bounces", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.bounces); }},
+        {"shading.cache.divisions", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.divisions); }},
+        {"shading.cache.supersamples", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.supersamples); }},
+        {"shading.cache.accuracy", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.accuracy); }},
+        {"shading.cache.resolution", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.resolution); }},
+        {"shading.cache.grid_step", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.gridStep); }},
+        {"metrics.flip", [](const ExperimentConfig& c) { return ParamValue(c.metrics.flip); }},
+        {"metrics.flip_hdr", [](const ExperimentConfig& c) { return ParamValue(c.metrics.flipHdr); }},
+        {"metrics.flip_threshold", [](const ExperimentConfig& c) { return ParamValue(c.metrics.flipThreshold); }},
+        {"metrics.mse_threshold", [](const ExperimentConfig& c) { return ParamValue(c.metrics.mseThreshold); }},
+        {"metrics.ppd", [](const ExperimentConfig& c) { return ParamValue(c.metrics.ppd); }},
+        {"metrics.map_quality", [](const ExperimentConfig& c) { return ParamValue(c.metrics.mapQuality); }},
+        {"metrics.causes", [](const ExperimentConfig& c) { return ParamValue(c.metrics.causes); }},
+        {"report.plots", [](const ExperimentConfig& c) { return ParamValue(c.report.plots); }},
+        {"timing.repeats", [](const ExperimentConfig& c) { return ParamValue(c.timing.repeats); }},
+        {"timing.interleave", [](const ExperimentConfig& c) { return ParamValue(c.timing.interleave); }},
+        {"timing.same_machine", [](const ExperimentConfig& c) { return ParamValue(c.timing.sameMachine); }},
+    };
+    return f;
+}
+
+struct Key {
+    std::string section, dotted;
+    const ParamSpec* spec;
+};
+
+std::vector<Key> allKeys() {
+    std::vector<Key> keys;
+    for (const ConfigSection& s : configSections())
+        for (const ParamSpec& p : s.params) keys.push_back({s.path, s.path.empty() ? p.name : s.path + "." + p.name, &p});
+    return keys;
+}
+
+// A config setting `key` to `value` (YAML text), and the line the key is on.
+std::string configWith(const Key& k, const std::string& value, int& line) {
+    std::string text = "scene: builtin:cornell\nrenders:\n  - {name: u, strategy: aamap, rpp: 4}\n";
+    line = 4;
+    if (k.section.empty()) return text + fmt::format("{}: {}\n", k.spec->name, value);
+    std::string indent;
+    std::size_t start = 0;
+    for (std::size_t dot = k.section.find('.'); ; dot = k.section.find('.', start)) {
+        text += indent + k.section.substr(start, dot - start) + ":\n";
+        ++line;
+        indent += "  ";
+        if (dot == std::string::npos) break;
+        start = dot + 1;
+    }
+    if (k.dotted == "image.filter_stddev") {  // a cross-key rule: only the gaussian filter has one
+        text += indent + "filter: gaussian\n";
+        ++line;
+    }
+    return text + fmt::format("{}{}: {}\n", indent, k.spec->name, value);
+}
+
+std::string yamlText(const ParamValue& v) { return v.index() == 1 ? fmt::format("{}", std::get<double>(v)) : toString(v); }
+
+std::vector<std::string> acceptedValues(const ParamSpec& p) {
+    if (p.type == ParamType::Choice) return p.choices;
+    if (p.type == ParamType::Bool) return {"true", "false"};
+    std::vector<std::string> v;
+    if (!p.openLo) v.push_back(p.type == ParamType::Int ? formatNumber(p.lo) : fmt::format("{}", p.lo));
+    else v.push_back(fmt::format("{}", std::nextafter(p.lo, std::numeric_limits<double>::infinity())));
+    v.push_back(p.type == ParamType::Int ? formatNumber(p.hi) : fmt::format("{}", p.hi));
+    return v;
+}
+
+std::vector<std::string> rejectedValues(const ParamSpec& p) {
+    if (p.type == ParamType::Choice) return {"no-such-choice"};
+    if (p.type == ParamType::Bool) return {"3", "\"true\""};
+    if (p.type == ParamType::Int) return {formatNumber(p.lo - 1), formatNumber(p.hi + 1)};
+    const double below = p.openLo ? p.lo : std::nextafter(p.lo, -std::numeric_limits<double>::infinity());
+    return {fmt::format("{}", below), fmt::format("{}", std::nextafter(p.hi, std::numeric_limits<double>::infinity()))};
+}
+
+TEST(ConfigSchema, EveryKeyHasAFieldAndEveryFieldAKey) {
+    std::size_t n = 0;
+    for (const Key& k : allKeys()) {
+        EXPECT_TRUE(fields().count(k.dotted)) << k.dotted << " has no field in this test's table";
+        ++n;
+    }
+    EXPECT_EQ(n, fields().size());
+}
+
+TEST(ConfigSchema, DefaultsAreTheStructsDefaultsAndParse) {
+    const ExperimentConfig handBuilt;
+    for (const Key& k : allKeys()) {
+        if (!fields().count(k.dotted)) continue;
+        const Field& field = fields().at(k.dotted);
+        EXPECT_EQ(field(handBuilt), k.spec->defaultParam()) << k.dotted;
+        int line = 0;
+        const ExperimentConfig c = parseConfig(configWith(k, yamlText(k.spec->defaultParam()), line), "exp.yaml");
+        EXPECT_EQ(field(c), k.spec->defaultParam()) << k.dotted;
+    }
+}
+
+TEST(ConfigSchema, RangeEndsAcceptedJustOutsideRejectedAtTheKey) {
+    for (const Key& k : allKeys()) {
+        if (!fields().count(k.dotted)) continue;
+        for (const std::string& v : acceptedValues(*k.spec)) {
+            int line = 0;
+            const std::string text = configWith(k, v, line);
+            EXPECT_NO_THROW(parseConfig(text, "exp.yaml")) << k.dotted << " = " << v;
+        }
+        for (const std::string& v : rejectedValues(*k.spec)) {
+            int line = 0;
+            const std::string text = configWith(k, v, line);
+            try {
+                parseConfig(text, "exp.yaml");
+                ADD_FAILURE() << k.dotted << " = " << v << " was accepted";
+            } catch (const InputError& e) {
+                EXPECT_EQ(e.file(), "exp.yaml") << e.what();
+                EXPECT_EQ(e.line(), line) << e.what();
+                EXPECT_NE(std::string(e.what()).find(k.dotted), std::string::npos) << e.what();
+            }
+        }
+    }
+}
+
+TEST(ConfigSchema, SetReachesTheField) {
+    const std::vector<std::string> settable = settableKeys();
+    for (const Key& k : allKeys()) {
+        if (!fields().count(k.dotted)) continue;
+        EXPECT_NE(std::find(settable.begin(), settable.end(), k.dotted), settable.end()) << k.dotted;
+        int line = 0;
+        const std::string base = configWith(k, yamlText(k.spec->defaultParam()), line);
+        for (const std::string& v : acceptedValues(*k.spec)) {
+            const ExperimentConfig c = parseConfig(base, "exp.yaml", {k.dotted + "=" + v});
+            std::string error;
+            const ParamValue expected = k.spec->type == ParamType::Choice ? ParamValue(v)
+                                        : k.spec->type == ParamType::Bool ? ParamValue(v == "true")
+                                        : k.spec->type == ParamType::Int  ? ParamValue(std::stoi(v))
+                                                                          : ParamValue(std::strtod(v.c_str(), nullptr));
+            EXPECT_EQ(fields().at(k.dotted)(c), expected) << k.dotted << " = " << v;
+        }
+    }
+}
+
+TEST(ConfigSchema, EveryKeyIsInTheHelpAndTheDocs) {
+    const std::string help = sectionHelpLines();
+    const std::string cli = test::readText(std::string(AAMAP_SOURCE_DIR) + "/docs/cli.md");
+    const std::string config = test::readText(std::string(AAMAP_SOURCE_DIR) + "/docs/config.md");
+    for (const ConfigSection& s : configSections()) {
+        const std::string open = s.path.empty() ? "" : s.path + ": {";
+        if (!open.empty()) {
+            EXPECT_NE(help.find(open), std::string::npos) << s.path;
+            EXPECT_NE(cli.find(open), std::string::npos) << s.path << " not in docs/cli.md";
+        }
+        for (const ParamSpec& p : s.params) {
+            const std::string dotted = s.path.empty() ? p.name : s.path + "." + p.name;
+            const std::string entry = p.type == ParamType::Choice
+                                          ? fmt::format("{}: {}", p.name, fmt::join(p.choices, "|"))
+                                          : fmt::format("{}: {}", p.name, toString(p.defaultParam()));
+            EXPECT_NE(help.find(entry), std::string::npos) << entry;
+            EXPECT_NE(cli.find(entry), std::string::npos) << entry << " not in docs/cli.md";
+            EXPECT_NE(config.find("`" + dotted + "`"), std::string::npos) << dotted << " not in docs/config.md";
+        }
+    }
+}
+
+// A hand-built config (the structs' defaults) and the parsed one have the same cache keys, and the
+// Snapshot's key holds exactly the schema's keys once the later ones are not at their defaults.
+TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
+    const ExperimentConfig parsed = parseConfig(
+        "scene: builtin:cornell\nrenders:\n  - {name: a, strategy: aamap, rpp: 4}\n", "exp.yaml");
+    ExperimentConfig hand;
+    hand.file = "exp.yaml";
+    hand.scene = "builtin:cornell";
+    hand.renders = parsed.renders;
+    hand.reference = parsed.reference;
+    EXPECT_EQ(renderKeyJson(hand, hand.renders[0]), renderKeyJson(parsed, parsed.renders[0]));
+    EXPECT_EQ(snapshotKey(hand), snapshotKey(parsed));
+    EXPECT_EQ(hand.hash(), parsed.hash());
+
+    hand.snapshot.map = "geometric";
+    hand.snapshot.environmentLights = 2;
+    const nlohmann::json key = nlohmann::json::parse(renderKeyJson(hand, hand.renders[0]));
+    std::vector<std::string> names;
+    for (const auto& [name, value] : key.at("snapshot").items()) names.push_back(name);
+    std::vector<std::string> schema;
+    for (const ParamSpec& p : snapshotParams()) schema.push_back(p.name);
+    std::sort(names.begin(), names.end());
+    std::sort(schema.begin(), schema.end());
+    EXPECT_EQ(names, schema);
+}
+
+}  // namespace
+}  // namespace aamap
+
+namespace aamap {
+namespace {
+
+// The type cell docs/config.md writes for a key: "int in [1, 64]", "number in (0, 1]", "bool",
+// "`a`, `b` or `c`".
+std::string docType(const ParamSpec& p) {
+    if (p.type == ParamType::Bool) return "bool";
+    if (p.type == ParamType::Choice) {
+        std::string t;
+        for (std::size_t i = 0; i < p.choices.size(); ++i)
+            t += (i == 0 ? "" : i + 1 == p.choices.size() ? " or " : ", ") + ("`" + p.choices[i] + "`");
+        return t;
+    }
+    return fmt::format("{} in {}", p.type == ParamType::Int ? "int" : "number", p.rangeText());
+}
+
+// Every schema key has a row in docs/config.md's key table whose type, range and default are the
+// schema's (a row may name several keys of one spec: "`image.width`, `image.height`").
+TEST(ConfigSchema, DocsTableRowsMatchTheSchema) {
+    std::map<std::string, std::string> typeCells;  // key -> "Type, default" cell
+    std::istringstream doc(test::readText(std::string(AAMAP_SOURCE_DIR) + "/docs/config.md"));
+    for (std::string line; std::getline(doc, line);) {
+        if (!line.starts_with("| `")) continue;
+        const std::size_t a = line.find(" | "), b = line.find(" | ", a + 3);
+        if (a == std::string::npos || b == std::string::npos) continue;
+        const std::string names = line.substr(2, a - 2), cell = line.substr(a + 3, b - a - 3);
+        for (std::size_t q = names.find('`'); q != std::string::npos; q = names.find('`', names.find('`', q + 1) + 1)) {
+            const std::size_t end = names.find('`', q + 1);
+            if (end == std::string::npos) break;
+            typeCells.emplace(names.substr(q + 1, end - q - 1), cell);
+        }
+    }
+    for (const Key& k : allKeys()) {
+        ASSERT_TRUE(typeCells.count(k.dotted)) << k.dotted << " has no row in docs/config.md";
+        const std::string& cell = typeCells.at(k.dotted);
+        const std::size_t split = cell.rfind(", `");
+        ASSERT_NE(split, std::string::npos) << k.dotted << ": " << cell;
+        EXPECT_EQ(cell.substr(0, split), docType(*k.spec)) << k.dotted;
+        const std::string def = cell.substr(split + 3, cell.size() - split - 4);
+        if (k.spec->type == ParamType::Int || k.spec->type == ParamType::Real)
+            EXPECT_NEAR(std::strtod(def.c_str(), nullptr), k.spec->defaultValue, 1e-5 * std::fabs(k.spec->defaultValue))
+                << k.dotted << ": " << cell;
+        else
+            EXPECT_EQ(def, toString(k.spec->defaultParam())) << k.dotted << ": " << cell;
+    }
+}
+
+}  // namespace
+}  // namespace aamap

@@ -1,0 +1,30 @@
+#include "tracer/shading_params.h"
+
+namespace aamap {
+
+const std::vector<ParamSpec>& shadingParams() {
+    static const std::vector<ParamSpec> params = {
+        intParam("area_light_samples", 1, 4096, 16, "shadow rays per area light per hit"),
+        choiceParam("mode", {"direct", "path", "cache"}, "direct light, path tracing or an irradiance cache"),
+        intParam("max_depth", 1, 1024, 5, "path: longest path in segments"),
+        boolParam("russian_roulette", true, "path"),
+        intParam("roulette_depth", 1, 1024, 5, "path: roulette from this segment on"),
+        intParam("max_specular_depth", 0, 1024, 8, "direct/cache: mirror and glass bounces"),
+        choiceParam("light_selection", {"contribution", "power"}, "which light a shadow ray goes to"),
+    };
+    return params;
+}
+
+const std::vector<ParamSpec>& shadingCacheParams() {
+    static const std::vector<ParamSpec> params = {
+        intParam("bounces", 0, 16, 1, "diffuse bounces through the cache"),
+        intParam("divisions", 4, 1 << 16, 512, "hemisphere samples of a record"),
+        intParam("supersamples", 0, 1 << 16, 128, "extra samples to the cells with the largest differences"),
+        realParamAbove("accuracy", 0.0, 1.0, 0.2, "a record is used where its error is below this"),
+        intParam("resolution", 0, 1 << 16, 64, "minimum record radius = scene size / resolution"),
+        intParam("grid_step", 1, 64, 4, "the pre-pass takes one camera ray per grid_step x grid_step pixels"),
+    };
+    return params;
+}
+
+}  // namespace aamap

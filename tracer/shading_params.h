@@ -1,0 +1,14 @@
+#pragma once
+// The `shading` config section and its `shading.cache` subsection, declared once: the
+// integrator's settings (tracer/integrator.h, tracer/irradiance_cache.h). The config reader,
+// --set, --help and docs/config.md are generated from these lists.
+#include <vector>
+
+#include "core/params.h"
+
+namespace aamap {
+
+const std::vector<ParamSpec>& shadingParams();
+const std::vector<ParamSpec>& shadingCacheParams();
+
+}  // namespace aamap
