@@ -285,7 +285,7 @@ std::string fnv1a64Hex(const std::string& text) {
     return fmt::format("{:016x}", h);
 }
 
-std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) {
+Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
     j["format"] = "aamap-render-4";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
@@ -297,8 +297,12 @@ std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) {
     if (!c.image.defaultFilter()) j["filter"] = filterJson(c.image);  // only then: other configs keep their keys
     const StrategyDescriptor* s = findStrategy(r.strategy);
     if (s != nullptr && s->usesAamap) j["snapshot"] = snapshotJson(c);
-    return j.dump();
+    return j;
 }
+
+std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) { return renderKeyObject(c, r).dump(); }
+
+Json snapshotSettingsJson(const ExperimentConfig& c) { return snapshotJson(c); }
 
 std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return fnv1a64Hex(renderKeyJson(c, r)); }
 

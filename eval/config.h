@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "scene/light_file.h"
 #include "tracer/strategy_params.h"
 
@@ -162,7 +164,12 @@ struct ExperimentConfig {
 // (scene, view, lights, image, seed, shading, strategy, rpp, parameters, and the snapshot settings
 // when the strategy uses the aamap) -- not its name, series, threads or the metrics.
 std::string renderKey(const ExperimentConfig& config, const RenderConfig& render);
+// What renderKey hashes, as an object ({format, scene, seed, shading, strategy, rpp, params, ...})
+// and as the compact text that is hashed.
+nlohmann::ordered_json renderKeyObject(const ExperimentConfig& config, const RenderConfig& render);
 std::string renderKeyJson(const ExperimentConfig& config, const RenderConfig& render);
+// The snapshot section with its defaults filled in, as in canonicalJson() and the keys.
+nlohmann::ordered_json snapshotSettingsJson(const ExperimentConfig& config);
 // The same for the Snapshot and its aamap.
 std::string snapshotKey(const ExperimentConfig& config);
 // Every key --set can reach, '#' standing for a list index ("renders.#.rpp").

@@ -25,10 +25,33 @@ MachineInfo currentMachine() {
     return m;
 }
 
-nlohmann::ordered_json toJson(const RenderRecord& r) {
-    using Json = nlohmann::ordered_json;
-    Json passes = Json::object();
-    for (const auto& [pass, ms] : r.times.snapshotPassesGpuMs) passes[pass] = ms;
+namespace {
+using Json = nlohmann::ordered_json;
+
+Json passesJson(const std::vector<std::pair<std::string, double>>& passes) {
+    Json j = Json::object();
+    for (const auto& [pass, ms] : passes) j[pass] = ms;
+    return j;
+}
+
+std::vector<std::pair<std::string, double>> passesFromJson(const Json& j) {
+    std::vector<std::pair<std::string, double>> passes;
+    for (const auto& [pass, ms] : j.items()) passes.emplace_back(pass, ms.get<double>());
+    return passes;
+}
+
+}  // namespace
+
+Json toJson(const MachineInfo& m) {
+    return {{"hostname", m.hostname}, {"cpu_model", m.cpuModel}, {"threads", m.threads}};
+}
+
+// Snapshot records written before `threads` was kept lack it.
+MachineInfo machineFromJson(const Json& j) {
+    return {j.at("hostname").get<std::string>(), j.at("cpu_model").get<std::string>(), j.value("threads", 0)};
+}
+
+Json toJson(const RenderRecord& r) {
     Json j;
     j["name"] = r.name;
     j["series"] = r.series;
@@ -45,7 +68,7 @@ nlohmann::ordered_json toJson(const RenderRecord& r) {
                     {"bvh_build", r.times.bvhBuild},
                     {"snapshot_setup", r.times.snapshotSetup},
                     {"snapshot_total", r.times.snapshotTotal},
-                    {"snapshot_passes_gpu_ms", passes},
+                    {"snapshot_passes_gpu_ms", passesJson(r.times.snapshotPassesGpuMs)},
                     {"readback", r.times.readback},
                     {"trace", r.times.trace},
                     {"trace_runs", r.times.traceRuns},
@@ -57,14 +80,52 @@ nlohmann::ordered_json toJson(const RenderRecord& r) {
     j["git_revision"] = r.gitRevision;
     j["config_hash"] = r.configHash;
     j["vulkan_device"] = r.vulkanDevice;
-    j["machine"] = {{"hostname", r.machine.hostname}, {"cpu_model", r.machine.cpuModel}, {"threads", r.machine.threads}};
+    j["machine"] = toJson(r.machine);
     j["outputs"] = r.outputs;
     if (!r.metrics.is_null()) j["metrics"] = r.metrics;
     return j;
 }
 
-nlohmann::ordered_json toJson(const Results& results) {
-    using Json = nlohmann::ordered_json;
+Json toJson(const SnapshotRecord& s) {
+    return {{"key", s.key},
+            {"width", s.width},
+            {"height", s.height},
+            {"total_s", s.totalSeconds},
+            {"readback_s", s.readbackSeconds},
+            {"setup_s", s.setupSeconds},
+            {"passes_gpu_ms", passesJson(s.passesGpuMs)},
+            {"vulkan_device", s.vulkanDevice},
+            {"machine", toJson(s.machine)},
+            {"git_revision", s.gitRevision},
+            {"cached", s.cached}};
+}
+
+SnapshotRecord snapshotRecordFromJson(const Json& j) {
+    SnapshotRecord s;
+    s.key = j.at("key").get<std::string>();
+    s.cached = j.value("cached", false);
+    s.width = j.at("width").get<int>();
+    s.height = j.at("height").get<int>();
+    s.totalSeconds = j.at("total_s").get<double>();
+    s.readbackSeconds = j.at("readback_s").get<double>();
+    s.setupSeconds = j.value("setup_s", 0.0);  // absent in records written before it existed
+    s.passesGpuMs = passesFromJson(j.at("passes_gpu_ms"));
+    s.vulkanDevice = j.at("vulkan_device").get<std::string>();
+    s.machine = machineFromJson(j.at("machine"));
+    s.gitRevision = j.at("git_revision").get<std::string>();
+    return s;
+}
+
+Json toJson(const ReferenceInfo& r) {
+    Json j = {{"type", r.type}};
+    if (r.rpp) j["rpp"] = *r.rpp;
+    if (!r.mode.empty()) j["mode"] = r.mode;
+    if (!r.path.empty()) j["path"] = r.path;
+    if (!r.shadingFloor.empty()) j["shading_floor"] = r.shadingFloor;
+    return j;
+}
+
+Json toJson(const Results& results) {
     Json j;
     j["format"] = "aamap-results-1";
     j["git_revision"] = results.gitRevision;
@@ -72,16 +133,16 @@ nlohmann::ordered_json toJson(const Results& results) {
     j["config"] = results.configJson.empty() ? Json::object() : Json::parse(results.configJson);
     j["renders"] = Json::array();
     for (const RenderRecord& r : results.renders) j["renders"].push_back(toJson(r));
-    j["reference"] = results.referenceInfo.is_null() ? Json::object() : results.referenceInfo;
+    j["reference"] = results.referenceInfo.type.empty() ? Json::object() : toJson(results.referenceInfo);
     if (results.reference) j["reference"]["render"] = toJson(*results.reference);
     if (results.oneRay) j["one_ray"] = toJson(*results.oneRay);
     if (!results.mapQuality.is_null()) j["map_quality"] = results.mapQuality;
-    if (!results.snapshot.is_null()) j["snapshot"] = results.snapshot;
+    if (results.snapshot) j["snapshot"] = toJson(*results.snapshot);
     j["warnings"] = results.warnings;
     return j;
 }
 
-RenderRecord recordFromJson(const nlohmann::ordered_json& j) {
+RenderRecord recordFromJson(const Json& j) {
     RenderRecord r;
     r.name = j.at("name").get<std::string>();
     r.series = j.value("series", std::string());
@@ -98,7 +159,7 @@ RenderRecord recordFromJson(const nlohmann::ordered_json& j) {
     r.times.bvhBuild = t.at("bvh_build").get<double>();
     r.times.snapshotSetup = t.value("snapshot_setup", 0.0);  // absent in records written before it existed
     r.times.snapshotTotal = t.at("snapshot_total").get<double>();
-    for (const auto& [pass, ms] : t.at("snapshot_passes_gpu_ms").items()) r.times.snapshotPassesGpuMs.emplace_back(pass, ms.get<double>());
+    r.times.snapshotPassesGpuMs = passesFromJson(t.at("snapshot_passes_gpu_ms"));
     r.times.readback = t.at("readback").get<double>();
     r.times.trace = t.at("trace").get<double>();
     // Records written before repeats existed hold one run: the trace itself.
@@ -113,8 +174,7 @@ RenderRecord recordFromJson(const nlohmann::ordered_json& j) {
     r.gitRevision = j.at("git_revision").get<std::string>();
     r.configHash = j.at("config_hash").get<std::string>();
     r.vulkanDevice = j.at("vulkan_device").get<std::string>();
-    const auto& m = j.at("machine");
-    r.machine = {m.at("hostname").get<std::string>(), m.at("cpu_model").get<std::string>(), m.at("threads").get<int>()};
+    r.machine = machineFromJson(j.at("machine"));
     r.outputs = j.at("outputs").get<std::vector<std::string>>();
     return r;
 }

@@ -61,6 +61,28 @@ struct RenderRecord {
     nlohmann::ordered_json metrics;    // against the reference (eval/evaluate.h); null when there is none
 };
 
+// The Snapshot's record (its cache entry's record.json, and results.json's "snapshot"): what one
+// execution of the graph cost, on which device. Per frame is what every aamap-driven render adds.
+struct SnapshotRecord {
+    std::string key;      // render cache key (eval/config.h snapshotKey)
+    bool cached = false;  // reused from an earlier run (results.json only)
+    int width = 0, height = 0;
+    double totalSeconds = 0, readbackSeconds = 0, setupSeconds = 0;  // as SnapshotOutput (eval/runner.h)
+    std::vector<std::pair<std::string, double>> passesGpuMs;      // pass -> GPU milliseconds
+    std::string vulkanDevice;
+    MachineInfo machine;
+    std::string gitRevision;
+};
+
+// What the errors are measured against.
+struct ReferenceInfo {
+    std::string type;          // reference.type: uniform, file or none
+    std::optional<int> rpp;    // uniform: its rays per pixel
+    std::string mode;          // uniform: its shading mode
+    std::string path;          // file: the resolved path
+    std::string shadingFloor;  // the render whose error is the shading bias alone ("" when none)
+};
+
 struct Results {
     std::string gitRevision;
     std::string configHash;
@@ -68,16 +90,21 @@ struct Results {
     std::vector<RenderRecord> renders;
     std::optional<RenderRecord> reference;  // the traced reference, when there is one
     std::optional<RenderRecord> oneRay;     // the 1-ray uniform render behind map quality
-    nlohmann::ordered_json referenceInfo;   // {type, rpp | path}
-    nlohmann::ordered_json mapQuality;      // null unless requested and possible
-    nlohmann::ordered_json snapshot;        // {key, cached, times, device}; null without the aamap
+    ReferenceInfo referenceInfo;
+    nlohmann::ordered_json mapQuality;      // eval/evaluate.h evaluateMap; null unless requested and possible
+    std::optional<SnapshotRecord> snapshot; // none without the aamap
     std::vector<std::string> warnings;      // shown at the top of the report
 };
 
+nlohmann::ordered_json toJson(const MachineInfo& machine);
 nlohmann::ordered_json toJson(const RenderRecord& record);
+nlohmann::ordered_json toJson(const SnapshotRecord& record);
+nlohmann::ordered_json toJson(const ReferenceInfo& reference);
 nlohmann::ordered_json toJson(const Results& results);
-// Inverse of toJson(RenderRecord) (for cached records). Throws nlohmann::json::exception.
+// Inverses of toJson (for cached records). Throw nlohmann::json::exception.
+MachineInfo machineFromJson(const nlohmann::ordered_json& j);
 RenderRecord recordFromJson(const nlohmann::ordered_json& j);
+SnapshotRecord snapshotRecordFromJson(const nlohmann::ordered_json& j);
 // Pretty-printed, written atomically.
 void writeResults(const std::filesystem::path& path, const Results& results);
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <map>
 #include <numeric>
 #include <optional>
@@ -11,10 +10,10 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/log.h"
+#include "eval/cache_records.h"
 #include "eval/evaluate.h"
 #include "eval/render_cache.h"
 #include "eval/report.h"
@@ -84,11 +83,6 @@ Image<std::uint16_t> greyToRays(const ImageGrey& g) {
     return rays;
 }
 
-Json readJson(const fs::path& path) {
-    std::ifstream in(path);
-    return Json::parse(in);
-}
-
 class Runner {
 public:
     Runner(const ExperimentConfig& config, const fs::path& outDir, RenderBackend& backend, const RunnerOptions& options)
@@ -132,7 +126,7 @@ private:
     MachineInfo machine_;
     std::optional<SceneInfo> scene_;
     std::optional<ImageGrey> aamap_;
-    Json snapshotRecord_;
+    std::optional<SnapshotRecord> snapshotRecord_;
     std::map<std::string, Traced> traced_;  // by key
     std::map<std::string, bool> reused_;    // by key: came from the cache
     int tracedNow_ = 0;
@@ -146,27 +140,29 @@ void Runner::loadOrRenderSnapshot(bool writeOutputs) {
         const SceneInfo& s = scene();
         spdlog::info("snapshot: rendering (cache key {})", key);
         SnapshotOutput snap = backend_.snapshot();
-        Json passes = Json::object();
-        for (const auto& [pass, ms] : snap.passesGpuMs) passes[pass] = ms;
-        const Json record = {{"key", key}, {"width", s.width}, {"height", s.height},
-                             {"total_s", snap.totalSeconds}, {"readback_s", snap.readbackSeconds},
-                             {"setup_s", snap.setupSeconds},
-                             {"passes_gpu_ms", passes}, {"vulkan_device", snap.device},
-                             {"machine", {{"hostname", machine_.hostname}, {"cpu_model", machine_.cpuModel}}},
-                             {"git_revision", options_.gitRevision}};
+        SnapshotRecord record;
+        record.key = key;
+        record.width = s.width;
+        record.height = s.height;
+        record.totalSeconds = snap.totalSeconds;
+        record.readbackSeconds = snap.readbackSeconds;
+        record.setupSeconds = snap.setupSeconds;
+        record.passesGpuMs = snap.passesGpuMs;
+        record.vulkanDevice = snap.device;
+        record.machine = machine_;
+        record.gitRevision = options_.gitRevision;
         const float exposure = static_cast<float>(c_.image.exposure);
         cache_.commit(key, [&](const fs::path& dir) {
             writeExr(dir / "aamap.exr", snap.aamap);
             if (!snap.snapshot.empty()) writePng(dir / "snapshot.png", toneMap(snap.snapshot, exposure));
             if (!snap.laplacian.empty()) writePng(dir / "laplacian.png", quantise(snap.laplacian));
-            writeTextAtomically(dir / "record.json", record.dump(2) + "\n");
+            writeRecord(dir / "record.json", toJson(record));
         });
         snapshotRecord_ = record;
-        snapshotRecord_["cached"] = false;
     } else {
         spdlog::info("snapshot: reused from {}", cache_.entry(key).string());
-        snapshotRecord_ = readJson(cache_.record(key));
-        snapshotRecord_["cached"] = true;
+        snapshotRecord_ = readSnapshotRecord(cache_.record(key));
+        snapshotRecord_->cached = true;
     }
     aamap_ = readExrGrey(cache_.entry(key) / "aamap.exr");
     if (!writeOutputs) return;
@@ -197,7 +193,7 @@ PixelFacts Runner::loadOrComputeFacts() {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     cache_.commit(key, [&](const fs::path& dir) {
         writeExr(dir / "facts.exr", raysToGrey(facts));
-        writeTextAtomically(dir / "record.json", Json{{"key", key}, {"seconds", seconds}}.dump(2) + "\n");
+        writeRecord(dir / "record.json", toJson(PixelFactsRecord{key, seconds}));
     });
     spdlog::info("pixel facts: {:.2f} s", seconds);
     return facts;
@@ -209,7 +205,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     const fs::path entry = cache_.entry(job.key);
     if (cache_.has(job.key)) {
         try {
-            t.record = recordFromJson(readJson(cache_.record(job.key)));
+            t.record = readCachedRender(cache_.record(job.key)).record;
             t.image = readExr(entry / "image.exr");
             t.rays = greyToRays(readExrGrey(entry / "rpp.exr"));
             spdlog::info("[{}/{}] {}: reused (cache {})", index, count, job.render.name, job.key);
@@ -239,11 +235,11 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     r.width = out.image.width();
     r.height = out.image.height();
     r.strategy = job.render.strategy;
+    const Json renderConfig = renderKeyObject(c_, job.render);  // what the key hashes
     r.parameters = {{"rpp", job.render.rpp}, {"strata", job.render.strata()}, {"seed", c_.seed},
                     {"shading_area_light_samples", c_.shading.areaLightSamples},
-                    {"shading", Json::parse(renderKeyJson(c_, job.render))["shading"]}};
-    const Json params = Json::parse(renderKeyJson(c_, job.render))["params"];
-    for (const auto& [k, v] : params.items()) r.parameters[k] = v;
+                    {"shading", renderConfig["shading"]}};
+    for (const auto& [k, v] : renderConfig["params"].items()) r.parameters[k] = v;
     if (!out.blockSums.empty()) r.parameters["block_sums"] = out.blockSums;
     r.maxRaysPerPixel = job.render.rpp;
     r.times.load = s.loadSeconds;
@@ -251,14 +247,14 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     r.times.trace = out.seconds;
     r.times.traceRuns = {out.seconds};
     if (usesMap) {
-        r.parameters["snapshot"] = Json::parse(c_.canonicalJson())["snapshot"];
-        r.parameters["snapshot_key"] = snapshotRecord_["key"];
-        r.times.snapshotTotal = snapshotRecord_["total_s"].get<double>();
-        r.times.readback = snapshotRecord_["readback_s"].get<double>();
-        r.times.snapshotSetup = snapshotRecord_.value("setup_s", 0.0);
-        for (const auto& [pass, ms] : snapshotRecord_["passes_gpu_ms"].items())
-            r.times.snapshotPassesGpuMs.emplace_back(pass, ms.get<double>());
-        r.vulkanDevice = snapshotRecord_["vulkan_device"].get<std::string>();
+        const SnapshotRecord& snapshot = *snapshotRecord_;
+        r.parameters["snapshot"] = snapshotSettingsJson(c_);
+        r.parameters["snapshot_key"] = snapshot.key;
+        r.times.snapshotTotal = snapshot.totalSeconds;
+        r.times.readback = snapshot.readbackSeconds;
+        r.times.snapshotSetup = snapshot.setupSeconds;
+        r.times.snapshotPassesGpuMs = snapshot.passesGpuMs;
+        r.vulkanDevice = snapshot.vulkanDevice;
     }
     // readback is part of snapshot_total, so it is not added again
     r.times.total = r.times.load + r.times.bvhBuild + r.times.snapshotSetup + r.times.snapshotTotal + r.times.trace;
@@ -273,12 +269,11 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     spdlog::info("{}: {:.2f} s, {:.2f} primary rays/pixel, {} rays in all", r.name, out.seconds, r.meanPrimaryRpp,
                  r.rays.total());
 
-    Json record = toJson(r);
-    record["render_config"] = Json::parse(renderKeyJson(c_, job.render));  // what the key hashes
+    const Json record = toJson(CachedRender{r, renderConfig});
     cache_.commit(job.key, [&](const fs::path& dir) {
         writeExr(dir / "image.exr", out.image);
         writeExr(dir / "rpp.exr", raysToGrey(out.primaryRays));
-        writeTextAtomically(dir / "record.json", record.dump(2) + "\n");  // last: marks the entry complete
+        writeRecord(dir / "record.json", record);  // last: marks the entry complete
     });
     t.image = std::move(out.image);
     t.rays = std::move(out.primaryRays);
@@ -300,10 +295,8 @@ void Runner::planTraces(const std::vector<Job>& jobs) {
         if (!seen.insert(job.key).second) continue;
         int runs = 0;
         if (cache_.has(job.key)) {
-            runs = 1;
             try {
-                const Json times = readJson(cache_.record(job.key))["times_s"];
-                if (times.contains("trace_runs")) runs = std::max<int>(1, static_cast<int>(times["trace_runs"].size()));
+                runs = std::max<int>(1, static_cast<int>(readCachedRender(cache_.record(job.key)).record.times.traceRuns.size()));
             } catch (const std::exception&) {
                 runs = 0;  // unreadable: loadOrTrace traces it again
             }
@@ -366,10 +359,9 @@ void Runner::repeatTraces(const std::vector<Job>& jobs) {
         StageTimes& times = traced_.at(key).record.times;
         times.trace = median(times.traceRuns);
         times.total = times.load + times.bvhBuild + times.snapshotSetup + times.snapshotTotal + times.trace;
-        Json record = readJson(cache_.record(key));
-        const Json updated = toJson(traced_.at(key).record);
-        record["times_s"] = updated["times_s"];
-        writeTextAtomically(cache_.record(key), record.dump(2) + "\n");
+        CachedRender entry = readCachedRender(cache_.record(key));
+        entry.record.times = times;
+        writeRecord(cache_.record(key), toJson(entry));
     }
 }
 
@@ -418,7 +410,7 @@ void Runner::addAntialiasingShares(Results& results, const std::vector<Job>& job
     const ImageRGB& floorImage = traced_.at(jobs[*floor].key).image;
     if (floorImage.width() != reference.width() || floorImage.height() != reference.height()) return;
     const std::string& floorName = results.renders[*floor].name;
-    results.referenceInfo["shading_floor"] = floorName;
+    results.referenceInfo.shadingFloor = floorName;
     for (std::size_t i = 0; i < listed; ++i)
         if (i != *floor)
             results.renders[i].metrics["antialiasing"] =
@@ -495,7 +487,7 @@ Results Runner::run() {
 
     if (c_.usesAamap()) loadOrRenderSnapshot();
     else spdlog::info("no render uses the aamap: snapshot skipped");
-    if (!snapshotRecord_.is_null()) results.snapshot = snapshotRecord_;
+    results.snapshot = snapshotRecord_;
 
     planTraces(jobs);
     const int count = static_cast<int>(jobs.size());
@@ -523,14 +515,14 @@ Results Runner::run() {
 
     // The reference every render is measured against.
     std::optional<ImageRGB> reference;
-    results.referenceInfo = {{"type", c_.reference.type}};
+    results.referenceInfo.type = c_.reference.type;
     if (refJob) {
         reference = traced_.at(refJob->key).image;
-        results.referenceInfo["rpp"] = c_.reference.rpp;
-        results.referenceInfo["mode"] = c_.reference.mode.empty() ? c_.shading.mode : c_.reference.mode;
+        results.referenceInfo.rpp = c_.reference.rpp;
+        results.referenceInfo.mode = c_.reference.mode.empty() ? c_.shading.mode : c_.reference.mode;
     } else if (fileReference) {
         reference = std::move(fileReference);
-        results.referenceInfo["path"] = c_.reference.resolvedPath(c_.file)->string();
+        results.referenceInfo.path = c_.reference.resolvedPath(c_.file)->string();
     }
     if (reference) checkReference(*reference);
     if (reference) {
@@ -600,7 +592,7 @@ bool complete(const RenderCache& cache, const std::string& key, int repeats) {
     if (!cache.has(key)) return false;
     if (repeats <= 1) return true;
     try {
-        return static_cast<int>(recordFromJson(readJson(cache.record(key))).times.traceRuns.size()) >= repeats;
+        return static_cast<int>(readCachedRender(cache.record(key)).record.times.traceRuns.size()) >= repeats;
     } catch (const std::exception&) {
         return false;  // unreadable: the run traces it again
     }

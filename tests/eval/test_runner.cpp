@@ -163,7 +163,7 @@ TEST_F(Runner, GroundTruthSplitsShadingBiasFromAntialiasing) {
     FakeBackend backend;
     backend.shadingBias = 0.05f;
     const Results r = run(backend, {"reference.mode=path", "reference.rpp=64"});
-    ASSERT_EQ(r.referenceInfo.value("shading_floor", std::string()), "uniform16");
+    ASSERT_EQ(r.referenceInfo.shadingFloor, "uniform16");
     const RenderRecord& floor = r.renders[2];
     ASSERT_EQ(floor.name, "uniform16");
     EXPECT_FALSE(floor.metrics.contains("antialiasing"));
@@ -188,7 +188,7 @@ TEST_F(Runner, GroundTruthSplitsShadingBiasFromAntialiasing) {
     FakeBackend same;
     same.shadingBias = 0.05f;
     const Results plain = run(same);
-    EXPECT_FALSE(plain.referenceInfo.contains("shading_floor"));
+    EXPECT_TRUE(plain.referenceInfo.shadingFloor.empty());
     for (const RenderRecord& rec : plain.renders) EXPECT_FALSE(rec.metrics.contains("antialiasing")) << rec.name;
     EXPECT_EQ(test::readText(out_ / "report.md").find("Error against ground truth"), std::string::npos);
 }
