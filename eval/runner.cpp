@@ -136,7 +136,19 @@ private:
 
 void Runner::loadOrRenderSnapshot(bool writeOutputs) {
     const std::string key = snapshotKey(c_);
-    if (!cache_.has(key)) {
+    if (cache_.has(key)) {
+        try {  // damaged by hand or by a full disk: rendered again
+            snapshotRecord_ = readSnapshotRecord(cache_.record(key));
+            snapshotRecord_->cached = true;
+            aamap_ = readExrGrey(cache_.entry(key) / "aamap.exr");
+            spdlog::info("snapshot: reused from {}", cache_.entry(key).string());
+        } catch (const std::exception& e) {
+            spdlog::warn("snapshot: cache entry {} is unreadable ({}); rendering it again", cache_.entry(key).string(),
+                         e.what());
+            snapshotRecord_.reset();
+        }
+    }
+    if (!snapshotRecord_) {
         const SceneInfo& s = scene();
         spdlog::info("snapshot: rendering (cache key {})", key);
         SnapshotOutput snap = backend_.snapshot();
@@ -159,12 +171,8 @@ void Runner::loadOrRenderSnapshot(bool writeOutputs) {
             writeRecord(dir / "record.json", toJson(record));
         });
         snapshotRecord_ = record;
-    } else {
-        spdlog::info("snapshot: reused from {}", cache_.entry(key).string());
-        snapshotRecord_ = readSnapshotRecord(cache_.record(key));
-        snapshotRecord_->cached = true;
+        aamap_ = readExrGrey(cache_.entry(key) / "aamap.exr");  // as a later run reads it
     }
-    aamap_ = readExrGrey(cache_.entry(key) / "aamap.exr");
     if (!writeOutputs) return;
     for (const char* f : {"snapshot.png", "laplacian.png", "aamap.exr"})
         if (fs::exists(cache_.entry(key) / f)) copyFileAtomically(cache_.entry(key) / f, out_ / f);

@@ -221,5 +221,17 @@ TEST_F(CacheEntriesOfEarlierRuns, RecordsWithoutNewerFieldsAreReusedAndRepeatsAd
     EXPECT_EQ(third.totalTraces(), 0);
 }
 
+TEST_F(CacheEntriesOfEarlierRuns, ADamagedSnapshotEntryIsRenderedAgain) {
+    FakeBackend first;
+    const Results r1 = run(first);
+    std::ofstream(out_ / "cache" / r1.snapshot->key / "record.json", std::ios::trunc) << R"({"key": )";
+    FakeBackend second;
+    const Results r2 = run(second);
+    EXPECT_EQ(second.snapshots, 1);
+    EXPECT_FALSE(r2.snapshot->cached);
+    EXPECT_EQ(second.totalTraces(), 0);  // the renders' entries are intact
+    EXPECT_EQ(readSnapshotRecord(out_ / "cache" / r1.snapshot->key / "record.json").key, r1.snapshot->key);
+}
+
 }  // namespace
 }  // namespace aamap
