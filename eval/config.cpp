@@ -342,6 +342,7 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     j["metrics"] = {{"flip", m.flip}, {"flip_hdr", m.flipHdr}, {"flip_threshold", m.flipThreshold},
                     {"mse_threshold", m.mseThreshold}, {"ppd", m.ppd}, {"map_quality", m.mapQuality}};
     if (!m.causes) j["metrics"]["causes"] = false;  // only when not the default: older configs keep their hash
+    if (m.oracle) j["metrics"]["oracle"] = true;    // likewise
     j["report"] = {{"plots", c.report.plots}};
     // Only when not the default: configs without it keep their hash.
     if (c.timing.repeats != 1 || !c.timing.interleave)

@@ -108,6 +108,7 @@ struct MetricsConfig {
     double ppd = 67.0206;        // FLIP viewing condition (pixels per degree)
     bool mapQuality = true;      // aamap recall/precision; adds a 1-ray uniform render
     bool causes = true;          // with mapQuality: why pixels are missed or wasted (pixel facts)
+    bool oracle = false;         // with mapQuality: every aamap-driven render again on the oracle map
 };
 
 // How traces are timed: the machine drifts, so a trade is timed over several runs, interleaved

@@ -38,6 +38,7 @@ const std::vector<ParamSpec>& metricsParams() {
         realParamAbove("ppd", 0.0, 1000.0, 67.0206, "FLIP viewing condition, pixels per degree"),
         boolParam("map_quality", true, "aamap recall/precision; adds a 1-ray uniform render"),
         boolParam("causes", true, "with map_quality: why pixels are missed or wasted"),
+        boolParam("oracle", false, "with map_quality: each aamap render again with the oracle map, its bound"),
     };
     return params;
 }

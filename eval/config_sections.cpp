@@ -295,6 +295,7 @@ MetricsConfig readMetrics(const yaml::Context& ctx, const YAML::Node& node) {
     c.ppd = v.real("ppd");
     c.mapQuality = v.boolean("map_quality");
     c.causes = v.boolean("causes");
+    c.oracle = v.boolean("oracle");
     return c;
 }
 

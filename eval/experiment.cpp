@@ -202,12 +202,14 @@ public:
             std::sort(timed.begin(), timed.end(),
                       [](const SnapshotResult& a, const SnapshotResult& b) { return a.totalSeconds < b.totalSeconds; });
             SnapshotResult& r = timed[timed.size() / 2];
-            out.aamap = std::move(r.aamap);
             out.snapshot = std::move(withImages.snapshot);
             out.laplacian = std::move(withImages.laplacian);
-            if (!r.blockSums.empty())
+            if (!r.blockSums.empty()) {
+                gpuBlockSumsMap_ = r.aamap;  // out.aamap: moved below
                 gpuBlockSums_ = BlockSums::fromTables(r.blockSums.width, r.blockSums.height,
                                                       std::move(r.blockSums.sums), std::move(r.blockSums.counts));
+            }
+            out.aamap = std::move(r.aamap);
             out.totalSeconds = r.totalSeconds;
             out.readbackSeconds = r.readbackSeconds;
             for (const PassTiming& p : r.passTimes) out.passesGpuMs.emplace_back(p.pass, p.gpuMilliseconds);
@@ -263,10 +265,11 @@ public:
         StrategySettings ss = toStrategySettings(render, aamap);
         std::string blockSums;
         if (findStrategy(ss.name)->needsBlockSums) {
-            // The Snapshot's GPU tables when this run rendered it; the CPU fallback when the
-            // snapshot came from the cache (both give the same plan: tests/gpu/test_gpu_block_sums).
-            const bool gpu = gpuBlockSums_ && aamap != nullptr && gpuBlockSums_->width() == aamap->width() &&
-                             gpuBlockSums_->height() == aamap->height();
+            // The Snapshot's GPU tables when this run rendered it and the map is that one; the CPU
+            // fallback for a cached Snapshot or another map, such as the oracle's (both give the
+            // same plan for the same map: tests/gpu/test_gpu_block_sums).
+            const bool gpu = gpuBlockSums_ && aamap != nullptr && aamap->width() == gpuBlockSumsMap_.width() &&
+                             aamap->height() == gpuBlockSumsMap_.height() && aamap->pixels() == gpuBlockSumsMap_.pixels();
             if (gpu) ss.blockSums = &*gpuBlockSums_;
             blockSums = gpu ? "gpu" : "cpu";
         }
@@ -292,6 +295,7 @@ private:
     SceneInfo info_;
     std::unique_ptr<Tracer> tracer_;
     std::optional<BlockSums> gpuBlockSums_;  // from this run's Snapshot, if it built them
+    ImageGrey gpuBlockSumsMap_;              // the map they sum
 };
 
 }  // namespace

@@ -180,6 +180,42 @@ void addGroundTruthTable(const Json& results, std::vector<Table>& tables) {
     tables.push_back(t);
 }
 
+// Each aamap-driven render beside the same render on the oracle map (eval/runner.cpp): the oracle
+// is the bound, so its speedup and error say how far the map is from the best map.
+void addOracleTable(const Json& results, std::vector<Table>& tables) {
+    if (!results.contains("oracle")) return;
+    const Json& renders = results["renders"];
+    const std::string base = baselineSeries(renders);
+    const double flipT = num(results["config"]["metrics"], "flip_threshold", 0.1);
+    Table t{"oracle", "The map against the oracle map",
+            fmt::format("oracle map: the pixels whose 1-ray FLIP against the reference is above {} ({}% of the image), "
+                        "given the full budget; its time is the trace alone. Speedups over {} at the same rpp; "
+                        "efficiency: the map's speedup as a fraction of the oracle's",
+                        readableNumber(flipT), cell(100 * num(results["oracle"], "flagged_fraction"), "{:.1f}"),
+                        base.empty() ? std::string("uniform (none in the experiment)") : base),
+            {"render", "rpp", "time (s)", "oracle time (s)", "speedup", "oracle speedup", "efficiency", "% FLIP",
+             "oracle % FLIP", "mean rpp", "oracle mean rpp"},
+            {}};
+    for (const Json& run : results["oracle"]["runs"]) {
+        const Json& o = run["render"];
+        const std::string name = run["map_render"].get<std::string>();
+        const auto map = std::find_if(renders.begin(), renders.end(), [&](const Json& r) { return r["name"] == name; });
+        if (map == renders.end()) continue;
+        const int rpp = (*map)["max_rays_per_pixel"].get<int>();
+        const Json* b = base.empty() ? nullptr : find(renders, rpp, base);
+        const TimeRange mapSpeedup = b ? speedupRange(*b, *map) : TimeRange{};
+        const TimeRange oracleSpeedup = b ? speedupRange(*b, o) : TimeRange{};
+        const Json mm = map->contains("metrics") ? (*map)["metrics"] : Json::object();
+        const Json om = o.contains("metrics") ? o["metrics"] : Json::object();
+        t.rows.push_back({name, std::to_string(rpp), rangeCell(renderTimeRange(*map), "{:.3f}"),
+                          rangeCell(renderTimeRange(o), "{:.3f}"), rangeCell(mapSpeedup, "{:.2f}"),
+                          rangeCell(oracleSpeedup, "{:.2f}"), cell(mapSpeedup.median / oracleSpeedup.median),
+                          cell(num(mm, "pct_error_flip")), cell(num(om, "pct_error_flip")),
+                          cell(num(*map, "mean_primary_rpp")), cell(num(o, "mean_primary_rpp"))});
+    }
+    tables.push_back(t);
+}
+
 }  // namespace
 
 std::vector<Table> reportTables(const Json& results) {
@@ -279,6 +315,7 @@ std::vector<Table> reportTables(const Json& results) {
                             cell(100 * num(q, "true_fraction")), count("true_pixels"), count("own_true_pixels"),
                             count("flagged_pixels")}}});
     }
+    addOracleTable(results, tables);
     addCauseTables(results, tables);
     return tables;
 }

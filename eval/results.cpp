@@ -138,6 +138,11 @@ Json toJson(const Results& results) {
     if (results.oneRay) j["one_ray"] = toJson(*results.oneRay);
     if (!results.mapQuality.is_null()) j["map_quality"] = results.mapQuality;
     if (results.snapshot) j["snapshot"] = toJson(*results.snapshot);
+    if (!results.oracle.empty()) {
+        Json runs = Json::array();
+        for (const OracleRun& o : results.oracle) runs.push_back({{"map_render", o.mapRender}, {"render", toJson(o.record)}});
+        j["oracle"] = {{"flagged_fraction", results.oracleFlaggedFraction}, {"runs", runs}};
+    }
     j["warnings"] = results.warnings;
     return j;
 }

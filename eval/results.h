@@ -83,6 +83,13 @@ struct ReferenceInfo {
     std::string shadingFloor;  // the render whose error is the shading bias alone ("" when none)
 };
 
+// An aamap-driven render traced again on the oracle map: the rays the reference says a pixel
+// needs, so its speedup and error bound what any map can reach with that strategy.
+struct OracleRun {
+    std::string mapRender;  // the listed render it repeats, on the Snapshot's map
+    RenderRecord record;    // named "oracle_<mapRender>"; no Snapshot cost
+};
+
 struct Results {
     std::string gitRevision;
     std::string configHash;
@@ -93,6 +100,8 @@ struct Results {
     ReferenceInfo referenceInfo;
     nlohmann::ordered_json mapQuality;      // eval/evaluate.h evaluateMap; null unless requested and possible
     std::optional<SnapshotRecord> snapshot; // none without the aamap
+    std::vector<OracleRun> oracle;          // metrics.oracle
+    double oracleFlaggedFraction = 0;       // of the oracle map's pixels
     std::vector<std::string> warnings;      // shown at the top of the report
 };
 

@@ -30,7 +30,18 @@ namespace {
 struct Job {
     RenderConfig render;
     std::string key;
+    // The map an aamap-driven render reads: null for the Snapshot's, else the oracle's (and the
+    // digest of its pixels, which its key adds).
+    const ImageGrey* map = nullptr;
+    std::string mapDigest;
 };
+
+// What a job's key hashes: the render's settings, and the map when it is not the Snapshot's.
+nlohmann::ordered_json keyObject(const ExperimentConfig& c, const Job& job) {
+    nlohmann::ordered_json j = renderKeyObject(c, job.render);
+    if (job.map != nullptr) j["oracle_map"] = job.mapDigest;
+    return j;
+}
 
 bool usesAamap(const RenderConfig& render) {
     const StrategyDescriptor* info = findStrategy(render.strategy);
@@ -106,6 +117,11 @@ private:
         warnings_.push_back(message);
     }
     void loadOrRenderSnapshot(bool writeOutputs = true);
+    const ImageGrey* mapFor(const Job& job) const {
+        return usesAamap(job.render) ? (job.map != nullptr ? job.map : &*aamap_) : nullptr;
+    }
+    void traceOracle(Results& results, const std::vector<Job>& jobs, std::size_t listed, const ImageRGB& reference,
+                     const ImageGrey& oneRayError);
     PixelFacts loadOrComputeFacts();
     const Traced& loadOrTrace(const Job& job, int index, int count);
     RenderRecord recordFor(const Job& job, const Traced& t, bool cached) const;
@@ -126,6 +142,7 @@ private:
     MachineInfo machine_;
     std::optional<SceneInfo> scene_;
     std::optional<ImageGrey> aamap_;
+    std::optional<ImageGrey> oracleMap_;
     std::optional<SnapshotRecord> snapshotRecord_;
     std::map<std::string, Traced> traced_;  // by key
     std::map<std::string, bool> reused_;    // by key: came from the cache
@@ -226,10 +243,8 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
         }
     }
     const SceneInfo& s = scene();
-    const StrategyDescriptor* info = findStrategy(job.render.strategy);
-    const bool usesMap = info != nullptr && info->usesAamap;
     Progress progress(fmt::format("[{}/{}] trace {}", index, count, job.render.name));
-    TraceOutput out = backend_.trace(job.render, usesMap ? &*aamap_ : nullptr,
+    TraceOutput out = backend_.trace(job.render, mapFor(job),
                                      [&progress](int done, int total) { progress.update(done, total); });
     progress.finish();
     traceFinished(job, out.seconds);
@@ -243,7 +258,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     r.width = out.image.width();
     r.height = out.image.height();
     r.strategy = job.render.strategy;
-    const Json renderConfig = renderKeyObject(c_, job.render);  // what the key hashes
+    const Json renderConfig = keyObject(c_, job);  // what the key hashes
     r.parameters = {{"rpp", job.render.rpp}, {"strata", job.render.strata()}, {"seed", c_.seed},
                     {"shading_area_light_samples", c_.shading.areaLightSamples},
                     {"shading", renderConfig["shading"]}};
@@ -254,7 +269,9 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     r.times.bvhBuild = s.bvhSeconds;
     r.times.trace = out.seconds;
     r.times.traceRuns = {out.seconds};
-    if (usesMap) {
+    if (job.map != nullptr) {
+        r.parameters["map"] = "oracle";  // given, not computed: no Snapshot cost
+    } else if (usesAamap(job.render)) {
         const SnapshotRecord& snapshot = *snapshotRecord_;
         r.parameters["snapshot"] = snapshotSettingsJson(c_);
         r.parameters["snapshot_key"] = snapshot.key;
@@ -339,12 +356,10 @@ void Runner::repeatTraces(const std::vector<Job>& jobs) {
     std::vector<std::string> changed;
     const auto runOnce = [&](const Job& job) {
         Traced& t = traced_.at(job.key);
-        const StrategyDescriptor* info = findStrategy(job.render.strategy);
-        const bool usesMap = info != nullptr && info->usesAamap;
         scene();
         Progress progress(fmt::format("[run {}/{}] trace {}", t.record.times.traceRuns.size() + 1, repeats,
                                       job.render.name));
-        TraceOutput out = backend_.trace(job.render, usesMap ? &*aamap_ : nullptr,
+        TraceOutput out = backend_.trace(job.render, mapFor(job),
                                          [&progress](int done, int total) { progress.update(done, total); });
         progress.finish();
         traceFinished(job, out.seconds);
@@ -432,6 +447,49 @@ void Runner::checkReference(const ImageRGB& reference) {
         return !(p.r > 0.0f) && !(p.g > 0.0f) && !(p.b > 0.0f);
     });
     if (black) warn("the reference image is black everywhere: the error figures compare black images");
+}
+
+// metrics.oracle: the map the reference itself asks for, 1 where a 1-ray pixel is in error
+// (LDR-FLIP above metrics.flip_threshold: map quality's true aliasing) and 0 elsewhere, and every
+// aamap-driven render traced again on it. The oracle says where rays are needed, not how many:
+// its pixels get the strategy's full budget, as a map value of 1 does.
+void Runner::traceOracle(Results& results, const std::vector<Job>& jobs, std::size_t listed, const ImageRGB& reference,
+                         const ImageGrey& oneRayError) {
+    const float threshold = static_cast<float>(c_.metrics.flipThreshold);
+    oracleMap_ = ImageGrey(oneRayError.width(), oneRayError.height());
+    std::transform(oneRayError.pixels().begin(), oneRayError.pixels().end(), oracleMap_->pixels().begin(),
+                   [&](float e) { return e > threshold ? 1.0f : 0.0f; });
+    const auto& px = oracleMap_->pixels();
+    const std::string digest = fnv1a64Hex(std::string(reinterpret_cast<const char*>(px.data()), px.size() * sizeof(float)));
+    const auto flagged = std::count(px.begin(), px.end(), 1.0f);
+    results.oracleFlaggedFraction = static_cast<double>(flagged) / static_cast<double>(std::max<std::size_t>(1, px.size()));
+    writePng(out_ / "oracle.png", quantise(*oracleMap_));
+
+    std::vector<Job> oracleJobs;
+    std::vector<std::string> mapRenders;
+    for (std::size_t i = 0; i < listed; ++i) {
+        if (!usesAamap(jobs[i].render)) continue;
+        Job o{jobs[i].render, "", &*oracleMap_, digest};
+        o.render.name = "oracle_" + jobs[i].render.name;
+        o.key = "oracle-" + fnv1a64Hex(keyObject(c_, o).dump());
+        oracleJobs.push_back(std::move(o));
+        mapRenders.push_back(jobs[i].render.name);
+    }
+    spdlog::info("oracle map: flags {:.1f}% of pixels; {} render(s) on it", 100.0 * results.oracleFlaggedFraction,
+                 oracleJobs.size());
+    planTraces(oracleJobs);
+    const float exposure = static_cast<float>(c_.image.exposure);
+    for (std::size_t k = 0; k < oracleJobs.size(); ++k) {
+        const Job& job = oracleJobs[k];
+        const Traced& t = loadOrTrace(job, static_cast<int>(k) + 1, static_cast<int>(oracleJobs.size()));
+        RenderRecord rec = recordFor(job, t, reused_[job.key]);
+        writeNamedOutputs(job.render.name, t, job.render.rpp, rec.outputs);
+        rec.metrics = evaluateRender(reference, t.image, c_.metrics, exposure, out_, rec.name, rec.outputs);
+        results.oracle.push_back({mapRenders[k], std::move(rec)});
+        writeResults(out_ / "results.json", results);
+    }
+    repeatTraces(oracleJobs);
+    for (std::size_t k = 0; k < oracleJobs.size(); ++k) results.oracle[k].record.times = traced_.at(oracleJobs[k].key).record.times;
 }
 
 RenderRecord Runner::recordFor(const Job& job, const Traced& t, bool cached) const {
@@ -561,6 +619,7 @@ Results Runner::run() {
                                                              rec.name, rec.outputs);
         }
         addAntialiasingShares(results, jobs, listed, *reference);
+        if (mapQuality && c_.metrics.oracle) traceOracle(results, jobs, listed, *reference, oneRayError);
         if (mapQuality) {
             spdlog::info("map quality: recall {:.3f}, precision {:.3f}, flagged {:.1f}%",
                          results.mapQuality["recall"].get<double>(), results.mapQuality["precision"].get<double>(),

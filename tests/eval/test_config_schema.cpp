@@ -64,6 +64,7 @@ const std::map<std::string, Field>& fields() {
         {"metrics.ppd", [](const ExperimentConfig& c) { return ParamValue(c.metrics.ppd); }},
         {"metrics.map_quality", [](const ExperimentConfig& c) { return ParamValue(c.metrics.mapQuality); }},
         {"metrics.causes", [](const ExperimentConfig& c) { return ParamValue(c.metrics.causes); }},
+        {"metrics.oracle", [](const ExperimentConfig& c) { return ParamValue(c.metrics.oracle); }},
         {"report.plots", [](const ExperimentConfig& c) { return ParamValue(c.report.plots); }},
         {"timing.repeats", [](const ExperimentConfig& c) { return ParamValue(c.timing.repeats); }},
         {"timing.interleave", [](const ExperimentConfig& c) { return ParamValue(c.timing.interleave); }},

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/image_io.h"
 #include "eval/config.h"
 #include "eval/report.h"
 #include "eval/runner.h"
@@ -195,6 +196,54 @@ TEST_F(Runner, GroundTruthSplitsShadingBiasFromAntialiasing) {
 
 // Cache mode with B bounces renders paths of B + 2 segments; a path reference of another length is
 // named in a warning, since the difference would pass for the cache's bias.
+// The oracle map on a scene where the answer is known: a 1-ray pixel is wrong only at the edge
+// column (and where FLIP spreads its error), so the oracle flags that column and the aamap renders
+// on it match the reference there with no Snapshot cost.
+TEST_F(Runner, OracleMapFlagsWhatTheReferenceSaysAndBoundsTheMap) {
+    FakeBackend backend;
+    const Results r = run(backend, {"metrics.oracle=true"});
+    ASSERT_EQ(r.oracle.size(), 3u);  // aamap1, aamap4, aamap16
+    EXPECT_GT(r.oracleFlaggedFraction, 0.0);
+    EXPECT_LT(r.oracleFlaggedFraction, 1.0);
+    const ImageGrey oracle = [&] {
+        const ImageRGB8 png = readPng(out_ / "oracle.png");
+        ImageGrey g(png.width(), png.height());
+        for (int y = 0; y < png.height(); ++y)
+            for (int x = 0; x < png.width(); ++x) g.at(x, y) = png.at(x, y).r / 255.0f;
+        return g;
+    }();
+    for (int y = 0; y < FakeBackend::kH; ++y) {
+        EXPECT_EQ(oracle.at(FakeBackend::kW / 2, y), 1.0f) << y;  // the only wrong column
+        EXPECT_EQ(oracle.at(0, y), 0.0f) << y;                      // flat: one ray is right
+    }
+    for (std::size_t k = 0; k < r.oracle.size(); ++k) {
+        const OracleRun& o = r.oracle[k];
+        EXPECT_EQ(o.mapRender, r.renders[3 + k].name);
+        EXPECT_EQ(o.record.name, "oracle_" + o.mapRender);
+        EXPECT_EQ(o.record.parameters["map"], "oracle");
+        EXPECT_EQ(o.record.times.snapshotTotal, 0.0);
+        EXPECT_EQ(o.record.key.rfind("oracle-", 0), 0u);
+        // The oracle flags fewer pixels than the Snapshot's band, so it traces fewer rays.
+        if (o.record.maxRaysPerPixel > 1) EXPECT_LT(o.record.meanPrimaryRpp, r.renders[3 + k].meanPrimaryRpp);
+    }
+    const OracleRun& best = r.oracle[2];
+    ASSERT_EQ(best.mapRender, "aamap16");
+    EXPECT_EQ(best.record.metrics["mse"].get<double>(), 0.0);  // the reference is uniform16
+    const std::string md = test::readText(out_ / "report.md");
+    EXPECT_NE(md.find("The map against the oracle map"), std::string::npos) << md;
+    EXPECT_NE(md.find("| aamap16 | 16 |"), std::string::npos) << md;
+
+    FakeBackend again;  // the oracle renders are cached like the others
+    const Results r2 = run(again, {"metrics.oracle=true"});
+    EXPECT_EQ(again.totalTraces(), 0);
+    ASSERT_EQ(r2.oracle.size(), 3u);
+    EXPECT_TRUE(r2.oracle[2].record.cached);
+
+    FakeBackend plain;
+    EXPECT_TRUE(run(plain).oracle.empty());
+    EXPECT_EQ(test::readText(out_ / "report.md").find("oracle"), std::string::npos);
+}
+
 TEST_F(Runner, CacheAgainstPathReferenceOfAnotherDepthIsWarned) {
     const auto mentions = [](const Results& r, const std::string& text) {
         for (const std::string& w : r.warnings)

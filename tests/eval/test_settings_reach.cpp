@@ -305,6 +305,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                 differs([](const ExperimentConfig& c, int) { return tracedJobs(c); })};
     t["metrics.causes"] = {{}, {"metrics.causes=true"}, Renders::None, false,
                            differs([](const ExperimentConfig& c, int) { return causesReported(c); })};
+    t["metrics.oracle"] = {{}, {"metrics.oracle=false"}, Renders::None, false,
+                           differs([](const ExperimentConfig& c, int) { return tracedJobs(c); })};
     t["timing.same_machine"] = {{}, {"timing.same_machine=false"}, Renders::None, false,
                                 differs([](const ExperimentConfig& c, int) { return workGroups(c); })};
     t["report.plots"] = {{}, {"report.plots=false"}, Renders::None, false,
@@ -429,7 +431,7 @@ protected:
                              "snapshot: {environment_lights: 2}\n"
                              "shading: {mode: cache, cache: {bounces: 2, divisions: 64, supersamples: 32, accuracy: 0.25,\n"
                              "          resolution: 32, grid_step: 8}}\n"
-                             "metrics: {causes: false}\n"
+                             "metrics: {causes: false, oracle: true}\n"
                              "timing: {same_machine: true}\n"
                              "renders:\n  - {strategy: uniform, rpp: 4}\n  - {strategy: aamap, rpp: 4}\n";
     }
