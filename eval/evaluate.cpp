@@ -98,6 +98,27 @@ Json evaluateRender(const ImageRGB& reference, const ImageRGB& test, const Metri
     return j;
 }
 
+OracleMap oracleMap(const ImageRGB& oneRay, const ImageRGB& reference, const MetricsConfig& m, float exposure,
+                    int maxRounds) {
+    const float t = static_cast<float>(m.flipThreshold);
+    OracleMap o{ImageGrey(oneRay.width(), oneRay.height(), 0.0f), 0, 0};
+    ImageRGB composite = oneRay;
+    for (o.rounds = 1; o.rounds <= maxRounds; ++o.rounds) {
+        const metrics::FlipResult f = metrics::flipDisplay(reference, composite, exposure, flipOptions(m));
+        o.residualErrorPercent = 100.0 * f.fractionAbove;
+        bool grew = false;
+        for (std::size_t i = 0; i < f.errorMap.size(); ++i)
+            if (f.errorMap.pixels()[i] > t && o.map.pixels()[i] == 0.0f) {
+                o.map.pixels()[i] = 1.0f;
+                composite.pixels()[i] = reference.pixels()[i];
+                grew = true;
+            }
+        if (!grew) break;
+    }
+    o.rounds = std::min(o.rounds, maxRounds);
+    return o;
+}
+
 Json evaluateMap(const ImageRGB& oneRay, const ImageRGB& reference, const ImageGrey& aamap, const MetricsConfig& m,
                  float exposure, const fs::path& outDir, ImageGrey* oneRayError) {
     const float t = static_cast<float>(m.flipThreshold);

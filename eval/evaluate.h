@@ -42,6 +42,21 @@ nlohmann::ordered_json evaluateMap(const ImageRGB& oneRay, const ImageRGB& refer
                                    const MetricsConfig& metrics, float exposure, const std::filesystem::path& outDir,
                                    ImageGrey* oneRayError = nullptr);
 
+// The oracle map (metrics.oracle): 1 where a pixel needs more than one ray by the reference's own
+// account, 0 elsewhere. It starts from true aliasing (1-ray FLIP above flip_threshold) and grows
+// to a fixed point: the image that takes the reference where the map is 1 and the 1-ray image
+// elsewhere (what a render with the reference's budget on the map's pixels gives: sampling is
+// deterministic) is measured again, and its error pixels join the map. FLIP compares
+// neighbourhoods, so correcting a pixel can uncover an error beside it that wrong neighbours had
+// masked. Stops when nothing joins or after maxRounds.
+struct OracleMap {
+    ImageGrey map;
+    int rounds = 0;                  // measurements made (1: true aliasing was already the fixed point)
+    double residualErrorPercent = 0; // % FLIP error pixels of the last composite
+};
+OracleMap oracleMap(const ImageRGB& oneRay, const ImageRGB& reference, const MetricsConfig& metrics, float exposure,
+                    int maxRounds = 16);
+
 // Why a render's error pixels were missed and its extra rays wasted (eval/metrics/pixel_causes.h):
 // {missed: {cause: pixels}, wasted: {...}, missed_total, wasted_total, image}. Writes
 // NAME.causes.png and appends it to outputs.

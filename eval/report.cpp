@@ -188,10 +188,13 @@ void addOracleTable(const Json& results, std::vector<Table>& tables) {
     const std::string base = baselineSeries(renders);
     const double flipT = num(results["config"]["metrics"], "flip_threshold", 0.1);
     Table t{"oracle", "The map against the oracle map",
-            fmt::format("oracle map: the pixels whose 1-ray FLIP against the reference is above {} ({}% of the image), "
-                        "given the full budget; its time is the trace alone. Speedups over {} at the same rpp; "
-                        "efficiency: the map's speedup as a fraction of the oracle's",
-                        readableNumber(flipT), cell(100 * num(results["oracle"], "flagged_fraction"), "{:.1f}"),
+            fmt::format("oracle map: true aliasing (1-ray FLIP against the reference above {}), grown until the image "
+                        "taking the reference on it and the 1-ray image elsewhere has no new error pixel ({} round(s), "
+                        "{}% of the image, {}% error left); given the full budget; its time is the trace alone. "
+                        "Speedups over {} at the same rpp; efficiency: the map's speedup as a fraction of the oracle's",
+                        readableNumber(flipT), static_cast<int>(num(results["oracle"], "rounds", 0)),
+                        cell(100 * num(results["oracle"], "flagged_fraction"), "{:.1f}"),
+                        cell(num(results["oracle"], "residual_pct_error_flip"), "{:.2f}"),
                         base.empty() ? std::string("uniform (none in the experiment)") : base),
             {"render", "rpp", "time (s)", "oracle time (s)", "speedup", "oracle speedup", "efficiency", "% FLIP",
              "oracle % FLIP", "mean rpp", "oracle mean rpp"},

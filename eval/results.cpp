@@ -141,7 +141,10 @@ Json toJson(const Results& results) {
     if (!results.oracle.empty()) {
         Json runs = Json::array();
         for (const OracleRun& o : results.oracle) runs.push_back({{"map_render", o.mapRender}, {"render", toJson(o.record)}});
-        j["oracle"] = {{"flagged_fraction", results.oracleFlaggedFraction}, {"runs", runs}};
+        j["oracle"] = {{"flagged_fraction", results.oracleFlaggedFraction},
+                       {"rounds", results.oracleRounds},
+                       {"residual_pct_error_flip", results.oracleResidualErrorPercent},
+                       {"runs", runs}};
     }
     j["warnings"] = results.warnings;
     return j;

@@ -102,6 +102,8 @@ struct Results {
     std::optional<SnapshotRecord> snapshot; // none without the aamap
     std::vector<OracleRun> oracle;          // metrics.oracle
     double oracleFlaggedFraction = 0;       // of the oracle map's pixels
+    int oracleRounds = 0;                   // eval/evaluate.h OracleMap
+    double oracleResidualErrorPercent = 0;
     std::vector<std::string> warnings;      // shown at the top of the report
 };
 

@@ -121,7 +121,7 @@ private:
         return usesAamap(job.render) ? (job.map != nullptr ? job.map : &*aamap_) : nullptr;
     }
     void traceOracle(Results& results, const std::vector<Job>& jobs, std::size_t listed, const ImageRGB& reference,
-                     const ImageGrey& oneRayError);
+                     const ImageRGB& oneRay);
     PixelFacts loadOrComputeFacts();
     const Traced& loadOrTrace(const Job& job, int index, int count);
     RenderRecord recordFor(const Job& job, const Traced& t, bool cached) const;
@@ -449,16 +449,15 @@ void Runner::checkReference(const ImageRGB& reference) {
     if (black) warn("the reference image is black everywhere: the error figures compare black images");
 }
 
-// metrics.oracle: the map the reference itself asks for, 1 where a 1-ray pixel is in error
-// (LDR-FLIP above metrics.flip_threshold: map quality's true aliasing) and 0 elsewhere, and every
+// metrics.oracle: the map the reference itself asks for (eval/evaluate.h oracleMap), and every
 // aamap-driven render traced again on it. The oracle says where rays are needed, not how many:
 // its pixels get the strategy's full budget, as a map value of 1 does.
 void Runner::traceOracle(Results& results, const std::vector<Job>& jobs, std::size_t listed, const ImageRGB& reference,
-                         const ImageGrey& oneRayError) {
-    const float threshold = static_cast<float>(c_.metrics.flipThreshold);
-    oracleMap_ = ImageGrey(oneRayError.width(), oneRayError.height());
-    std::transform(oneRayError.pixels().begin(), oneRayError.pixels().end(), oracleMap_->pixels().begin(),
-                   [&](float e) { return e > threshold ? 1.0f : 0.0f; });
+                         const ImageRGB& oneRay) {
+    OracleMap oracle = oracleMap(oneRay, reference, c_.metrics, static_cast<float>(c_.image.exposure));
+    results.oracleRounds = oracle.rounds;
+    results.oracleResidualErrorPercent = oracle.residualErrorPercent;
+    oracleMap_ = std::move(oracle.map);
     const auto& px = oracleMap_->pixels();
     const std::string digest = fnv1a64Hex(std::string(reinterpret_cast<const char*>(px.data()), px.size() * sizeof(float)));
     const auto flagged = std::count(px.begin(), px.end(), 1.0f);
@@ -475,8 +474,8 @@ void Runner::traceOracle(Results& results, const std::vector<Job>& jobs, std::si
         oracleJobs.push_back(std::move(o));
         mapRenders.push_back(jobs[i].render.name);
     }
-    spdlog::info("oracle map: flags {:.1f}% of pixels; {} render(s) on it", 100.0 * results.oracleFlaggedFraction,
-                 oracleJobs.size());
+    spdlog::info("oracle map: flags {:.1f}% of pixels after {} round(s); {} render(s) on it",
+                 100.0 * results.oracleFlaggedFraction, results.oracleRounds, oracleJobs.size());
     planTraces(oracleJobs);
     const float exposure = static_cast<float>(c_.image.exposure);
     for (std::size_t k = 0; k < oracleJobs.size(); ++k) {
@@ -619,7 +618,7 @@ Results Runner::run() {
                                                              rec.name, rec.outputs);
         }
         addAntialiasingShares(results, jobs, listed, *reference);
-        if (mapQuality && c_.metrics.oracle) traceOracle(results, jobs, listed, *reference, oneRayError);
+        if (mapQuality && c_.metrics.oracle) traceOracle(results, jobs, listed, *reference, traced_.at(oneRayJob->key).image);
         if (mapQuality) {
             spdlog::info("map quality: recall {:.3f}, precision {:.3f}, flagged {:.1f}%",
                          results.mapQuality["recall"].get<double>(), results.mapQuality["precision"].get<double>(),

@@ -138,5 +138,32 @@ TEST(MetricSettings, PpdIsFlipsViewingDistance) {
     EXPECT_NE(means[3], means[2]);
 }
 
+// The oracle map's fixed point on images where the answer is known: a 1-ray image equal to the
+// reference needs nothing; one with a wrong block needs at least that block, and the image that
+// takes the reference there has no error left.
+TEST(OracleMap, FlagsWhatTheReferenceSaysAndReachesAFixedPoint) {
+    const MetricsConfig m;
+    const ImageRGB reference(32, 24, glm::vec3(0.3f));
+    const OracleMap none = oracleMap(reference, reference, m, 1.0f);
+    EXPECT_EQ(none.rounds, 1);
+    EXPECT_EQ(none.residualErrorPercent, 0.0);
+    for (float v : none.map.pixels()) EXPECT_EQ(v, 0.0f);
+
+    ImageRGB oneRay = reference;
+    for (int y = 10; y < 13; ++y)
+        for (int x = 14; x < 17; ++x) oneRay.at(x, y) = glm::vec3(0.9f);  // a wrong 3x3 block
+    const OracleMap o = oracleMap(oneRay, reference, m, 1.0f);
+    for (int y = 10; y < 13; ++y)
+        for (int x = 14; x < 17; ++x) EXPECT_EQ(o.map.at(x, y), 1.0f) << x << "," << y;
+    EXPECT_EQ(o.map.at(0, 0), 0.0f);
+    EXPECT_GE(o.rounds, 2);  // the last round finds nothing new
+    EXPECT_EQ(o.residualErrorPercent, 0.0);
+    // The fixed point: the composite on the map is within the threshold everywhere.
+    ImageRGB composite = oneRay;
+    for (std::size_t i = 0; i < composite.size(); ++i)
+        if (o.map.pixels()[i] > 0) composite.pixels()[i] = reference.pixels()[i];
+    EXPECT_EQ(metrics::flipDisplay(reference, composite, 1.0f, {}).fractionAbove, 0.0);
+}
+
 }  // namespace
 }  // namespace aamap
