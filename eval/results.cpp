@@ -138,12 +138,12 @@ Json toJson(const Results& results) {
     if (results.oneRay) j["one_ray"] = toJson(*results.oneRay);
     if (!results.mapQuality.is_null()) j["map_quality"] = results.mapQuality;
     if (results.snapshot) j["snapshot"] = toJson(*results.snapshot);
-    if (!results.oracle.empty()) {
+    if (results.oracle) {
         Json runs = Json::array();
-        for (const OracleRun& o : results.oracle) runs.push_back({{"map_render", o.mapRender}, {"render", toJson(o.record)}});
-        j["oracle"] = {{"flagged_fraction", results.oracleFlaggedFraction},
-                       {"rounds", results.oracleRounds},
-                       {"residual_pct_error_flip", results.oracleResidualErrorPercent},
+        for (const OracleRun& o : results.oracle->runs) runs.push_back({{"map_render", o.mapRender}, {"render", toJson(o.record)}});
+        j["oracle"] = {{"flagged_fraction", results.oracle->flaggedFraction},
+                       {"rounds", results.oracle->rounds},
+                       {"residual_pct_error_flip", results.oracle->residualErrorPercent},
                        {"runs", runs}};
     }
     j["warnings"] = results.warnings;

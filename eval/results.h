@@ -90,6 +90,13 @@ struct OracleRun {
     RenderRecord record;    // named "oracle_<mapRender>"; no Snapshot cost
 };
 
+struct OracleResults {
+    double flaggedFraction = 0;       // of the oracle map's pixels
+    int rounds = 0;                   // eval/evaluate.h OracleMap
+    double residualErrorPercent = 0;  // % FLIP error pixels of its last composite
+    std::vector<OracleRun> runs;
+};
+
 struct Results {
     std::string gitRevision;
     std::string configHash;
@@ -100,10 +107,7 @@ struct Results {
     ReferenceInfo referenceInfo;
     nlohmann::ordered_json mapQuality;      // eval/evaluate.h evaluateMap; null unless requested and possible
     std::optional<SnapshotRecord> snapshot; // none without the aamap
-    std::vector<OracleRun> oracle;          // metrics.oracle
-    double oracleFlaggedFraction = 0;       // of the oracle map's pixels
-    int oracleRounds = 0;                   // eval/evaluate.h OracleMap
-    double oracleResidualErrorPercent = 0;
+    std::optional<OracleResults> oracle;    // metrics.oracle
     std::vector<std::string> warnings;      // shown at the top of the report
 };
 

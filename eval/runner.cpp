@@ -455,13 +455,14 @@ void Runner::checkReference(const ImageRGB& reference) {
 void Runner::traceOracle(Results& results, const std::vector<Job>& jobs, std::size_t listed, const ImageRGB& reference,
                          const ImageRGB& oneRay) {
     OracleMap oracle = oracleMap(oneRay, reference, c_.metrics, static_cast<float>(c_.image.exposure));
-    results.oracleRounds = oracle.rounds;
-    results.oracleResidualErrorPercent = oracle.residualErrorPercent;
+    OracleResults& summary = results.oracle.emplace();
+    summary.rounds = oracle.rounds;
+    summary.residualErrorPercent = oracle.residualErrorPercent;
     oracleMap_ = std::move(oracle.map);
     const auto& px = oracleMap_->pixels();
     const std::string digest = fnv1a64Hex(std::string(reinterpret_cast<const char*>(px.data()), px.size() * sizeof(float)));
     const auto flagged = std::count(px.begin(), px.end(), 1.0f);
-    results.oracleFlaggedFraction = static_cast<double>(flagged) / static_cast<double>(std::max<std::size_t>(1, px.size()));
+    summary.flaggedFraction = static_cast<double>(flagged) / static_cast<double>(std::max<std::size_t>(1, px.size()));
     writePng(out_ / "oracle.png", quantise(*oracleMap_));
 
     std::vector<Job> oracleJobs;
@@ -475,7 +476,7 @@ void Runner::traceOracle(Results& results, const std::vector<Job>& jobs, std::si
         mapRenders.push_back(jobs[i].render.name);
     }
     spdlog::info("oracle map: flags {:.1f}% of pixels after {} round(s); {} render(s) on it",
-                 100.0 * results.oracleFlaggedFraction, results.oracleRounds, oracleJobs.size());
+                 100.0 * summary.flaggedFraction, summary.rounds, oracleJobs.size());
     planTraces(oracleJobs);
     const float exposure = static_cast<float>(c_.image.exposure);
     for (std::size_t k = 0; k < oracleJobs.size(); ++k) {
@@ -484,11 +485,11 @@ void Runner::traceOracle(Results& results, const std::vector<Job>& jobs, std::si
         RenderRecord rec = recordFor(job, t, reused_[job.key]);
         writeNamedOutputs(job.render.name, t, job.render.rpp, rec.outputs);
         rec.metrics = evaluateRender(reference, t.image, c_.metrics, exposure, out_, rec.name, rec.outputs);
-        results.oracle.push_back({mapRenders[k], std::move(rec)});
+        results.oracle->runs.push_back({mapRenders[k], std::move(rec)});
         writeResults(out_ / "results.json", results);
     }
     repeatTraces(oracleJobs);
-    for (std::size_t k = 0; k < oracleJobs.size(); ++k) results.oracle[k].record.times = traced_.at(oracleJobs[k].key).record.times;
+    for (std::size_t k = 0; k < oracleJobs.size(); ++k) results.oracle->runs[k].record.times = traced_.at(oracleJobs[k].key).record.times;
 }
 
 RenderRecord Runner::recordFor(const Job& job, const Traced& t, bool cached) const {
