@@ -188,8 +188,9 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             if (t.rgba.size() < 4 * texels || texels == 0) continue;  // unusable: albedo stays kd
             d.width = t.width;
             d.height = t.height;
-            d.rgb.resize(texels);
-            for (std::size_t k = 0; k < texels; ++k) d.rgb[k] = {t.rgba[4 * k], t.rgba[4 * k + 1], t.rgba[4 * k + 2]};
+            std::vector<glm::vec3> rgb(texels);
+            for (std::size_t k = 0; k < texels; ++k) rgb[k] = {t.rgba[4 * k], t.rgba[4 * k + 1], t.rgba[4 * k + 2]};
+            d.rgb = buildMipChain(t.width, t.height, std::move(rgb));
         }
     }
     spdlog::info("tracer features: {}", features_.describe());
@@ -284,12 +285,20 @@ glm::vec2 EmbreeScene::textureCoordinates(std::uint32_t id, float u, float v) co
     return (1.0f - u - v) * uv[0] + u * uv[1] + v * uv[2];
 }
 
-glm::vec3 EmbreeScene::texel(int texture, std::uint32_t id, float u, float v) const {
+glm::vec3 EmbreeScene::texel(int texture, std::uint32_t id, float u, float v, const glm::vec3& dir,
+                             float footprint) const {
     const TextureData& t = textures_[static_cast<std::size_t>(texture)];
     if (t.rgb.empty()) return glm::vec3(1.0f);
-    BilinearTaps taps;
-    if (!bilinearTaps(textureCoordinates(id, u, v), t.width, t.height, taps)) return glm::vec3(1.0f);
-    return blend(t.rgb, taps);
+    const glm::vec2 st = textureCoordinates(id, u, v);
+    if (!(footprint > 0.0f)) return bilinear(t.rgb[0], st);
+    // The cone's footprint on the triangle's plane, carried into uv by the triangle's own mapping.
+    const Triangle& tri = triangles_[id];
+    const glm::vec2* uv = &vertexUvs_[3 * static_cast<std::size_t>(id)];
+    glm::vec3 axisA, axisB;
+    coneFootprint(dir, tri.normal, footprint, axisA, axisB);
+    const glm::vec2 duv1 = uv[1] - uv[0], duv2 = uv[2] - uv[0];
+    return filteredLookup(t.rgb, st, worldToUv(axisA, tri.e1, tri.e2, duv1, duv2),
+                          worldToUv(axisB, tri.e1, tri.e2, duv1, duv2));
 }
 
 float EmbreeScene::coverage(int texture, std::uint32_t id, float u, float v) const {

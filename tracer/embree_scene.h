@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "scene/scene.h"
+#include "core/texture_filter.h"
 
 namespace aamap {
 
@@ -59,8 +60,8 @@ struct SceneFeatures {
 
 struct TextureData {
     int width = 0, height = 0;
-    std::vector<glm::vec3> rgb;  // linear, row 0 at the top (v = 0)
-    std::vector<float> alpha;    // coverage, only for textures an alpha-tested material uses
+    std::vector<MipLevel> rgb;  // linear colour's mip chain (core/texture_filter.h); empty: unusable
+    std::vector<float> alpha;   // coverage at level 0, only for textures an alpha-tested material uses
 };
 
 // A single ray from origin along dir over [0, inf), ready for rtcIntersect1: every field Embree
@@ -99,17 +100,20 @@ public:
     // Unit interpolated vertex normal at barycentrics (u, v); the geometric normal if the mesh has
     // no usable normals there.
     glm::vec3 shadingNormal(std::uint32_t id, float u, float v) const;
-    // Diffuse albedo at barycentrics (u, v): kd, times the bilinear (repeating) texel for a textured
-    // material. Only textured materials fetch.
-    glm::vec3 albedo(const ShadingMaterial& m, std::uint32_t id, float u, float v) const {
-        return m.texture < 0 ? m.kd : m.kd * texel(m.texture, id, u, v);
+    // Diffuse albedo at barycentrics (u, v): kd, times the texture for a textured material (only
+    // those fetch). footprint: the width of the ray's cone at the hit, arriving along unit `dir`;
+    // the texture is filtered over the cone's footprint on the triangle (core/texture_filter.h),
+    // and a zero footprint takes the plain bilinear (repeating) texel.
+    glm::vec3 albedo(const ShadingMaterial& m, std::uint32_t id, float u, float v, const glm::vec3& dir = {},
+                     float footprint = 0.0f) const {
+        return m.texture < 0 ? m.kd : m.kd * texel(m.texture, id, u, v, dir, footprint);
     }
     // Whether the surface of triangle `id` at barycentrics (u, v) is cut out by its material's
     // alpha test (bilinear coverage, the same texel rule as albedo()). False for opaque materials.
     bool cutOut(std::uint32_t id, float u, float v) const;
 
 private:
-    glm::vec3 texel(int texture, std::uint32_t id, float u, float v) const;
+    glm::vec3 texel(int texture, std::uint32_t id, float u, float v, const glm::vec3& dir, float footprint) const;
     float coverage(int texture, std::uint32_t id, float u, float v) const;
     glm::vec2 textureCoordinates(std::uint32_t id, float u, float v) const;
 

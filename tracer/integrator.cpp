@@ -54,7 +54,7 @@ Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, cons
                   shading_.maxSpecularDepth);
 }
 
-void Integrator::fillHit(const RTCRayHit& rh, const glm::vec3& dir, SurfaceHit& hit) const {
+void Integrator::fillHit(const RTCRayHit& rh, const glm::vec3& dir, RayCone cone, SurfaceHit& hit) const {
     const Triangle& tri = geometry_.triangle(rh.hit.primID);
     const ShadingMaterial& mat = geometry_.material(tri.material);
     const float u = rh.hit.u, v = rh.hit.v;
@@ -65,39 +65,40 @@ void Integrator::fillHit(const RTCRayHit& rh, const glm::vec3& dir, SurfaceHit& 
     hit.shading = geometry_.shadingNormal(rh.hit.primID, u, v);
     if (glm::dot(hit.shading, hit.geometric) < 0.0f) hit.shading = -hit.shading;  // normals may disagree with the winding
     hit.wo = -dir;
-    hit.albedo = mat.diffuse ? geometry_.albedo(mat, rh.hit.primID, u, v) : glm::vec3(0.0f);
+    hit.cone = {cone.at(rh.ray.tfar), cone.spread};
+    hit.albedo = mat.diffuse ? geometry_.albedo(mat, rh.hit.primID, u, v, dir, hit.cone.width) : glm::vec3(0.0f);
     hit.offset = rayOffset(hit.position, tri.vertexScale);
     hit.distance = rh.ray.tfar;
     hit.primitive = rh.hit.primID;
     hit.material = &mat;
 }
 
-bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit,
-                           std::uint64_t& counter) const {
+bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit, std::uint64_t& counter,
+                           RayCone cone) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh = makeRayHit(origin, dir);
     rtcIntersect1(scene_, &context, &rh);
     ++counter;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    fillHit(rh, dir, hit);
+    fillHit(rh, dir, cone, hit);
     return true;
 }
 
-glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler,
-                              RayCounts& rays) const {
+glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays,
+                              float spread) const {
     SurfaceHit hit;
-    if (!intersect(origin, dir, hit, rays.primary)) return escaped(dir);
+    if (!intersect(origin, dir, hit, rays.primary, cameraCone(spread))) return escaped(dir);
     if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
     return shadeDirect(hit, sampler, 0, 0, 1.0f, rays);
 }
 
 glm::vec3 Integrator::primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler,
-                                     RayCounts& rays) const {
+                                     RayCounts& rays, float spread) const {
     ++rays.primary;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return escaped(dir);
     SurfaceHit hit;
-    fillHit(rh, dir, hit);
+    fillHit(rh, dir, cameraCone(spread), hit);
     if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
     return shadeDirect(hit, sampler, 0, 0, 1.0f, rays);
 }
@@ -110,10 +111,11 @@ glm::vec3 Integrator::radianceDirect(const glm::vec3& origin, const glm::vec3& d
     return shadeDirect(hit, sampler, depth, 0, 0.0f, rays);
 }
 
-glm::vec3 Integrator::traceSpecular(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
-                                    int specular, float weight, RayCounts& rays) const {
+glm::vec3 Integrator::traceSpecular(const glm::vec3& origin, const glm::vec3& dir, RayCone cone,
+                                    const Sampler& sampler, int depth, int specular, float weight,
+                                    RayCounts& rays) const {
     SurfaceHit hit;
-    if (!intersect(origin, dir, hit, rays.other)) return escaped(dir);
+    if (!intersect(origin, dir, hit, rays.other, cone)) return escaped(dir);
     return shadeDirect(hit, sampler, depth, specular, weight, rays);
 }
 
@@ -133,7 +135,8 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
     const auto follow = [&](const glm::vec3& dir, const glm::vec3& tint, float branch) {
         const float next = w * branch * bsdf::maxComponent(tint);
         if (next < kSpecularCutoff) return glm::vec3(0.0f);
-        const glm::vec3 Li = traceSpecular(hit.originFor(dir), dir, sampler, depth + 1, specular + 1,
+        // Planar mirrors and glass keep the cone's angle (curvature is not modelled).
+        const glm::vec3 Li = traceSpecular(hit.originFor(dir), dir, hit.cone, sampler, depth + 1, specular + 1,
                                            weight > 0.0f ? next : 0.0f, rays);
         return tint * branch * Li;
     };

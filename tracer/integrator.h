@@ -53,6 +53,7 @@ struct SurfaceHit {
     glm::vec3 albedo;     // diffuse albedo here (texture applied)
     float offset;         // scale-aware self-intersection offset (ray_offset.h)
     float distance;       // along the (unit) ray
+    RayCone cone;         // the ray's cone, its width taken here: rays leaving the hit carry it on
     std::uint32_t primitive;
     bool front;           // the triangle's front side (its winding) was hit
     const ShadingMaterial* material;
@@ -110,16 +111,21 @@ public:
                const IndirectDiffuseSource* indirect = nullptr);
 
     // Radiance arriving at `origin` from unit direction -dir. Counts every ray it traces in `rays`
-    // (the primary ray in rays.primary). Allocates nothing.
-    glm::vec3 primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays) const;
+    // (the primary ray in rays.primary). Allocates nothing. spread: the angle (radians) the ray's
+    // share of its pixel subtends, for texture filtering (0: unfiltered).
+    glm::vec3 primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays,
+                      float spread = 0.0f) const;
     // The same, for a primary ray the caller has already traced from `origin` along unit `dir`
     // (rh: its Embree result, e.g. one lane of a packet of coherent primary rays).
-    glm::vec3 primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays) const;
+    glm::vec3 primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays,
+                             float spread = 0.0f) const;
 
     // Building blocks (also for the irradiance cache). intersect: false on a miss; counts the ray
     // in rays.other. radianceDirect: what Direct mode sees along a secondary ray (emission + direct
     // light + specular recursion; no cache), depth = path vertex index for the sampler dimensions.
-    bool intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit, std::uint64_t& counter) const;
+    // cone: the footprint the ray brings from `origin` (hit.cone gets its width at the hit).
+    bool intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit, std::uint64_t& counter,
+                   RayCone cone = {}) const;
     glm::vec3 radianceDirect(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
                              RayCounts& rays) const;
     // Reflected radiance towards hit.wo from direct light (all light types), smooth lobes only.
@@ -139,8 +145,8 @@ private:
     // Direct/Cache shading of a hit, following mirror/glass bounces up to maxSpecularDepth.
     glm::vec3 shadeDirect(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
                           RayCounts& rays) const;
-    glm::vec3 traceSpecular(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
-                            int specular, float weight, RayCounts& rays) const;
+    glm::vec3 traceSpecular(const glm::vec3& origin, const glm::vec3& dir, RayCone cone, const Sampler& sampler,
+                            int depth, int specular, float weight, RayCounts& rays) const;
     glm::vec3 directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
     glm::vec3 directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
     // Many lights, LightSelection::Contribution: samples distributed over a per-hit CDF.
@@ -175,7 +181,11 @@ private:
     // True if nothing blocks the ray from origin along unit `dir` to infinity. One shadow ray.
     bool unoccludedToward(const glm::vec3& origin, const glm::vec3& dir, RayCounts& rays) const;
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar, RayCounts& rays) const;
-    void fillHit(const RTCRayHit& rh, const glm::vec3& dir, SurfaceHit& hit) const;
+    void fillHit(const RTCRayHit& rh, const glm::vec3& dir, RayCone cone, SurfaceHit& hit) const;
+    // The cone of a camera ray: width 0 at the eye; no spread when textures are not filtered.
+    RayCone cameraCone(float spread) const {
+        return {0.0f, shading_.textureFilter == TextureFilter::None ? 0.0f : spread};
+    }
 
     const EmbreeScene& geometry_;
     const LightSet& lights_;

@@ -165,7 +165,9 @@ glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler,
             beta *= 1.0f / survive;
         }
         const glm::vec3 origin = hit.originFor(dir);
-        if (!intersect(origin, dir, hit, rays.other)) {
+        // The cone goes on with its angle after any bounce (pbrt-v4's camera-based approximation
+        // likewise ignores a diffuse bounce's widening): texture noise there is indirect light.
+        if (!intersect(origin, dir, hit, rays.other, hit.cone)) {
             L += beta * escapedPath(dir, specularBefore, pdfBefore);
             break;
         }

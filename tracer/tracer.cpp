@@ -123,6 +123,8 @@ public:
           height_(height),
           invW_(1.0f / static_cast<float>(width)),
           invH_(1.0f / static_cast<float>(height)),
+          // The angle one pixel subtends on the view axis (the geometric mean of its sides).
+          pixelAngle_(std::sqrt(2.0f * camera.tanHalfH * invW_ * 2.0f * camera.tanHalfV * invH_)),
           filter_(filter) {}
 
     int width() const override { return width_; }
@@ -191,7 +193,8 @@ private:
         packet.trace(geometry_.handle(), count);
         for (int lane = 0; lane < count; ++lane) {
             const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(first + lane), seed_);
-            accumulate(integrator_.primaryFromHit(packet.hit(lane), packet.dir[lane], sampler, counters.rays));
+            accumulate(integrator_.primaryFromHit(packet.hit(lane), packet.dir[lane], sampler, counters.rays,
+                                                  spread(packet.dir[lane], k)));
         }
         return count;
     }
@@ -209,11 +212,18 @@ private:
         return glm::normalize(camera_.direction(u, v));
     }
 
+    // The cone angle of one of the k x k rays of a pixel along unit `dir`: its stratum's share of
+    // the pixel, which shrinks off the view axis as cos^2 radially and cos across (their mean).
+    float spread(const glm::vec3& dir, int k) const {
+        const float c = std::max(glm::dot(dir, camera_.forward), 0.0f);
+        return pixelAngle_ * c * std::sqrt(c) / static_cast<float>(k);
+    }
+
     glm::vec3 radiance(int x, int y, int sx, int sy, int k, ThreadCounters& counters, PrimarySample* hit) const {
         const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(sy * k + sx), seed_);
         const glm::vec3 dir = direction(x, y, sx, sy, k);
         if (hit != nullptr) probe(dir, *hit, counters.rays);
-        return integrator_.primary(camera_.origin, dir, sampler, counters.rays);
+        return integrator_.primary(camera_.origin, dir, sampler, counters.rays, spread(dir, k));
     }
 
     // Depth and shape of the primary hit for the rpict and shape-id criteria. The integrator does
@@ -236,6 +246,7 @@ private:
     std::uint64_t seed_;
     int width_, height_;
     float invW_, invH_;
+    float pixelAngle_;
     const PixelFilter& filter_;
     mutable tbb::enumerable_thread_specific<ThreadCounters> counters_;
 };

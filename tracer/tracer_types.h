@@ -24,6 +24,9 @@ const char* toString(ShadingMode mode);
 // per-hit CDF over each light's estimated unoccluded contribution there (docs/tracer.md).
 enum class LightSelection { Power, Contribution };
 
+// How a textured albedo is looked up (ShadingSettings::textureFilter).
+enum class TextureFilter { Anisotropic, None };
+
 struct ShadingSettings {
     int areaLightSamples = 16;  // stratified shadow-ray samples per area light per hit (rounded to a square)
     ShadingMode mode = ShadingMode::Direct;
@@ -39,6 +42,18 @@ struct ShadingSettings {
     IrradianceCacheSettings cache;
     int cacheGridStep = 4;
     LightSelection lightSelection = LightSelection::Contribution;  // many lights only (see above)
+    // Textured albedo: filtered over each ray's footprint (a ray cone, docs/tracer.md "Texture
+    // filtering"), or the plain bilinear texel at the hit point (None).
+    TextureFilter textureFilter = TextureFilter::Anisotropic;
+};
+
+// The footprint a ray carries for texture filtering: its width `width` at the origin, growing by
+// `spread` per unit distance. Camera rays start at width 0 with the angle their share of the
+// pixel subtends; a zero cone filters nothing.
+struct RayCone {
+    float width = 0.0f;
+    float spread = 0.0f;
+    float at(float distance) const { return width + spread * distance; }
 };
 
 struct RayCounts {

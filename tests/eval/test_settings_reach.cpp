@@ -256,6 +256,9 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
     t["shading.light_selection"] = {{}, {"shading.light_selection=power"}, Renders::All, false,
                                     becomes([](const ExperimentConfig& c, int) { return shade(c, 0).lightSelection; },
                                             LightSelection::Power)};
+    t["shading.texture_filter"] = {{}, {"shading.texture_filter=anisotropic"}, Renders::All, false,
+                                   becomes([](const ExperimentConfig& c, int) { return shade(c, 0).textureFilter; },
+                                           TextureFilter::Anisotropic)};
     // The irradiance cache (the base that has them shades in cache mode: every render reads it).
     const auto cache = [&](const std::string& key, const std::string& value, auto get, auto expected) {
         t["shading.cache." + key] = {{}, {"shading.cache." + key + "=" + value}, Renders::All, false,
@@ -412,6 +415,7 @@ protected:
                            "camera: {position: [0, 1, 3.9], look_at: [0, 1, 0]}\n"
                            "snapshot: {map: combined}\n"
                            "image: {filter: gaussian}\n"  // the filter keys appear only when not the box
+                           "shading: {texture_filter: none}\n"  // likewise, when not the default
                            "light_file: lights.yaml\n"
                            "timing: {repeats: 2}\n"
                            "renders:\n  - {strategy: uniform, rpp: 4}\n  - {strategy: aamap, rpp: 4}\n";

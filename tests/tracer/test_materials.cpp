@@ -161,7 +161,11 @@ TEST(Texture, ShowsTheTexelColourAtKnownUvs) {
         return std::move(b.scene());
     };
     const View view = lookAt({0, 2, 0}, {0, 0, 0}, 50, {0, 0, -1});
-    const TraceResult tex1 = renderScene(build(true), view, mode(ShadingMode::Direct), kSize, 1, 1, 4);
+    // The texel rule itself, so the point lookup: a filtered one also averages over the pixel's
+    // footprint (about a texel here), tested in test_texture_filtering.cpp.
+    ShadingSettings pointLookup = mode(ShadingMode::Direct);
+    pointLookup.textureFilter = TextureFilter::None;
+    const TraceResult tex1 = renderScene(build(true), view, pointLookup, kSize, 1, 1, 4);
     const TraceResult white = renderScene(build(false), view, mode(ShadingMode::Direct), kSize, 1, 1, 4);
     const PinholeCamera cam = PinholeCamera::fromView(view);
     int checked = 0;

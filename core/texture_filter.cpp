@@ -1,4 +1,4 @@
-#include "scene/texture_filter.h"
+#include "core/texture_filter.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,179 @@
+// Textures are antialiased by filtering, not by rays (docs/tracer.md, "Texture filtering"): a
+// camera ray's cone covers its share of the pixel, and the albedo is the texture filtered over the
+// cone's footprint. So one ray per pixel on a minified texture already shows what many rays
+// average, while a magnified texture is looked up exactly as without filtering.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/texture_filter.h"
+#include "tracer/tracer.h"
+
+namespace aamap {
+namespace {
+
+// A side x side checkerboard of single-texel black and white checks (linear 0.05 and 0.95).
+Texture checkerboard(int side) {
+    Texture t;
+    t.width = t.height = side;
+    t.rgba.resize(static_cast<std::size_t>(side) * side * 4);
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+            const float c = (x + y) % 2 == 0 ? 0.95f : 0.05f;
+            float* p = &t.rgba[4 * (static_cast<std::size_t>(y) * side + x)];
+            p[0] = p[1] = p[2] = c;
+            p[3] = 1.0f;
+        }
+    return t;
+}
+
+// A floor y = 0 over x in [-half, half], z in [-depth, 0], with `repeats` copies of the texture
+// along each side, under a directional light straight down (irradiance pi: radiance = albedo).
+Scene texturedFloor(int side, float repeats, float half, float depth) {
+    Scene s;
+    s.name = "textured floor";
+    s.textures.push_back(checkerboard(side));
+    Material m;
+    m.name = "floor";
+    m.kd = glm::vec3(1.0f);
+    m.diffuseTexture = 0;
+    s.materials.push_back(m);
+    TriangleMesh& mesh = s.mesh;
+    mesh.positions = {{-half, 0, 0}, {half, 0, 0}, {half, 0, -depth}, {-half, 0, -depth}};
+    mesh.normals.assign(4, glm::vec3(0, 1, 0));
+    mesh.uvs = {{0, 0}, {repeats, 0}, {repeats, repeats}, {0, repeats}};
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    mesh.materialIds = {0, 0};
+    mesh.objectIds = {0, 0};
+    DirectionalLight sun;
+    sun.name = "sun";
+    sun.direction = {0, -1, 0};
+    sun.irradiance = glm::vec3(static_cast<float>(M_PI));
+    s.directionalLights.push_back(sun);
+    return s;
+}
+
+// Looks along the floor from height 1, tilted down: the floor fills the lower part of the image
+// up to its far edge; every pixel below `firstFloorRow` sees the floor across its whole width.
+View floorView() {
+    View v;
+    v.position = {0, 1, 0};
+    v.direction = glm::normalize(glm::vec3(0, -0.35f, -1));
+    v.up = {0, 1, 0};
+    v.horizontalFovDeg = v.verticalFovDeg = 50.0f;
+    return v;
+}
+
+ImageRGB render(const Scene& scene, int rays, TextureFilter filter, int size) {
+    const Tracer tracer(scene);
+    TraceSettings t;
+    t.width = t.height = size;
+    t.shading.textureFilter = filter;
+    StrategySettings s;
+    s.name = "uniform";
+    s.strata = rays;
+    return tracer.render(floorView(), t, s).image;
+}
+
+struct Errors {
+    double rms = 0.0, max = 0.0;
+};
+
+// Errors of `a` against `reference` over rows [firstRow, size), luminance-free: the red channel.
+Errors errors(const ImageRGB& a, const ImageRGB& reference, int firstRow) {
+    Errors e;
+    int n = 0;
+    for (int y = firstRow; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const double d = static_cast<double>(a.at(x, y).r) - reference.at(x, y).r;
+            e.rms += d * d;
+            e.max = std::max(e.max, std::abs(d));
+            ++n;
+        }
+    e.rms = std::sqrt(e.rms / std::max(n, 1));
+    return e;
+}
+
+// The first row whose pixels all see the floor (the far edge is above it) with a margin of 2.
+int firstFloorRow(const ImageRGB& image) {
+    for (int y = image.height() - 1; y >= 0; --y)
+        for (int x = 0; x < image.width(); ++x)
+            if (!(image.at(x, y).r > 0.0f)) return y + 3;
+    return 0;
+}
+
+TEST(TextureFiltering, OneFilteredRayMatchesManyRaysOnAMinifiedTexture) {
+    // 1024^2 texels, 8 repeats over 24 x 24 scene units: 64x64 pixels each span many texels.
+    const Scene scene = texturedFloor(1024, 8.0f, 12.0f, 24.0f);
+    constexpr int kSize = 64;
+    // The reference takes no filtering on trust: 256 point-sampled rays per pixel.
+    const ImageRGB reference = render(scene, 16, TextureFilter::None, kSize);
+    const int first = firstFloorRow(reference);
+    ASSERT_LT(first, kSize / 2) << "the floor should fill most of the image";
+    const Errors filtered = errors(render(scene, 1, TextureFilter::Anisotropic, kSize), reference, first);
+    const Errors unfiltered = errors(render(scene, 1, TextureFilter::None, kSize), reference, first);
+    // One point sample of the checks is 0.05 or 0.95 against a mean near 0.5: it aliases.
+    EXPECT_GT(unfiltered.rms, 0.1) << "the scene does not alias without filtering";
+    // Filtered, one ray is within a few per cent of the 256-ray average everywhere.
+    EXPECT_LT(filtered.rms, 0.02) << "unfiltered: rms " << unfiltered.rms;
+    EXPECT_LT(filtered.max, 0.08);
+}
+
+TEST(TextureFiltering, AMagnifiedTextureIsLookedUpAsWithoutFiltering) {
+    // 16^2 texels of 1.5 x 1.5 scene units: in the image's lower half (the floor within 3 units of
+    // the camera) a pixel's footprint is under 0.2 units, below a texel.
+    const Scene scene = texturedFloor(16, 1.0f, 12.0f, 24.0f);
+    const ImageRGB filtered = render(scene, 2, TextureFilter::Anisotropic, 48);
+    const ImageRGB plain = render(scene, 2, TextureFilter::None, 48);
+    for (int y = filtered.height() / 2; y < filtered.height(); ++y)
+        for (int x = 0; x < filtered.width(); ++x) ASSERT_EQ(filtered.at(x, y), plain.at(x, y)) << x << "," << y;
+}
+
+TEST(TextureFiltering, MipLevelsKeepTheMeanAndHalveTheSides) {
+    // Odd sides too: every level is an exact area average, so each keeps the texture's mean.
+    std::vector<glm::vec3> rgb(13 * 7);
+    double mean = 0.0;
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+        rgb[i] = glm::vec3(static_cast<float>((i * 37) % 11) / 10.0f);
+        mean += rgb[i].r;
+    }
+    mean /= static_cast<double>(rgb.size());
+    const std::vector<MipLevel> chain = buildMipChain(13, 7, rgb);
+    ASSERT_EQ(chain.size(), 4u);  // 13x7, 6x3, 3x1, 1x1
+    EXPECT_EQ(chain[1].width, 6);
+    EXPECT_EQ(chain[1].height, 3);
+    EXPECT_EQ(chain[2].width, 3);
+    EXPECT_EQ(chain[2].height, 1);
+    for (const MipLevel& level : chain) {
+        double m = 0.0;
+        for (const glm::vec3& c : level.rgb) m += c.r;
+        EXPECT_NEAR(m / static_cast<double>(level.rgb.size()), mean, 1e-5) << level.width << "x" << level.height;
+    }
+}
+
+TEST(TextureFiltering, FootprintProbesFollowTheMajorAxis) {
+    // Isotropic, 4 texels wide: one probe at level 2.
+    FootprintProbes p = footprintProbes({4, 0}, {0, 4}, 11);
+    EXPECT_EQ(p.count, 1);
+    EXPECT_FLOAT_EQ(p.level, 2.0f);
+    // 32 x 2 texels: 16 probes 2 texels apart along the major axis, each 2 texels wide (level 1).
+    p = footprintProbes({0, 2}, {32, 0}, 11);
+    EXPECT_EQ(p.count, 16);
+    EXPECT_FLOAT_EQ(p.step.x, 2.0f);
+    EXPECT_FLOAT_EQ(p.level, 1.0f);
+    // Beyond the anisotropy limit the probes widen: 256 x 2 is 16 probes 16 texels wide.
+    p = footprintProbes({256, 0}, {0, 2}, 11);
+    EXPECT_EQ(p.count, kMaxTextureAnisotropy);
+    EXPECT_FLOAT_EQ(p.level, 4.0f);
+    // Below a texel: the plain bilinear lookup.
+    p = footprintProbes({0.5f, 0}, {0, 0.1f}, 11);
+    EXPECT_EQ(p.count, 1);
+    EXPECT_EQ(p.level, 0.0f);
+    // Wider than the texture: its average, the last level.
+    p = footprintProbes({5000, 0}, {0, 5000}, 11);
+    EXPECT_EQ(p.level, 10.0f);
+}
+
+}  // namespace
+}  // namespace aamap
