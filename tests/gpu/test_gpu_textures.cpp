@@ -1,7 +1,8 @@
 // Textures and alpha masks in the Snapshot: masked texels cut holes in the G-buffer (and in the
 // shadow cube maps), the aamap sees the cut-out boundary but nothing of the masked texels, the
-// same model from OBJ and glTF rasterises the same, and the texture binding exists only for
-// scenes that sample textures.
+// same model from OBJ and glTF rasterises the same, a minified texture shows its average over
+// the pixel (mip chain and footprint filter), and the texture binding exists only for scenes
+// that sample textures.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -16,6 +17,7 @@
 #include "scene/camera.h"
 #include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
+#include "scene/texture_filter.h"
 #include "tracer/embree_scene.h"
 
 namespace aamap::test {
@@ -248,6 +250,100 @@ TEST_F(SnapshotTextures, SnapshotAndTracerCutTheSameTexels) {
     EXPECT_GT(cut, 200);
 }
 
+// A floor seen at a grazing angle, textured with a one-texel black/white checker of 1024^2 texels
+// per world unit (many texels per pixel everywhere), lit evenly from straight above so that the
+// snapshot is the texture's value times one. Filtered, every pixel well inside the floor is the
+// checker's mean and the aamap sees nothing; a level-0 lookup at the pixel centre would be
+// anywhere in [0, 1] (the test checks that it would fail its tolerance).
+TEST_F(SnapshotTextures, MinifiedCheckerIsItsMeanAndUnflagged) {
+    constexpr int kSide = 1024;
+    constexpr float kHalfWidth = 40.0f, kNear = 2.0f, kFar = -80.0f;
+    Scene scene;
+    Texture checker;
+    checker.width = checker.height = kSide;
+    checker.rgba.assign(static_cast<std::size_t>(kSide) * kSide * 4, 1.0f);
+    for (int y = 0; y < kSide; ++y)
+        for (int x = 0; x < kSide; ++x)
+            for (int c = 0; c < 3; ++c)
+                checker.rgba[4 * (static_cast<std::size_t>(y) * kSide + x) + c] = (x + y) % 2 ? 1.0f : 0.0f;
+    scene.textures.push_back(checker);
+    Material m;
+    m.name = "floor";
+    m.kd = glm::vec3(1.0f);
+    m.diffuseTexture = 0;
+    scene.materials.push_back(m);
+    // The floor y = 0, uv = (x, z): one texture repeat per world unit.
+    scene.mesh.positions = {{-kHalfWidth, 0, kNear}, {kHalfWidth, 0, kNear}, {kHalfWidth, 0, kFar}, {-kHalfWidth, 0, kFar}};
+    scene.mesh.normals.assign(4, glm::vec3(0, 1, 0));
+    for (const glm::vec3& p : scene.mesh.positions) scene.mesh.uvs.push_back({p.x, p.z});
+    scene.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.mesh.materialIds = {0, 0};
+    scene.mesh.objectIds = {0, 0};
+    DirectionalLight sun;
+    sun.name = "sun";
+    sun.direction = {0, -1, 0};
+    sun.irradiance = glm::vec3(kPi);  // radiance = texture value
+    scene.directionalLights.push_back(sun);
+
+    const View view = lookAt({0, 1, 0}, {0, 0, -8}, 60.0f);
+    SnapshotSettings settings;
+    settings.shadows.enabled = false;
+    SnapshotRenderer renderer(context(), scene);
+    const int w = 64, h = 64;
+    const SnapshotResult r = renderer.render(view, w, h, settings);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+
+    // Pixel (x, y) of a width x height image and its neighbours `margin` pixels away all see the
+    // floor's interior (not its far edge, the sky or its sides).
+    const auto interior = [&](int x, int y, int width, int height, int margin) {
+        for (int dy = -margin; dy <= margin; dy += margin)
+            for (int dx = -margin; dx <= margin; dx += margin) {
+                const glm::vec3 d = camera.direction((static_cast<float>(x + dx) + 0.5f) / static_cast<float>(width),
+                                                     (static_cast<float>(y + dy) + 0.5f) / static_cast<float>(height));
+                if (d.y >= 0.0f) return false;
+                const glm::vec3 q = camera.origin + (-camera.origin.y / d.y) * d;
+                if (std::fabs(q.x) > kHalfWidth - 2.0f || q.z < kFar + 2.0f) return false;
+            }
+        return true;
+    };
+
+    // The checker's mean, 0.5, within 5%: the 8-bit sRGB atlas holds 0.5 as 188 / 255 (0.503).
+    constexpr float kMean = 0.5f, kTolerance = 0.05f * kMean;
+    const int sw = r.snapshot.width(), sh = r.snapshot.height();
+    int inside = 0, unfilteredOff = 0;
+    for (int y = 0; y < sh; ++y) {
+        for (int x = 0; x < sw; ++x) {
+            if (!interior(x, y, sw, sh, 2)) continue;
+            ++inside;
+            const glm::vec3 c = r.snapshot.at(x, y);
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], kMean, kTolerance) << "snapshot pixel " << x << "," << y;
+            // The unfiltered lookup there: level 0 at the pixel centre's uv.
+            const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(sw),
+                                                 (static_cast<float>(y) + 0.5f) / static_cast<float>(sh));
+            const glm::vec3 q = camera.origin + (-camera.origin.y / d.y) * d;
+            const float tx = q.x * kSide - 0.5f, ty = q.z * kSide - 0.5f;
+            const float ax = tx - std::floor(tx), ay = ty - std::floor(ty);
+            const float deviation = 0.5f * std::fabs((1.0f - 2.0f * ax) * (1.0f - 2.0f * ay));  // of a 1-texel checker
+            unfilteredOff += deviation > kTolerance;
+        }
+    }
+    EXPECT_GT(inside, sw * sh / 4);
+    EXPECT_GT(unfilteredOff, inside / 2);  // the tolerance is one a level-0 lookup fails
+
+    // The aamap inside the floor: the texture is not flagged.
+    int mapInside = 0;
+    float mapMax = 0.0f;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            if (!interior(x, y, w, h, 4)) continue;
+            ++mapInside;
+            mapMax = std::max(mapMax, r.aamap.at(x, y));
+        }
+    }
+    EXPECT_GT(mapInside, w * h / 5);
+    EXPECT_LT(mapMax, 0.05f);
+}
+
 TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
     Scene scene;
     const auto texture = [](int w, int h) {
@@ -300,6 +396,53 @@ TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
             const float encoded = src[0] <= 0.0031308f ? 12.92f * src[0] : 1.055f * std::pow(src[0], 1.0f / 2.4f) - 0.055f;
             EXPECT_NEAR(linear, encoded, 0.5f / 255.0f + 1e-5f);
             EXPECT_NEAR((texel >> 24) / 255.0f, src[3], 0.5f / 255.0f + 1e-5f);
+        }
+    }
+
+    // Every level of every entry's chain lies in the page, apart from every other level, and holds
+    // buildMipChain's texels (sRGB-encoded).
+    std::vector<passes::AtlasEntry> levels;
+    for (const auto& [key, entry] : atlas.entries) {
+        const std::uint32_t count = passes::atlasLevelCount(entry.width, entry.height);
+        const passes::AtlasEntry last = passes::atlasLevel(entry, count - 1);
+        EXPECT_EQ(last.width, 1u);
+        EXPECT_EQ(last.height, 1u);
+        for (std::uint32_t l = 0; l < count; ++l) {
+            const passes::AtlasEntry r = passes::atlasLevel(entry, l);
+            EXPECT_LE(r.x + r.width, atlas.pageSide);
+            EXPECT_LE(r.y + r.height, atlas.pageSide);
+            for (const passes::AtlasEntry& o : levels) {
+                const bool apart = o.layer != r.layer || o.x + o.width <= r.x || r.x + r.width <= o.x ||
+                                   o.y + o.height <= r.y || r.y + r.height <= o.y;
+                EXPECT_TRUE(apart) << "level " << l << " of the entry at " << entry.x << "," << entry.y;
+            }
+            levels.push_back(r);
+        }
+    }
+    EXPECT_EQ(passes::atlasLevelCount(100, 100), 7u);  // 100 50 25 12 6 3 1
+    EXPECT_EQ(passes::atlasLevelCount(1250, 10), 11u);
+    const auto encode = [](float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; };
+    for (int index : {1, 2}) {
+        const Texture& src = scene.textures[static_cast<std::size_t>(index)];
+        std::vector<glm::vec3> rgb(static_cast<std::size_t>(src.width) * src.height);
+        for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = {src.rgba[4 * i], src.rgba[4 * i + 1], src.rgba[4 * i + 2]};
+        const std::vector<MipLevel> chain = buildMipChain(src.width, src.height, rgb);
+        const passes::AtlasEntry& entry = atlas.entries.at({index, index});
+        ASSERT_EQ(chain.size(), passes::atlasLevelCount(entry.width, entry.height));
+        for (std::uint32_t l = 0; l < chain.size(); ++l) {
+            const passes::AtlasEntry r = passes::atlasLevel(entry, l);
+            ASSERT_EQ(static_cast<int>(r.width), chain[l].width);
+            ASSERT_EQ(static_cast<int>(r.height), chain[l].height);
+            for (std::uint32_t y = 0; y < r.height; ++y) {
+                for (std::uint32_t x = 0; x < r.width; ++x) {
+                    const std::uint32_t texel = atlas.texels[static_cast<std::size_t>(r.layer) * atlas.pageSide * atlas.pageSide +
+                                                             static_cast<std::size_t>(r.y + y) * atlas.pageSide + r.x + x];
+                    const glm::vec3 expected = chain[l].rgb[static_cast<std::size_t>(y) * r.width + x];
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_NEAR(((texel >> (8 * c)) & 0xffu) / 255.0f, encode(expected[c]), 0.5f / 255.0f + 1e-4f)
+                            << "texture " << index << " level " << l << " texel " << x << "," << y;
+                }
+            }
         }
     }
 }
