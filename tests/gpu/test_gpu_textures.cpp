@@ -344,6 +344,99 @@ TEST_F(SnapshotTextures, MinifiedCheckerIsItsMeanAndUnflagged) {
     EXPECT_LT(mapMax, 0.05f);
 }
 
+// The same floor with a random texture: each snapshot pixel is filteredLookup's colour for the
+// footprint of the pixel's quad (the CPU rule of the tracer), at every probe count and level the
+// view spans. Pixels where the derivatives of the quad's other row or column would give another
+// probe count or base level are left out (the raster may take either).
+TEST_F(SnapshotTextures, FilteredColourIsTheTracersRule) {
+    constexpr int kSide = 256;
+    constexpr float kHalfWidth = 20.0f, kNear = 2.0f, kFar = -40.0f, kRepeat = 0.25f;  // uv per world unit
+    const auto decode = [](std::uint32_t byte) {
+        const float c = static_cast<float>(byte) / 255.0f;
+        return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    };
+    Scene scene;
+    Texture noise;  // 8-bit sRGB values, so that level 0 is what the atlas stores
+    noise.width = noise.height = kSide;
+    noise.rgba.assign(static_cast<std::size_t>(kSide) * kSide * 4, 1.0f);
+    std::uint32_t seed = 12345u;
+    std::vector<glm::vec3> rgb(static_cast<std::size_t>(kSide) * kSide);
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            seed = seed * 1664525u + 1013904223u;
+            rgb[i][c] = noise.rgba[4 * i + static_cast<std::size_t>(c)] = decode(seed >> 24);
+        }
+    }
+    const std::vector<MipLevel> chain = buildMipChain(kSide, kSide, rgb);
+    scene.textures.push_back(noise);
+    Material m;
+    m.name = "floor";
+    m.kd = glm::vec3(1.0f);
+    m.diffuseTexture = 0;
+    scene.materials.push_back(m);
+    scene.mesh.positions = {{-kHalfWidth, 0, kNear}, {kHalfWidth, 0, kNear}, {kHalfWidth, 0, kFar}, {-kHalfWidth, 0, kFar}};
+    scene.mesh.normals.assign(4, glm::vec3(0, 1, 0));
+    for (const glm::vec3& p : scene.mesh.positions) scene.mesh.uvs.push_back(kRepeat * glm::vec2(p.x, p.z));
+    scene.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.mesh.materialIds = {0, 0};
+    scene.mesh.objectIds = {0, 0};
+    DirectionalLight sun;
+    sun.name = "sun";
+    sun.direction = {0, -1, 0};
+    sun.irradiance = glm::vec3(kPi);
+    scene.directionalLights.push_back(sun);
+
+    const View view = lookAt({0, 1, 0}, {0, 0, -6}, 60.0f);
+    SnapshotSettings settings;
+    settings.shadows.enabled = false;
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(view, 64, 64, settings);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int sw = r.snapshot.width(), sh = r.snapshot.height();
+    const auto floorAt = [&](int x, int y, glm::vec2& uv) {
+        const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(sw),
+                                             (static_cast<float>(y) + 0.5f) / static_cast<float>(sh));
+        if (d.y >= 0.0f) return false;
+        const glm::vec3 q = camera.origin + (-camera.origin.y / d.y) * d;
+        uv = kRepeat * glm::vec2(q.x, q.z);
+        return std::fabs(q.x) < kHalfWidth - 1.0f && q.z > kFar + 1.0f;
+    };
+    const glm::vec2 size(static_cast<float>(kSide));
+    const int levels = static_cast<int>(chain.size());
+    int compared = 0, maxCount = 0;
+    float maxLevel = 0.0f;
+    for (int y = 0; y < sh - 1; ++y) {
+        for (int x = 0; x < sw - 1; ++x) {
+            const int x0 = x & ~1, y0 = y & ~1;  // the pixel's 2x2 quad
+            glm::vec2 uv, q[2][2];
+            bool inside = floorAt(x, y, uv);
+            for (int j = 0; j < 2; ++j)
+                for (int i = 0; i < 2; ++i) inside = floorAt(x0 + i, y0 + j, q[j][i]) && inside;
+            if (!inside) continue;
+            const FootprintProbes p = footprintProbes((q[y - y0][1] - q[y - y0][0]) * size, (q[1][x - x0] - q[0][x - x0]) * size, levels);
+            bool stable = true;
+            for (int j = 0; j < 2; ++j) {
+                for (int i = 0; i < 2; ++i) {
+                    const FootprintProbes o = footprintProbes((q[j][1] - q[j][0]) * size, (q[1][i] - q[0][i]) * size, levels);
+                    stable = stable && o.count == p.count && std::floor(o.level) == std::floor(p.level);
+                }
+            }
+            if (!stable) continue;
+            const glm::vec3 expected = filteredLookup(chain, uv, q[y - y0][1] - q[y - y0][0], q[1][x - x0] - q[0][x - x0]);
+            const glm::vec3 c = r.snapshot.at(x, y);
+            // 8-bit sRGB levels: within 0.006 (0.5 / 255 in sRGB near white).
+            for (int k = 0; k < 3; ++k)
+                ASSERT_NEAR(c[k], expected[k], 0.006f) << "pixel " << x << "," << y << " probes " << p.count << " level " << p.level;
+            ++compared;
+            maxCount = std::max(maxCount, p.count);
+            maxLevel = std::max(maxLevel, p.level);
+        }
+    }
+    EXPECT_GT(compared, sw * sh / 4);
+    EXPECT_EQ(maxCount, kMaxTextureAnisotropy);  // the view spans anisotropic footprints,
+    EXPECT_GT(maxLevel, 4.0f);                   // and coarse levels
+}
+
 TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
     Scene scene;
     const auto texture = [](int w, int h) {
