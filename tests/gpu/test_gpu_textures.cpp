@@ -250,6 +250,43 @@ TEST_F(SnapshotTextures, SnapshotAndTracerCutTheSameTexels) {
     EXPECT_GT(cut, 200);
 }
 
+// The floor y = 0 over x in [-halfWidth, halfWidth], z in [far, near], kd 1 times `texture` at
+// uv = uvPerUnit (x, z), lit from straight above with irradiance pi: its radiance is the
+// texture's value. No shadows needed.
+Scene floorScene(Texture texture, float halfWidth, float near, float far, float uvPerUnit) {
+    Scene scene;
+    scene.textures.push_back(std::move(texture));
+    Material m;
+    m.name = "floor";
+    m.kd = glm::vec3(1.0f);
+    m.diffuseTexture = 0;
+    scene.materials.push_back(m);
+    scene.mesh.positions = {{-halfWidth, 0, near}, {halfWidth, 0, near}, {halfWidth, 0, far}, {-halfWidth, 0, far}};
+    scene.mesh.normals.assign(4, glm::vec3(0, 1, 0));
+    for (const glm::vec3& p : scene.mesh.positions) scene.mesh.uvs.push_back(uvPerUnit * glm::vec2(p.x, p.z));
+    scene.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.mesh.materialIds = {0, 0};
+    scene.mesh.objectIds = {0, 0};
+    DirectionalLight sun;
+    sun.name = "sun";
+    sun.direction = {0, -1, 0};
+    sun.irradiance = glm::vec3(kPi);
+    scene.directionalLights.push_back(sun);
+    return scene;
+}
+
+// side x side texels of a one-texel black/white checker (linear 0 and 1): mean 0.5.
+Texture checkerTexture(int side) {
+    Texture checker;
+    checker.width = checker.height = side;
+    checker.rgba.assign(static_cast<std::size_t>(side) * side * 4, 1.0f);
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+            for (int c = 0; c < 3; ++c)
+                checker.rgba[4 * (static_cast<std::size_t>(y) * side + x) + c] = (x + y) % 2 ? 1.0f : 0.0f;
+    return checker;
+}
+
 // A floor seen at a grazing angle, textured with a one-texel black/white checker of 1024^2 texels
 // per world unit (many texels per pixel everywhere), lit evenly from straight above so that the
 // snapshot is the texture's value times one. Filtered, every pixel well inside the floor is the
@@ -258,32 +295,7 @@ TEST_F(SnapshotTextures, SnapshotAndTracerCutTheSameTexels) {
 TEST_F(SnapshotTextures, MinifiedCheckerIsItsMeanAndUnflagged) {
     constexpr int kSide = 1024;
     constexpr float kHalfWidth = 40.0f, kNear = 2.0f, kFar = -80.0f;
-    Scene scene;
-    Texture checker;
-    checker.width = checker.height = kSide;
-    checker.rgba.assign(static_cast<std::size_t>(kSide) * kSide * 4, 1.0f);
-    for (int y = 0; y < kSide; ++y)
-        for (int x = 0; x < kSide; ++x)
-            for (int c = 0; c < 3; ++c)
-                checker.rgba[4 * (static_cast<std::size_t>(y) * kSide + x) + c] = (x + y) % 2 ? 1.0f : 0.0f;
-    scene.textures.push_back(checker);
-    Material m;
-    m.name = "floor";
-    m.kd = glm::vec3(1.0f);
-    m.diffuseTexture = 0;
-    scene.materials.push_back(m);
-    // The floor y = 0, uv = (x, z): one texture repeat per world unit.
-    scene.mesh.positions = {{-kHalfWidth, 0, kNear}, {kHalfWidth, 0, kNear}, {kHalfWidth, 0, kFar}, {-kHalfWidth, 0, kFar}};
-    scene.mesh.normals.assign(4, glm::vec3(0, 1, 0));
-    for (const glm::vec3& p : scene.mesh.positions) scene.mesh.uvs.push_back({p.x, p.z});
-    scene.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-    scene.mesh.materialIds = {0, 0};
-    scene.mesh.objectIds = {0, 0};
-    DirectionalLight sun;
-    sun.name = "sun";
-    sun.direction = {0, -1, 0};
-    sun.irradiance = glm::vec3(kPi);  // radiance = texture value
-    scene.directionalLights.push_back(sun);
+    const Scene scene = floorScene(checkerTexture(kSide), kHalfWidth, kNear, kFar, 1.0f);  // 1 repeat per unit
 
     const View view = lookAt({0, 1, 0}, {0, 0, -8}, 60.0f);
     SnapshotSettings settings;
@@ -344,6 +356,61 @@ TEST_F(SnapshotTextures, MinifiedCheckerIsItsMeanAndUnflagged) {
     EXPECT_LT(mapMax, 0.05f);
 }
 
+// The reflected view's shaders filter the same way: a mirror standing on the checker floor
+// shows the floor's mean times its reflectance wherever the reflected ray meets the floor's
+// interior.
+TEST_F(SnapshotTextures, MirrorShowsTheFilteredFloor) {
+    constexpr float kHalfWidth = 40.0f, kNear = 20.0f, kFar = -80.0f, kMirrorZ = -6.0f;
+    constexpr float kReflectance = 0.5f;
+    Scene scene = floorScene(checkerTexture(1024), kHalfWidth, kNear, kFar, 1.0f);
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.kind = MaterialKind::Mirror;
+    mirror.kd = glm::vec3(0.0f);
+    mirror.ks = glm::vec3(kReflectance);
+    scene.materials.push_back(mirror);
+    // x in [-3, 3], y in [0.05, 3] at z = kMirrorZ, facing the camera (+z).
+    scene.mesh.positions.insert(scene.mesh.positions.end(),
+                                {{-3, 0.05f, kMirrorZ}, {3, 0.05f, kMirrorZ}, {3, 3, kMirrorZ}, {-3, 3, kMirrorZ}});
+    scene.mesh.normals.insert(scene.mesh.normals.end(), 4, glm::vec3(0, 0, 1));
+    scene.mesh.uvs.insert(scene.mesh.uvs.end(), 4, glm::vec2(0.0f));
+    scene.mesh.triangles.insert(scene.mesh.triangles.end(), {{4, 5, 6}, {4, 6, 7}});
+    scene.mesh.materialIds.insert(scene.mesh.materialIds.end(), 2, 1u);
+    scene.mesh.objectIds.insert(scene.mesh.objectIds.end(), 2, 1u);
+
+    const View view = lookAt({0, 2, 0}, {0, 0.8f, -6}, 60.0f);
+    SnapshotSettings settings;
+    settings.shadows.enabled = false;
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(view, 64, 64, settings);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int sw = r.snapshot.width(), sh = r.snapshot.height();
+    // Pixel (x, y) sees the mirror and, reflected, the floor's interior.
+    const auto reflectsFloor = [&](int x, int y) {
+        const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(sw),
+                                             (static_cast<float>(y) + 0.5f) / static_cast<float>(sh));
+        if (d.z >= 0.0f) return false;
+        const glm::vec3 m = camera.origin + ((kMirrorZ - camera.origin.z) / d.z) * d;
+        if (std::fabs(m.x) > 2.9f || m.y < 0.15f || m.y > 2.9f) return false;
+        if (d.y >= 0.0f) return false;
+        const glm::vec3 q = m + (-m.y / d.y) * glm::vec3(d.x, d.y, -d.z);  // reflected: z flips
+        return std::fabs(q.x) < kHalfWidth - 2.0f && q.z < kNear - 0.5f;
+    };
+    int seen = 0;
+    for (int y = 2; y < sh - 2; ++y) {
+        for (int x = 2; x < sw - 2; ++x) {
+            if (!reflectsFloor(x, y) || !reflectsFloor(x - 2, y - 2) || !reflectsFloor(x + 2, y + 2) ||
+                !reflectsFloor(x - 2, y + 2) || !reflectsFloor(x + 2, y - 2))
+                continue;
+            const glm::vec3 c = r.snapshot.at(x, y);
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(c[k], kReflectance * 0.5f, 0.05f * kReflectance * 0.5f) << "mirror pixel " << x << "," << y;
+            ++seen;
+        }
+    }
+    EXPECT_GT(seen, 300);
+}
+
 // The same floor with a random texture: each snapshot pixel is filteredLookup's colour for the
 // footprint of the pixel's quad (the CPU rule of the tracer), at every probe count and level the
 // view spans. Pixels where the derivatives of the quad's other row or column would give another
@@ -355,7 +422,6 @@ TEST_F(SnapshotTextures, FilteredColourIsTheTracersRule) {
         const float c = static_cast<float>(byte) / 255.0f;
         return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
     };
-    Scene scene;
     Texture noise;  // 8-bit sRGB values, so that level 0 is what the atlas stores
     noise.width = noise.height = kSide;
     noise.rgba.assign(static_cast<std::size_t>(kSide) * kSide * 4, 1.0f);
@@ -368,23 +434,7 @@ TEST_F(SnapshotTextures, FilteredColourIsTheTracersRule) {
         }
     }
     const std::vector<MipLevel> chain = buildMipChain(kSide, kSide, rgb);
-    scene.textures.push_back(noise);
-    Material m;
-    m.name = "floor";
-    m.kd = glm::vec3(1.0f);
-    m.diffuseTexture = 0;
-    scene.materials.push_back(m);
-    scene.mesh.positions = {{-kHalfWidth, 0, kNear}, {kHalfWidth, 0, kNear}, {kHalfWidth, 0, kFar}, {-kHalfWidth, 0, kFar}};
-    scene.mesh.normals.assign(4, glm::vec3(0, 1, 0));
-    for (const glm::vec3& p : scene.mesh.positions) scene.mesh.uvs.push_back(kRepeat * glm::vec2(p.x, p.z));
-    scene.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-    scene.mesh.materialIds = {0, 0};
-    scene.mesh.objectIds = {0, 0};
-    DirectionalLight sun;
-    sun.name = "sun";
-    sun.direction = {0, -1, 0};
-    sun.irradiance = glm::vec3(kPi);
-    scene.directionalLights.push_back(sun);
+    const Scene scene = floorScene(noise, kHalfWidth, kNear, kFar, kRepeat);
 
     const View view = lookAt({0, 1, 0}, {0, 0, -6}, 60.0f);
     SnapshotSettings settings;
