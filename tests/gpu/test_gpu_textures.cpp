@@ -497,8 +497,9 @@ TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
         for (std::size_t i = 0; i < t.rgba.size(); ++i) t.rgba[i] = static_cast<float>((i * 37) % 256) / 255.0f;
         return t;
     };
-    scene.textures = {texture(5000, 40), texture(100, 100), texture(64, 32)};
-    for (int i = 0; i < 3; ++i) {
+    // The last one is narrow: its levels' row is wider than level 0 (they stop halving at width 1).
+    scene.textures = {texture(5000, 40), texture(100, 100), texture(64, 32), texture(4, 300)};
+    for (int i = 0; i < 4; ++i) {
         Material m;
         m.diffuseTexture = i;
         scene.materials.push_back(m);
@@ -509,7 +510,7 @@ TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
         scene.mesh.materialIds.push_back(static_cast<std::uint32_t>(i));
     }
     const passes::TextureAtlas atlas = passes::buildTextureAtlas(scene);
-    ASSERT_EQ(atlas.entries.size(), 3u);
+    ASSERT_EQ(atlas.entries.size(), 4u);
     EXPECT_GE(atlas.layers, 2u);
     EXPECT_EQ(atlas.texels.size(), static_cast<std::size_t>(atlas.pageSide) * atlas.pageSide * atlas.layers);
     std::vector<passes::AtlasEntry> entries;
@@ -565,7 +566,7 @@ TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
     EXPECT_EQ(passes::atlasLevelCount(100, 100), 7u);  // 100 50 25 12 6 3 1
     EXPECT_EQ(passes::atlasLevelCount(1250, 10), 11u);
     const auto encode = [](float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; };
-    for (int index : {1, 2}) {
+    for (int index : {1, 2, 3}) {
         const Texture& src = scene.textures[static_cast<std::size_t>(index)];
         std::vector<glm::vec3> rgb(static_cast<std::size_t>(src.width) * src.height);
         for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = {src.rgba[4 * i], src.rgba[4 * i + 1], src.rgba[4 * i + 2]};
