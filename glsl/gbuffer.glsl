@@ -22,7 +22,8 @@ layout(location = 1) in vec3 worldNormal;
 layout(location = 2) flat in vec3 vertexKd;
 layout(location = 3) flat in vec3 ke;
 #ifdef GBUFFER_TEXTURED
-// kd times the base-colour texture; alpha-tested materials discard where coverage < threshold.
+// kd times the base-colour texture (filtered over the pixel's footprint); alpha-tested materials
+// discard where the level-0 coverage < threshold.
 #include "gbuffer_texture.glsl"
 layout(location = 4) in vec2 uv;
 layout(location = 5) flat in uvec4 texRect;
@@ -84,6 +85,11 @@ vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
 }
 
 void main() {
+#ifdef GBUFFER_TEXTURED
+    // The pixel's footprint in uv, before any discard (derivatives need the whole quad). The
+    // unwrapped uv, so a repeating texture's seam is no wide footprint.
+    const vec2 duvA = dFdx(uv), duvB = dFdy(uv);
+#endif
 #ifdef GBUFFER_MIRROR
     // Only what lies on the viewer's side of the mirror is seen in it. A discard rather than
     // gl_ClipDistance: the context does not enable shaderClipDistance; the pixels are the same.
@@ -92,9 +98,9 @@ void main() {
 #ifdef GBUFFER_TEXTURED
     vec3 kd = vertexKd;
     if (texRect.z > 0u) {
-        const vec4 texel = atlasBilinear(atlas, uv, texRect, texParams.x);
-        if (texel.a < texParams.y) discard;
-        kd *= texel.rgb;
+        // Coverage from level 0, unfiltered: a cut-out is the tracer's hit/miss test, texel for texel.
+        if (texParams.y > 0.0 && atlasBilinear(atlas, uv, texRect, texParams.x).a < texParams.y) discard;
+        kd *= atlasFiltered(atlas, uv, duvA, duvB, texRect, texParams.x);
     }
 #else
     const vec3 kd = vertexKd;

@@ -6,7 +6,9 @@
 // for any number of textures. The shader does its own bilinear filter with repeat inside an
 // entry's rectangle (texelFetch, so no sampler and no bleeding between entries), the same texel
 // rule as the tracer (tracer/embree_scene.cpp), so both see the same colours and cut-outs.
-// No mip-maps: entries larger than kMaxEntrySide are box-filtered down to fit.
+// Entries larger than kMaxEntrySide are box-filtered down to fit; that is level 0 of the entry's
+// mip chain (scene/texture_filter.h, buildMipChain), whose levels the colour lookup filters
+// (glsl/gbuffer_texture.glsl, the rule of filteredLookup). Coverage is read from level 0 only.
 #include <cstdint>
 #include <map>
 #include <utility>
@@ -16,9 +18,20 @@
 
 namespace aamap::passes {
 
+// Level 0's rectangle. The levels >= 1 of the entry's chain (down to 1 x 1, so their count follows
+// from the size) lie in a row just below it, left-aligned, in order: see atlasLevel. Their alpha is
+// unused.
 struct AtlasEntry {
     std::uint32_t x = 0, y = 0, width = 0, height = 0, layer = 0;
 };
+
+// The number of levels of a width x height entry's chain: buildMipChain's, down to 1 x 1.
+std::uint32_t atlasLevelCount(std::uint32_t width, std::uint32_t height);
+
+// Level `level`'s rectangle (x, y, width, height; layer as the entry's): level 0 is the entry,
+// level 1 starts at (x, y + height), level l + 1 right after level l. The shader's rule too
+// (glsl/gbuffer_texture.glsl, atlasLevel).
+AtlasEntry atlasLevel(const AtlasEntry& entry, std::uint32_t level);
 
 struct TextureAtlas {
     static constexpr std::uint32_t kMaxEntrySide = 2048;

@@ -1,7 +1,8 @@
 // Textures and alpha masks in the Snapshot: masked texels cut holes in the G-buffer (and in the
 // shadow cube maps), the aamap sees the cut-out boundary but nothing of the masked texels, the
-// same model from OBJ and glTF rasterises the same, and the texture binding exists only for
-// scenes that sample textures.
+// same model from OBJ and glTF rasterises the same, a minified texture shows its average over
+// the pixel (mip chain and footprint filter), and the texture binding exists only for scenes
+// that sample textures.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -16,6 +17,7 @@
 #include "scene/camera.h"
 #include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
+#include "scene/texture_filter.h"
 #include "tracer/embree_scene.h"
 
 namespace aamap::test {
@@ -248,6 +250,243 @@ TEST_F(SnapshotTextures, SnapshotAndTracerCutTheSameTexels) {
     EXPECT_GT(cut, 200);
 }
 
+// The floor y = 0 over x in [-halfWidth, halfWidth], z in [far, near], kd 1 times `texture` at
+// uv = uvPerUnit (x, z), lit from straight above with irradiance pi: its radiance is the
+// texture's value. No shadows needed.
+Scene floorScene(Texture texture, float halfWidth, float near, float far, float uvPerUnit) {
+    Scene scene;
+    scene.textures.push_back(std::move(texture));
+    Material m;
+    m.name = "floor";
+    m.kd = glm::vec3(1.0f);
+    m.diffuseTexture = 0;
+    scene.materials.push_back(m);
+    scene.mesh.positions = {{-halfWidth, 0, near}, {halfWidth, 0, near}, {halfWidth, 0, far}, {-halfWidth, 0, far}};
+    scene.mesh.normals.assign(4, glm::vec3(0, 1, 0));
+    for (const glm::vec3& p : scene.mesh.positions) scene.mesh.uvs.push_back(uvPerUnit * glm::vec2(p.x, p.z));
+    scene.mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    scene.mesh.materialIds = {0, 0};
+    scene.mesh.objectIds = {0, 0};
+    DirectionalLight sun;
+    sun.name = "sun";
+    sun.direction = {0, -1, 0};
+    sun.irradiance = glm::vec3(kPi);
+    scene.directionalLights.push_back(sun);
+    return scene;
+}
+
+// side x side texels of a one-texel black/white checker (linear 0 and 1): mean 0.5.
+Texture checkerTexture(int side) {
+    Texture checker;
+    checker.width = checker.height = side;
+    checker.rgba.assign(static_cast<std::size_t>(side) * side * 4, 1.0f);
+    for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+            for (int c = 0; c < 3; ++c)
+                checker.rgba[4 * (static_cast<std::size_t>(y) * side + x) + c] = (x + y) % 2 ? 1.0f : 0.0f;
+    return checker;
+}
+
+// A floor seen at a grazing angle, textured with a one-texel black/white checker of 1024^2 texels
+// per world unit (many texels per pixel everywhere), lit evenly from straight above so that the
+// snapshot is the texture's value times one. Filtered, every pixel well inside the floor is the
+// checker's mean and the aamap sees nothing; a level-0 lookup at the pixel centre would be
+// anywhere in [0, 1] (the test checks that it would fail its tolerance).
+TEST_F(SnapshotTextures, MinifiedCheckerIsItsMeanAndUnflagged) {
+    constexpr int kSide = 1024;
+    constexpr float kHalfWidth = 40.0f, kNear = 2.0f, kFar = -80.0f;
+    const Scene scene = floorScene(checkerTexture(kSide), kHalfWidth, kNear, kFar, 1.0f);  // 1 repeat per unit
+
+    const View view = lookAt({0, 1, 0}, {0, 0, -8}, 60.0f);
+    SnapshotSettings settings;
+    settings.shadows.enabled = false;
+    SnapshotRenderer renderer(context(), scene);
+    const int w = 64, h = 64;
+    const SnapshotResult r = renderer.render(view, w, h, settings);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+
+    // Pixel (x, y) of a width x height image and its neighbours `margin` pixels away all see the
+    // floor's interior (not its far edge, the sky or its sides).
+    const auto interior = [&](int x, int y, int width, int height, int margin) {
+        for (int dy = -margin; dy <= margin; dy += margin)
+            for (int dx = -margin; dx <= margin; dx += margin) {
+                const glm::vec3 d = camera.direction((static_cast<float>(x + dx) + 0.5f) / static_cast<float>(width),
+                                                     (static_cast<float>(y + dy) + 0.5f) / static_cast<float>(height));
+                if (d.y >= 0.0f) return false;
+                const glm::vec3 q = camera.origin + (-camera.origin.y / d.y) * d;
+                if (std::fabs(q.x) > kHalfWidth - 2.0f || q.z < kFar + 2.0f) return false;
+            }
+        return true;
+    };
+
+    // The checker's mean, 0.5, within 5%: the 8-bit sRGB atlas holds 0.5 as 188 / 255 (0.503).
+    constexpr float kMean = 0.5f, kTolerance = 0.05f * kMean;
+    const int sw = r.snapshot.width(), sh = r.snapshot.height();
+    int inside = 0, unfilteredOff = 0;
+    for (int y = 0; y < sh; ++y) {
+        for (int x = 0; x < sw; ++x) {
+            if (!interior(x, y, sw, sh, 2)) continue;
+            ++inside;
+            const glm::vec3 c = r.snapshot.at(x, y);
+            for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], kMean, kTolerance) << "snapshot pixel " << x << "," << y;
+            // The unfiltered lookup there: level 0 at the pixel centre's uv.
+            const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(sw),
+                                                 (static_cast<float>(y) + 0.5f) / static_cast<float>(sh));
+            const glm::vec3 q = camera.origin + (-camera.origin.y / d.y) * d;
+            const float tx = q.x * kSide - 0.5f, ty = q.z * kSide - 0.5f;
+            const float ax = tx - std::floor(tx), ay = ty - std::floor(ty);
+            const float deviation = 0.5f * std::fabs((1.0f - 2.0f * ax) * (1.0f - 2.0f * ay));  // of a 1-texel checker
+            unfilteredOff += deviation > kTolerance;
+        }
+    }
+    EXPECT_GT(inside, sw * sh / 4);
+    EXPECT_GT(unfilteredOff, inside / 2);  // the tolerance is one a level-0 lookup fails
+
+    // The aamap inside the floor: the texture is not flagged.
+    int mapInside = 0;
+    float mapMax = 0.0f;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            if (!interior(x, y, w, h, 4)) continue;
+            ++mapInside;
+            mapMax = std::max(mapMax, r.aamap.at(x, y));
+        }
+    }
+    EXPECT_GT(mapInside, w * h / 5);
+    EXPECT_LT(mapMax, 0.05f);
+}
+
+// The reflected view's shaders filter the same way: a mirror standing on the checker floor
+// shows the floor's mean times its reflectance wherever the reflected ray meets the floor's
+// interior.
+TEST_F(SnapshotTextures, MirrorShowsTheFilteredFloor) {
+    constexpr float kHalfWidth = 40.0f, kNear = 20.0f, kFar = -80.0f, kMirrorZ = -6.0f;
+    constexpr float kReflectance = 0.5f;
+    Scene scene = floorScene(checkerTexture(1024), kHalfWidth, kNear, kFar, 1.0f);
+    Material mirror;
+    mirror.name = "mirror";
+    mirror.kind = MaterialKind::Mirror;
+    mirror.kd = glm::vec3(0.0f);
+    mirror.ks = glm::vec3(kReflectance);
+    scene.materials.push_back(mirror);
+    // x in [-3, 3], y in [0.05, 3] at z = kMirrorZ, facing the camera (+z).
+    scene.mesh.positions.insert(scene.mesh.positions.end(),
+                                {{-3, 0.05f, kMirrorZ}, {3, 0.05f, kMirrorZ}, {3, 3, kMirrorZ}, {-3, 3, kMirrorZ}});
+    scene.mesh.normals.insert(scene.mesh.normals.end(), 4, glm::vec3(0, 0, 1));
+    scene.mesh.uvs.insert(scene.mesh.uvs.end(), 4, glm::vec2(0.0f));
+    scene.mesh.triangles.insert(scene.mesh.triangles.end(), {{4, 5, 6}, {4, 6, 7}});
+    scene.mesh.materialIds.insert(scene.mesh.materialIds.end(), 2, 1u);
+    scene.mesh.objectIds.insert(scene.mesh.objectIds.end(), 2, 1u);
+
+    const View view = lookAt({0, 2, 0}, {0, 0.8f, -6}, 60.0f);
+    SnapshotSettings settings;
+    settings.shadows.enabled = false;
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(view, 64, 64, settings);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int sw = r.snapshot.width(), sh = r.snapshot.height();
+    // Pixel (x, y) sees the mirror and, reflected, the floor's interior.
+    const auto reflectsFloor = [&](int x, int y) {
+        const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(sw),
+                                             (static_cast<float>(y) + 0.5f) / static_cast<float>(sh));
+        if (d.z >= 0.0f) return false;
+        const glm::vec3 m = camera.origin + ((kMirrorZ - camera.origin.z) / d.z) * d;
+        if (std::fabs(m.x) > 2.9f || m.y < 0.15f || m.y > 2.9f) return false;
+        if (d.y >= 0.0f) return false;
+        const glm::vec3 q = m + (-m.y / d.y) * glm::vec3(d.x, d.y, -d.z);  // reflected: z flips
+        return std::fabs(q.x) < kHalfWidth - 2.0f && q.z < kNear - 0.5f;
+    };
+    int seen = 0;
+    for (int y = 2; y < sh - 2; ++y) {
+        for (int x = 2; x < sw - 2; ++x) {
+            if (!reflectsFloor(x, y) || !reflectsFloor(x - 2, y - 2) || !reflectsFloor(x + 2, y + 2) ||
+                !reflectsFloor(x - 2, y + 2) || !reflectsFloor(x + 2, y - 2))
+                continue;
+            const glm::vec3 c = r.snapshot.at(x, y);
+            for (int k = 0; k < 3; ++k)
+                EXPECT_NEAR(c[k], kReflectance * 0.5f, 0.05f * kReflectance * 0.5f) << "mirror pixel " << x << "," << y;
+            ++seen;
+        }
+    }
+    EXPECT_GT(seen, 300);
+}
+
+// The same floor with a random texture: each snapshot pixel is filteredLookup's colour for the
+// footprint of the pixel's quad (the CPU rule of the tracer), at every probe count and level the
+// view spans. Pixels where the derivatives of the quad's other row or column would give another
+// probe count or base level are left out (the raster may take either).
+TEST_F(SnapshotTextures, FilteredColourIsTheTracersRule) {
+    constexpr int kSide = 256;
+    constexpr float kHalfWidth = 20.0f, kNear = 2.0f, kFar = -40.0f, kRepeat = 0.25f;  // uv per world unit
+    const auto decode = [](std::uint32_t byte) {
+        const float c = static_cast<float>(byte) / 255.0f;
+        return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+    };
+    Texture noise;  // 8-bit sRGB values, so that level 0 is what the atlas stores
+    noise.width = noise.height = kSide;
+    noise.rgba.assign(static_cast<std::size_t>(kSide) * kSide * 4, 1.0f);
+    std::uint32_t seed = 12345u;
+    std::vector<glm::vec3> rgb(static_cast<std::size_t>(kSide) * kSide);
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            seed = seed * 1664525u + 1013904223u;
+            rgb[i][c] = noise.rgba[4 * i + static_cast<std::size_t>(c)] = decode(seed >> 24);
+        }
+    }
+    const std::vector<MipLevel> chain = buildMipChain(kSide, kSide, rgb);
+    const Scene scene = floorScene(noise, kHalfWidth, kNear, kFar, kRepeat);
+
+    const View view = lookAt({0, 1, 0}, {0, 0, -6}, 60.0f);
+    SnapshotSettings settings;
+    settings.shadows.enabled = false;
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(view, 64, 64, settings);
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int sw = r.snapshot.width(), sh = r.snapshot.height();
+    const auto floorAt = [&](int x, int y, glm::vec2& uv) {
+        const glm::vec3 d = camera.direction((static_cast<float>(x) + 0.5f) / static_cast<float>(sw),
+                                             (static_cast<float>(y) + 0.5f) / static_cast<float>(sh));
+        if (d.y >= 0.0f) return false;
+        const glm::vec3 q = camera.origin + (-camera.origin.y / d.y) * d;
+        uv = kRepeat * glm::vec2(q.x, q.z);
+        return std::fabs(q.x) < kHalfWidth - 1.0f && q.z > kFar + 1.0f;
+    };
+    const glm::vec2 size(static_cast<float>(kSide));
+    const int levels = static_cast<int>(chain.size());
+    int compared = 0, maxCount = 0;
+    float maxLevel = 0.0f;
+    for (int y = 0; y < sh - 1; ++y) {
+        for (int x = 0; x < sw - 1; ++x) {
+            const int x0 = x & ~1, y0 = y & ~1;  // the pixel's 2x2 quad
+            glm::vec2 uv, q[2][2];
+            bool inside = floorAt(x, y, uv);
+            for (int j = 0; j < 2; ++j)
+                for (int i = 0; i < 2; ++i) inside = floorAt(x0 + i, y0 + j, q[j][i]) && inside;
+            if (!inside) continue;
+            const FootprintProbes p = footprintProbes((q[y - y0][1] - q[y - y0][0]) * size, (q[1][x - x0] - q[0][x - x0]) * size, levels);
+            bool stable = true;
+            for (int j = 0; j < 2; ++j) {
+                for (int i = 0; i < 2; ++i) {
+                    const FootprintProbes o = footprintProbes((q[j][1] - q[j][0]) * size, (q[1][i] - q[0][i]) * size, levels);
+                    stable = stable && o.count == p.count && std::floor(o.level) == std::floor(p.level);
+                }
+            }
+            if (!stable) continue;
+            const glm::vec3 expected = filteredLookup(chain, uv, q[y - y0][1] - q[y - y0][0], q[1][x - x0] - q[0][x - x0]);
+            const glm::vec3 c = r.snapshot.at(x, y);
+            // 8-bit sRGB levels: within 0.006 (0.5 / 255 in sRGB near white).
+            for (int k = 0; k < 3; ++k)
+                ASSERT_NEAR(c[k], expected[k], 0.006f) << "pixel " << x << "," << y << " probes " << p.count << " level " << p.level;
+            ++compared;
+            maxCount = std::max(maxCount, p.count);
+            maxLevel = std::max(maxLevel, p.level);
+        }
+    }
+    EXPECT_GT(compared, sw * sh / 4);
+    EXPECT_EQ(maxCount, kMaxTextureAnisotropy);  // the view spans anisotropic footprints,
+    EXPECT_GT(maxLevel, 4.0f);                   // and coarse levels
+}
+
 TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
     Scene scene;
     const auto texture = [](int w, int h) {
@@ -258,8 +497,9 @@ TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
         for (std::size_t i = 0; i < t.rgba.size(); ++i) t.rgba[i] = static_cast<float>((i * 37) % 256) / 255.0f;
         return t;
     };
-    scene.textures = {texture(5000, 40), texture(100, 100), texture(64, 32)};
-    for (int i = 0; i < 3; ++i) {
+    // The last one is narrow: its levels' row is wider than level 0 (they stop halving at width 1).
+    scene.textures = {texture(5000, 40), texture(100, 100), texture(64, 32), texture(4, 300)};
+    for (int i = 0; i < 4; ++i) {
         Material m;
         m.diffuseTexture = i;
         scene.materials.push_back(m);
@@ -270,7 +510,7 @@ TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
         scene.mesh.materialIds.push_back(static_cast<std::uint32_t>(i));
     }
     const passes::TextureAtlas atlas = passes::buildTextureAtlas(scene);
-    ASSERT_EQ(atlas.entries.size(), 3u);
+    ASSERT_EQ(atlas.entries.size(), 4u);
     EXPECT_GE(atlas.layers, 2u);
     EXPECT_EQ(atlas.texels.size(), static_cast<std::size_t>(atlas.pageSide) * atlas.pageSide * atlas.layers);
     std::vector<passes::AtlasEntry> entries;
@@ -300,6 +540,53 @@ TEST(TextureAtlas, EntriesFitWithoutOverlapAndKeepTheirTexels) {
             const float encoded = src[0] <= 0.0031308f ? 12.92f * src[0] : 1.055f * std::pow(src[0], 1.0f / 2.4f) - 0.055f;
             EXPECT_NEAR(linear, encoded, 0.5f / 255.0f + 1e-5f);
             EXPECT_NEAR((texel >> 24) / 255.0f, src[3], 0.5f / 255.0f + 1e-5f);
+        }
+    }
+
+    // Every level of every entry's chain lies in the page, apart from every other level, and holds
+    // buildMipChain's texels (sRGB-encoded).
+    std::vector<passes::AtlasEntry> levels;
+    for (const auto& [key, entry] : atlas.entries) {
+        const std::uint32_t count = passes::atlasLevelCount(entry.width, entry.height);
+        const passes::AtlasEntry last = passes::atlasLevel(entry, count - 1);
+        EXPECT_EQ(last.width, 1u);
+        EXPECT_EQ(last.height, 1u);
+        for (std::uint32_t l = 0; l < count; ++l) {
+            const passes::AtlasEntry r = passes::atlasLevel(entry, l);
+            EXPECT_LE(r.x + r.width, atlas.pageSide);
+            EXPECT_LE(r.y + r.height, atlas.pageSide);
+            for (const passes::AtlasEntry& o : levels) {
+                const bool apart = o.layer != r.layer || o.x + o.width <= r.x || r.x + r.width <= o.x ||
+                                   o.y + o.height <= r.y || r.y + r.height <= o.y;
+                EXPECT_TRUE(apart) << "level " << l << " of the entry at " << entry.x << "," << entry.y;
+            }
+            levels.push_back(r);
+        }
+    }
+    EXPECT_EQ(passes::atlasLevelCount(100, 100), 7u);  // 100 50 25 12 6 3 1
+    EXPECT_EQ(passes::atlasLevelCount(1250, 10), 11u);
+    const auto encode = [](float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f; };
+    for (int index : {1, 2, 3}) {
+        const Texture& src = scene.textures[static_cast<std::size_t>(index)];
+        std::vector<glm::vec3> rgb(static_cast<std::size_t>(src.width) * src.height);
+        for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = {src.rgba[4 * i], src.rgba[4 * i + 1], src.rgba[4 * i + 2]};
+        const std::vector<MipLevel> chain = buildMipChain(src.width, src.height, rgb);
+        const passes::AtlasEntry& entry = atlas.entries.at({index, index});
+        ASSERT_EQ(chain.size(), passes::atlasLevelCount(entry.width, entry.height));
+        for (std::uint32_t l = 0; l < chain.size(); ++l) {
+            const passes::AtlasEntry r = passes::atlasLevel(entry, l);
+            ASSERT_EQ(static_cast<int>(r.width), chain[l].width);
+            ASSERT_EQ(static_cast<int>(r.height), chain[l].height);
+            for (std::uint32_t y = 0; y < r.height; ++y) {
+                for (std::uint32_t x = 0; x < r.width; ++x) {
+                    const std::uint32_t texel = atlas.texels[static_cast<std::size_t>(r.layer) * atlas.pageSide * atlas.pageSide +
+                                                             static_cast<std::size_t>(r.y + y) * atlas.pageSide + r.x + x];
+                    const glm::vec3 expected = chain[l].rgb[static_cast<std::size_t>(y) * r.width + x];
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_NEAR(((texel >> (8 * c)) & 0xffu) / 255.0f, encode(expected[c]), 0.5f / 255.0f + 1e-4f)
+                            << "texture " << index << " level " << l << " texel " << x << "," << y;
+                }
+            }
         }
     }
 }
