@@ -5,7 +5,7 @@
 #include <set>
 
 #include "glsl/shared/snapshot_interface.h"
-#include "scene/texture_filter.h"
+#include "core/texture_filter.h"
 
 namespace aamap::passes {
 namespace {

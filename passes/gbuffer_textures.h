@@ -7,7 +7,7 @@
 // entry's rectangle (texelFetch, so no sampler and no bleeding between entries), the same texel
 // rule as the tracer (tracer/embree_scene.cpp), so both see the same colours and cut-outs.
 // Entries larger than kMaxEntrySide are box-filtered down to fit; that is level 0 of the entry's
-// mip chain (scene/texture_filter.h, buildMipChain), whose levels the colour lookup filters
+// mip chain (core/texture_filter.h, buildMipChain), whose levels the colour lookup filters
 // (glsl/gbuffer_texture.glsl, the rule of filteredLookup). Coverage is read from level 0 only.
 #include <cstdint>
 #include <map>

@@ -36,7 +36,7 @@ using uint = std::uint32_t;
 #define GBUFFER_LOCATION_TEX_RECT 5   // uvec4 (16-bit): atlas entry x, y, width, height; width 0: none
 #define GBUFFER_LOCATION_TEX_PARAMS 6 // vec2: atlas layer, alpha threshold (discard if a < it)
 #define GBUFFER_BINDING_ATLAS_UNSHADOWED 1  // texture2DArray, RGBA8 sRGB
-// The colour lookup's most probes along a footprint (scene/texture_filter.h, kMaxTextureAnisotropy).
+// The colour lookup's most probes along a footprint (core/texture_filter.h, kMaxTextureAnisotropy).
 #define TEXTURE_MAX_ANISOTROPY 16
 #define GBUFFER_BINDING_ATLAS_SHADOWED 2
 

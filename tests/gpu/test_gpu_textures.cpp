@@ -17,7 +17,7 @@
 #include "scene/camera.h"
 #include "scene/gltf_loader.h"
 #include "scene/obj_loader.h"
-#include "scene/texture_filter.h"
+#include "core/texture_filter.h"
 #include "tracer/embree_scene.h"
 
 namespace aamap::test {
