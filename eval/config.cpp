@@ -289,7 +289,7 @@ std::string fnv1a64Hex(const std::string& text) {
 
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-5";  // bump when the image for the same settings and files changes (tracer or loader)
+    j["format"] = "aamap-render-6";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);
@@ -310,7 +310,7 @@ std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-3";  // bump as the render key
+    j["format"] = "aamap-snapshot-4";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c);
     return fnv1a64Hex(j.dump());

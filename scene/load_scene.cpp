@@ -10,6 +10,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/gltf_loader.h"
 #include "scene/lights.h"
+#include "scene/mesh_orientation.h"
 #include "scene/mitsuba_loader.h"
 #include "scene/obj_loader.h"
 #include "scene/text_util.h"
@@ -47,6 +48,9 @@ Scene loadSceneFile(const std::string& spec) {
 
 Scene loadScene(const std::string& spec) {
     Scene scene = loadSceneFile(spec);
+    if (const std::size_t reversed = orientTrianglesToNormals(scene.mesh); reversed > 0)
+        spdlog::info("scene '{}': {} triangle(s) wound against their vertex normals, turned to face where the normals "
+                     "point (the emitting side of a light, the outside of glass)", scene.name, reversed);
     // Where the scene is and how big, so that cameras and lights can be placed in its units.
     const Bounds b = sceneBounds(scene);
     spdlog::info("scene '{}': {} triangles, bounds ({:.4g}, {:.4g}, {:.4g}) to ({:.4g}, {:.4g}, {:.4g}), size "
