@@ -268,6 +268,160 @@ TEST_F(SnapshotMirror, MirrorUnderALightWithShadowsAndAlphaMaskedTextures) {
     EXPECT_GT(cutLeft, 10);
 }
 
+// The frame's bevel strips are planes of their own: the big plane reflects exactly what the same
+// mirror without a frame reflects.
+TEST_F(SnapshotMirror, AFramedMirrorReflectsLikeAPlainOne) {
+    const View view = frontView();
+    SnapshotRenderer plainRenderer(context(), mirrorScene(MaterialKind::Mirror));
+    const SnapshotResult plain = plainRenderer.render(view, 64, 64, SnapshotSettings{});
+    SnapshotRenderer framedRenderer(context(), framedMirrorScene());
+    const SnapshotResult framed = framedRenderer.render(view, 64, 64, SnapshotSettings{});
+    EXPECT_NE(framed.explain.find("'object 0/mirror plane 1'"), std::string::npos) << framed.explain;
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int w = plain.snapshot.width(), h = plain.snapshot.height();
+    ASSERT_EQ(framed.snapshot.width(), w);
+    int compared = 0, reflecting = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 d = camera.direction((x + 0.5f) / w, (y + 0.5f) / h);
+            if (!kObject.outside(onPlane(camera.origin, d, 2.0f), 0.04f)) continue;
+            if (!kMirror.inside(onPlane(camera.origin, d, 0.0f), 0.04f)) continue;
+            const glm::vec3 a = plain.snapshot.at(x, y), b = framed.snapshot.at(x, y);
+            for (int c = 0; c < 3; ++c) ASSERT_NEAR(a[c], b[c], 1e-5f) << "pixel " << x << "," << y;
+            ++compared;
+            reflecting += a.r > 0.0f;
+        }
+    EXPECT_GT(compared, 500);
+    EXPECT_GT(reflecting, 50);
+}
+
+// Each face of a mirrored cube is a plane that reflects: three emitters of three colours, each
+// where one visible face's reflected rays go, show up in exactly that face's pixels.
+TEST_F(SnapshotMirror, EachVisibleFaceOfAMirroredCubeReflects) {
+    Scene scene = mirrorScene(MaterialKind::Mirror);
+    scene.mesh = {};
+    scene.materials.resize(1);
+    addCube(scene, 0, 0);
+    const glm::vec3 emission[3] = {{2, 0, 0}, {0, 2, 0}, {0, 0, 2}};  // the emitter in the plane axis = 6
+    const float far = 6.0f, extent = 40.0f;
+    for (int axis = 0; axis < 3; ++axis) {
+        Material glow;
+        glow.name = fmt::format("glow{}", axis);
+        glow.kd = glm::vec3(0.0f);
+        glow.ke = emission[axis];
+        scene.materials.push_back(glow);
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        glm::vec3 c[4];
+        const float us[4] = {-extent, extent, extent, -extent}, vs[4] = {-extent, -extent, extent, extent};
+        for (int k = 0; k < 4; ++k) {
+            c[k][axis] = far;
+            c[k][u] = us[k];
+            c[k][v] = vs[k];
+        }
+        addPolygon(scene, {c[0], c[3], c[2], c[1]}, static_cast<std::uint32_t>(axis + 1),  // facing the cube
+                   static_cast<std::uint32_t>(axis + 1));
+    }
+    View view;
+    view.position = {3.2f, 2.6f, 3.0f};
+    view.direction = glm::normalize(-view.position);
+    view.up = {0, 1, 0};
+    view.horizontalFovDeg = view.verticalFovDeg = 40.0f;
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(view, 64, 64, SnapshotSettings{});
+    EXPECT_NE(r.explain.find("planar mirror(s) in view reflected"), std::string::npos) << r.explain;
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int w = r.snapshot.width(), h = r.snapshot.height();
+    int pixels[3] = {0, 0, 0}, matching[3] = {0, 0, 0};
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const glm::vec3 d = camera.direction((x + 0.5f) / w, (y + 0.5f) / h);
+            // The face the camera ray enters the cube through: the largest slab entry.
+            float enter = -INFINITY, leave = INFINITY;
+            int axis = -1;
+            for (int k = 0; k < 3; ++k) {
+                const float t0 = (-1.0f - camera.origin[k]) / d[k], t1 = (1.0f - camera.origin[k]) / d[k];
+                if (std::min(t0, t1) > enter) {
+                    enter = std::min(t0, t1);
+                    axis = k;
+                }
+                leave = std::min(leave, std::max(t0, t1));
+            }
+            if (!(enter < leave) || enter <= 0.0f) continue;
+            const glm::vec3 p = camera.origin + enter * d;
+            if (std::fabs(p[(axis + 1) % 3]) > 0.9f || std::fabs(p[(axis + 2) % 3]) > 0.9f) continue;  // near an edge
+            ASSERT_GT(p[axis], 0.0f);  // the camera sees the +x, +y and +z faces
+            // The reflected ray, which goes to the emitter in the plane axis = 6.
+            glm::vec3 reflected = d;
+            reflected[axis] = -reflected[axis];
+            const glm::vec3 q = p + ((far - p[axis]) / reflected[axis]) * reflected;
+            if (std::fabs(q[(axis + 1) % 3]) > extent - 1.0f || std::fabs(q[(axis + 2) % 3]) > extent - 1.0f) continue;
+            ++pixels[axis];
+            const glm::vec3 got = r.snapshot.at(x, y), want = kReflectance * emission[axis];
+            matching[axis] += glm::length(got - want) < 1e-4f;
+        }
+    for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_GT(pixels[axis], 40) << "face " << axis;
+        EXPECT_EQ(matching[axis], pixels[axis]) << "face " << axis;
+    }
+}
+
+// A tessellated sphere of mirror material is curved: no mirror pass, and --explain says why.
+TEST_F(SnapshotMirror, ATessellatedMirrorSphereIsCurved) {
+    Scene scene = mirrorScene(MaterialKind::Mirror);
+    scene.mesh = {};
+    addSphere(scene, {0, 0, 0}, 1.5f, 12, 6, 0, 0);
+    addRect(scene, kObject, 2.0f, false, 1);
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(frontView(), 32, 32, SnapshotSettings{});
+    for (const PassTiming& t : r.passTimes) EXPECT_NE(t.pass.rfind("mirror", 0), 0u) << t.pass;
+    EXPECT_NE(r.explain.find("mirrors: no mirror pass: 1 mirror group(s) are curved"), std::string::npos) << r.explain;
+    EXPECT_NE(r.explain.find("object 0/mirror: 120 triangles curved"), std::string::npos) << r.explain;
+}
+
+// The budget: a mirror too small in the image to hold a reflected edge is not reflected (its
+// pixels keep the diffuse part, black here); four times as wide, the same mirror reflects.
+TEST_F(SnapshotMirror, AMirrorUnderThePixelBudgetIsNotReflected) {
+    // The point of z = 0 that shows the object's centre, seen from frontView().
+    const glm::vec3 eye = frontView().position, mirrored(eye.x, eye.y, -eye.z);
+    const glm::vec3 target(0.5f * (kObject.x0 + kObject.x1), 0.5f * (kObject.y0 + kObject.y1), 2.0f);
+    const glm::vec3 centre = onPlane(mirrored, target - mirrored, 0.0f);
+    const auto render = [&](float side, SnapshotResult& r) {
+        Scene scene = mirrorScene(MaterialKind::Mirror);
+        for (int k = 0; k < 4; ++k) {
+            glm::vec3& p = scene.mesh.positions[k];
+            p = centre + side / (kMirror.x1 - kMirror.x0) * glm::vec3(p.x, p.y, 0.0f);
+        }
+        SnapshotRenderer renderer(context(), scene);
+        r = renderer.render(frontView(), 64, 64, SnapshotSettings{});
+        // The mirror's coverage, as the budget estimates it.
+        const PinholeCamera camera = PinholeCamera::fromView(frontView());
+        const glm::mat4 viewProj = camera.projectionMatrix(0.01f, 100.0f) * camera.viewMatrix();
+        const double covered = passes::projectedPixels(
+            scene.mesh.positions, scene.mesh.triangles, {0, 1}, viewProj, 0.01f,
+            {static_cast<std::uint32_t>(r.snapshot.width()), static_cast<std::uint32_t>(r.snapshot.height())});
+        // The snapshot pixel at the mirror's centre.
+        const glm::vec3 toCentre = centre - camera.origin;
+        const float along = glm::dot(toCentre, camera.forward);
+        const float u = 0.5f + 0.5f * glm::dot(toCentre, camera.right) / (along * camera.tanHalfH);
+        const float v = 0.5f - 0.5f * glm::dot(toCentre, camera.up) / (along * camera.tanHalfV);
+        return std::pair{covered, r.snapshot.at(static_cast<int>(u * r.snapshot.width()),
+                                                static_cast<int>(v * r.snapshot.height()))};
+    };
+    SnapshotResult small, large;
+    const auto [smallPixels, smallCentre] = render(0.1f, small);
+    const auto [largePixels, largeCentre] = render(0.4f, large);
+    ASSERT_GT(smallPixels, 1.0);
+    ASSERT_LT(smallPixels, passes::MirrorPass::kMinReflectedPixels);
+    ASSERT_GT(largePixels, passes::MirrorPass::kMinReflectedPixels);
+    for (const PassTiming& t : small.passTimes) EXPECT_NE(t.pass.rfind("mirror", 0), 0u) << t.pass;
+    EXPECT_NE(small.explain.find("0 of the 1 planar mirror(s) in view reflected; 1 plane(s) skipped for the budget"),
+              std::string::npos)
+        << small.explain;
+    EXPECT_EQ(smallCentre, glm::vec3(0.0f));
+    EXPECT_NE(large.explain.find("1 planar mirror(s) in view reflected"), std::string::npos) << large.explain;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(largeCentre[c], kReflectance[c] * kEmission[c], 1e-5f);
+}
+
 TEST(MirrorGeometry, PlanarGroupsAndCurvedOnes) {
     Scene s = mirrorScene(MaterialKind::Mirror);
     passes::MirrorGroups g = passes::findPlanarMirrors(s);
