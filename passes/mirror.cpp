@@ -151,7 +151,6 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
     const TriangleMesh& mesh = scene.mesh;
     const auto vertexCount = static_cast<std::uint32_t>(mesh.positions.size());
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Facet>> groups;  // (object, material)
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> degenerate;     // no area: nothing to show
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const std::uint32_t material = t < mesh.materialIds.size() ? mesh.materialIds[t] : 0u;
         if (material >= scene.materials.size() || scene.materials[material].kind != MaterialKind::Mirror) continue;
@@ -161,12 +160,8 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
         const glm::vec3 a = mesh.positions[i.x], b = mesh.positions[i.y], c = mesh.positions[i.z];
         const glm::vec3 cross = glm::cross(b - a, c - a);
         const float length = glm::length(cross);
-        auto& facets = groups[{object, material}];
-        if (!(length > 0.0f) || !std::isfinite(length)) {
-            ++degenerate[{object, material}];
-            continue;
-        }
-        facets.push_back({static_cast<std::uint32_t>(t), cross / length, 0.5f * length, (a + b + c) / 3.0f});
+        if (!(length > 0.0f) || !std::isfinite(length)) continue;  // no area: nothing to reflect in or to see
+        groups[{object, material}].push_back({static_cast<std::uint32_t>(t), cross / length, 0.5f * length, (a + b + c) / 3.0f});
     }
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const glm::vec3& p : mesh.positions) {
@@ -178,7 +173,6 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
 
     MirrorGroups out;
     for (auto& [key, facets] : groups) {
-        if (facets.empty()) continue;  // degenerate only: nothing to reflect in, nothing to see
         const Material& material = scene.materials[key.second];
         const std::string name = fmt::format("object {}/{}", key.first, material.name);
         float groupArea = 0.0f;
@@ -321,7 +315,8 @@ MirrorPass::MirrorSelection MirrorPass::selectMirrors(const SnapshotView& view, 
     for (const PlanarMirror& m : mirrors_.planar) {
         const float side = glm::dot(m.normal, view.camera.origin) - m.offset;
         if (!(std::fabs(side) > 1e-6f * view.sceneSize)) continue;  // seen edge-on
-        const double pixels = projectedPixels(positions_, triangles_, m.triangles, viewProj, view.nearPlane, snapshotPixels);
+        const double pixels =
+            projectedPixels(positions_, triangles_, m.triangles, viewProj, view.nearPlane, snapshotPixels);
         if (!(pixels > 0.0)) continue;
         ++selection.inView;
         if (pixels < kMinReflectedPixels) {

@@ -206,8 +206,8 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     }
     s.gbuffer.add(graph, s.executor, passes::kSnapshot, passes::kDepth, snapshotView, shadows, grey);
     std::string mirrorWhy;
-    s.mirrors.add(graph, s.executor, s.gbuffer, passes::kSnapshot, passes::kDepth, snapshotView, {snapW, snapH}, shadows,
-                  &mirrorWhy);
+    s.mirrors.add(graph, s.executor, s.gbuffer, passes::kSnapshot, passes::kDepth, snapshotView, {snapW, snapH},
+                  shadows, &mirrorWhy);
     passes::MapChainInputs mapInputs{passes::kSnapshot, snapshotView, width, height, settings.filter};
     mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
     mapInputs.greyFromGBuffer = !grey.resource.empty();
