@@ -142,7 +142,49 @@ std::vector<PlaneCluster> clusterIntoPlanes(const TriangleMesh& mesh, std::vecto
         cluster.area += f.area;
         cluster.triangles.push_back(f.triangle);
     }
-    return clusters;  // in order of their largest triangle: largest first
+    return clusters;  // in order of their largest triangle
+}
+
+bool allVerticesInPlane(const TriangleMesh& mesh, const PlaneCluster& cluster, const PlaneCluster& plane,
+                        float tolerance) {
+    for (const std::uint32_t t : cluster.triangles)
+        for (int k = 0; k < 3; ++k)
+            if (!(std::fabs(glm::dot(plane.seedNormal, mesh.positions[mesh.triangles[t][k]]) - plane.seedOffset) <=
+                  tolerance))
+                return false;
+    return true;
+}
+
+// Sorts the clusters by area, largest first, after merging each cluster whose vertices all lie in
+// a larger one's plane into it: a sliver whose float normal tilts past kPlaneNormalCos is still
+// part of its plane, and would otherwise be a plane of its own or a curved hole in the mirror.
+// Only the largest clusters can be accepted as mirrors (at most kMaxPlanesPerGroup in a faceted
+// group, at most 1 / kMinPlaneAreaFraction holding that share), so only they absorb others.
+void absorbClustersInLargerPlanes(const TriangleMesh& mesh, std::vector<PlaneCluster>& clusters, float tolerance) {
+    const auto byArea = [](const PlaneCluster& a, const PlaneCluster& b) { return a.area > b.area; };
+    std::stable_sort(clusters.begin(), clusters.end(), byArea);
+    const auto absorbers = static_cast<std::size_t>(
+        std::max<double>(static_cast<double>(kMaxPlanesPerGroup), std::ceil(1.0 / kMinPlaneAreaFraction)));
+    std::vector<bool> absorbed(clusters.size(), false);
+    for (std::size_t c = 1; c < clusters.size(); ++c) {
+        for (std::size_t into = 0; into < std::min(c, absorbers); ++into) {
+            if (absorbed[into] || !allVerticesInPlane(mesh, clusters[c], clusters[into], tolerance)) continue;
+            PlaneCluster& plane = clusters[into];
+            const PlaneCluster& part = clusters[c];
+            const float orientation = glm::dot(part.weightedNormal, plane.seedNormal) < 0.0f ? -1.0f : 1.0f;
+            plane.weightedNormal += orientation * part.weightedNormal;
+            plane.weightedCentroid += part.weightedCentroid;
+            plane.area += part.area;
+            plane.triangles.insert(plane.triangles.end(), part.triangles.begin(), part.triangles.end());
+            absorbed[c] = true;
+            break;
+        }
+    }
+    std::vector<PlaneCluster> kept;
+    for (std::size_t c = 0; c < clusters.size(); ++c)
+        if (!absorbed[c]) kept.push_back(std::move(clusters[c]));
+    clusters = std::move(kept);
+    std::stable_sort(clusters.begin(), clusters.end(), byArea);
 }
 
 }  // namespace
@@ -178,8 +220,7 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
         float groupArea = 0.0f;
         for (const Facet& f : facets) groupArea += f.area;
         std::vector<PlaneCluster> clusters = clusterIntoPlanes(mesh, std::move(facets), tolerance);
-        std::stable_sort(clusters.begin(), clusters.end(),
-                         [](const PlaneCluster& a, const PlaneCluster& b) { return a.area > b.area; });
+        absorbClustersInLargerPlanes(mesh, clusters, tolerance);
         const bool faceted = clusters.size() <= kMaxPlanesPerGroup;
         glm::vec3 kd, reflectance;
         mirrorAlbedos(material, kd, reflectance);

@@ -444,6 +444,19 @@ TEST(MirrorGeometry, PlanarGroupsAndCurvedOnes) {
     EXPECT_NEAR(p.x, 1.0f, 1e-6f);
 }
 
+// A sliver along the mirror's edge, whose vertices lie in the mirror plane (within the offset
+// tolerance) but whose normal tilts by 17 degrees, is part of the mirror, not a plane of its own.
+TEST(MirrorGeometry, ASliverInTheMirrorPlaneIsPartOfIt) {
+    Scene s = mirrorScene(MaterialKind::Mirror);
+    addPolygon(s, {{2, -2, 0}, {2, 2, 0}, {2.001f, 0, 3e-4f}}, 0, 0);
+    const passes::MirrorGroups g = passes::findPlanarMirrors(s);
+    ASSERT_EQ(g.planar.size(), 1u);
+    EXPECT_EQ(g.planar[0].name, "object 0/mirror");
+    EXPECT_EQ(g.planar[0].triangles, (std::vector<std::uint32_t>{0, 1, 4}));
+    EXPECT_NEAR(std::fabs(g.planar[0].normal.z), 1.0f, 1e-4f);
+    EXPECT_TRUE(g.curved.empty());
+}
+
 // A framed mirror is its big plane plus one plane per bevel strip, the big one first.
 TEST(MirrorGeometry, AFramedMirrorIsFivePlanes) {
     const Scene s = framedMirrorScene();
