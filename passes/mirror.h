@@ -40,7 +40,8 @@ namespace aamap::passes {
 // How a mirror group splits into planes. Triangles share a plane when their normals are within
 // kPlaneNormalCos of each other (about 0.8 degrees: far below a bevel's or a box edge's angle,
 // far above float noise in a modelled flat face) and their vertices within kPlaneOffsetTolerance
-// x the scene's diagonal of the plane (either orientation: both faces of a thin mirror are one).
+// x the scene's diagonal of the plane (either orientation: both faces of a thin mirror are one);
+// a smaller plane whose vertices all lie in a larger one is part of it (a sliver's tilted normal).
 inline constexpr float kPlaneNormalCos = 0.9999f;
 inline constexpr float kPlaneOffsetTolerance = 1e-4f;
 // A group of at most kMaxPlanesPerGroup planes is faceted on purpose (a framed mirror: 5, a box:
