@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <unordered_map>
 #include <utility>
 
 #include <aamap/spirv.h>
@@ -48,53 +49,253 @@ glm::mat4 reflectionMatrix(glm::vec3 n, float d) {
     return r;
 }
 
+std::string CurvedMirror::describe() const {
+    if (planes == 0) return fmt::format("{}: {} triangle{} curved", group, triangles, triangles == 1 ? "" : "s");
+    return fmt::format("{}: {} plane{} reflected, {} triangle{} curved", group, planes, planes == 1 ? "" : "s",
+                       triangles, triangles == 1 ? "" : "s");
+}
+
+namespace {
+
+struct Facet {
+    std::uint32_t triangle;
+    glm::vec3 normal;  // unit
+    float area;
+    glm::vec3 centroid;
+};
+
+// A set of triangles in one plane. Membership is tested against the plane of its first (largest)
+// triangle, so the plane cannot drift along a chain of slightly tilted neighbours.
+struct PlaneCluster {
+    glm::vec3 seedNormal;
+    float seedOffset;
+    glm::vec3 weightedNormal{0.0f};    // sum of area x normal, oriented as the seed
+    glm::vec3 weightedCentroid{0.0f};  // sum of area x centroid
+    float area = 0.0f;
+    std::vector<std::uint32_t> triangles;
+};
+
+// Clusters are found through a grid on the unit sphere of normals: two normals within
+// kPlaneNormalCos are closer than its chord in every coordinate, so in neighbouring cells.
+class NormalGrid {
+public:
+    NormalGrid() : cell_(std::sqrt(2.0f * (1.0f - kPlaneNormalCos))) {}
+    void insert(glm::vec3 n, std::uint32_t cluster) { cells_[key(cellOf(n))].push_back(cluster); }
+    // The lowest-numbered cluster near n or -n for which `accepts` holds, or -1.
+    template <class Accepts>
+    std::int64_t find(glm::vec3 n, Accepts accepts) const {
+        std::int64_t best = -1;
+        for (const glm::vec3 direction : {n, -n}) {
+            const glm::ivec3 c = cellOf(direction);
+            for (int dz = -1; dz <= 1; ++dz)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const auto it = cells_.find(key(c + glm::ivec3(dx, dy, dz)));
+                        if (it == cells_.end()) continue;
+                        for (const std::uint32_t cluster : it->second)
+                            if ((best < 0 || cluster < best) && accepts(cluster)) best = cluster;
+                    }
+        }
+        return best;
+    }
+
+private:
+    glm::ivec3 cellOf(glm::vec3 n) const { return glm::ivec3(glm::floor(n / cell_)); }
+    static std::uint64_t key(glm::ivec3 c) {
+        const auto part = [](int v) { return static_cast<std::uint64_t>(static_cast<std::uint32_t>(v + (1 << 20))); };
+        return part(c.x) | part(c.y) << 21 | part(c.z) << 42;
+    }
+    float cell_;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+std::vector<PlaneCluster> clusterIntoPlanes(const TriangleMesh& mesh, std::vector<Facet> facets, float tolerance) {
+    // Largest first (then by index, for a deterministic result): the seeds are the triangles
+    // whose normals the float positions pin down best.
+    std::sort(facets.begin(), facets.end(), [](const Facet& a, const Facet& b) {
+        return a.area != b.area ? a.area > b.area : a.triangle < b.triangle;
+    });
+    std::vector<PlaneCluster> clusters;
+    NormalGrid grid;
+    for (const Facet& f : facets) {
+        const glm::uvec3 v = mesh.triangles[f.triangle];
+        const auto inPlane = [&](std::uint32_t c) {
+            const PlaneCluster& cluster = clusters[c];
+            if (std::fabs(glm::dot(f.normal, cluster.seedNormal)) <= kPlaneNormalCos) return false;
+            for (int k = 0; k < 3; ++k)
+                if (!(std::fabs(glm::dot(cluster.seedNormal, mesh.positions[v[k]]) - cluster.seedOffset) <= tolerance))
+                    return false;
+            return true;
+        };
+        const std::int64_t found = grid.find(f.normal, inPlane);
+        if (found < 0) {
+            PlaneCluster seed;
+            seed.seedNormal = f.normal;
+            seed.seedOffset = glm::dot(f.normal, f.centroid);
+            grid.insert(f.normal, static_cast<std::uint32_t>(clusters.size()));
+            clusters.push_back(std::move(seed));
+        }
+        PlaneCluster& cluster = clusters[found < 0 ? clusters.size() - 1 : static_cast<std::size_t>(found)];
+        const float orientation = glm::dot(f.normal, cluster.seedNormal) < 0.0f ? -1.0f : 1.0f;
+        cluster.weightedNormal += f.area * orientation * f.normal;
+        cluster.weightedCentroid += f.area * f.centroid;
+        cluster.area += f.area;
+        cluster.triangles.push_back(f.triangle);
+    }
+    return clusters;  // in order of their largest triangle
+}
+
+bool allVerticesInPlane(const TriangleMesh& mesh, const PlaneCluster& cluster, const PlaneCluster& plane,
+                        float tolerance) {
+    for (const std::uint32_t t : cluster.triangles)
+        for (int k = 0; k < 3; ++k)
+            if (!(std::fabs(glm::dot(plane.seedNormal, mesh.positions[mesh.triangles[t][k]]) - plane.seedOffset) <=
+                  tolerance))
+                return false;
+    return true;
+}
+
+// Sorts the clusters by area, largest first, after merging each cluster whose vertices all lie in
+// a larger one's plane into it: a sliver whose float normal tilts past kPlaneNormalCos is still
+// part of its plane, and would otherwise be a plane of its own or a curved hole in the mirror.
+// Only the largest clusters can be accepted as mirrors (at most kMaxPlanesPerGroup in a faceted
+// group, at most 1 / kMinPlaneAreaFraction holding that share), so only they absorb others.
+void absorbClustersInLargerPlanes(const TriangleMesh& mesh, std::vector<PlaneCluster>& clusters, float tolerance) {
+    const auto byArea = [](const PlaneCluster& a, const PlaneCluster& b) { return a.area > b.area; };
+    std::stable_sort(clusters.begin(), clusters.end(), byArea);
+    const auto absorbers = static_cast<std::size_t>(
+        std::max<double>(static_cast<double>(kMaxPlanesPerGroup), std::ceil(1.0 / kMinPlaneAreaFraction)));
+    std::vector<bool> absorbed(clusters.size(), false);
+    for (std::size_t c = 1; c < clusters.size(); ++c) {
+        for (std::size_t into = 0; into < std::min(c, absorbers); ++into) {
+            if (absorbed[into] || !allVerticesInPlane(mesh, clusters[c], clusters[into], tolerance)) continue;
+            PlaneCluster& plane = clusters[into];
+            const PlaneCluster& part = clusters[c];
+            const float orientation = glm::dot(part.weightedNormal, plane.seedNormal) < 0.0f ? -1.0f : 1.0f;
+            plane.weightedNormal += orientation * part.weightedNormal;
+            plane.weightedCentroid += part.weightedCentroid;
+            plane.area += part.area;
+            plane.triangles.insert(plane.triangles.end(), part.triangles.begin(), part.triangles.end());
+            absorbed[c] = true;
+            break;
+        }
+    }
+    std::vector<PlaneCluster> kept;
+    for (std::size_t c = 0; c < clusters.size(); ++c)
+        if (!absorbed[c]) kept.push_back(std::move(clusters[c]));
+    clusters = std::move(kept);
+    std::stable_sort(clusters.begin(), clusters.end(), byArea);
+}
+
+}  // namespace
+
 MirrorGroups findPlanarMirrors(const Scene& scene) {
     const TriangleMesh& mesh = scene.mesh;
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> groups;  // (object, material)
+    const auto vertexCount = static_cast<std::uint32_t>(mesh.positions.size());
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Facet>> groups;  // (object, material)
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const std::uint32_t material = t < mesh.materialIds.size() ? mesh.materialIds[t] : 0u;
         if (material >= scene.materials.size() || scene.materials[material].kind != MaterialKind::Mirror) continue;
         const std::uint32_t object = t < mesh.objectIds.size() ? mesh.objectIds[t] : 0u;
-        groups[{object, material}].push_back(static_cast<std::uint32_t>(t));
+        const glm::uvec3 i = mesh.triangles[t];
+        if (i.x >= vertexCount || i.y >= vertexCount || i.z >= vertexCount) continue;
+        const glm::vec3 a = mesh.positions[i.x], b = mesh.positions[i.y], c = mesh.positions[i.z];
+        const glm::vec3 cross = glm::cross(b - a, c - a);
+        const float length = glm::length(cross);
+        if (!(length > 0.0f) || !std::isfinite(length)) continue;  // no area: nothing to reflect in or to see
+        groups[{object, material}].push_back({static_cast<std::uint32_t>(t), cross / length, 0.5f * length, (a + b + c) / 3.0f});
     }
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const glm::vec3& p : mesh.positions) {
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);
     }
-    const float tolerance = 1e-4f * std::max(glm::length(hi - lo), 1e-6f);
+    const float diagonal = glm::length(hi - lo);
+    const float tolerance = kPlaneOffsetTolerance * (std::isfinite(diagonal) ? std::max(diagonal, 1e-6f) : 1.0f);
 
     MirrorGroups out;
-    for (const auto& [key, tris] : groups) {
+    for (auto& [key, facets] : groups) {
         const Material& material = scene.materials[key.second];
         const std::string name = fmt::format("object {}/{}", key.first, material.name);
-        // The plane through the area-weighted normal and the centroid of the first vertices.
-        glm::vec3 weighted(0.0f), anchor(0.0f);
-        for (std::uint32_t t : tris) {
-            const glm::uvec3 i = mesh.triangles[t];
-            weighted += glm::cross(mesh.positions[i.y] - mesh.positions[i.x], mesh.positions[i.z] - mesh.positions[i.x]);
-            anchor += mesh.positions[i.x];
+        float groupArea = 0.0f;
+        for (const Facet& f : facets) groupArea += f.area;
+        std::vector<PlaneCluster> clusters = clusterIntoPlanes(mesh, std::move(facets), tolerance);
+        absorbClustersInLargerPlanes(mesh, clusters, tolerance);
+        const bool faceted = clusters.size() <= kMaxPlanesPerGroup;
+        glm::vec3 kd, reflectance;
+        mirrorAlbedos(material, kd, reflectance);
+        std::vector<PlanarMirror> planes;
+        CurvedMirror curved{name};
+        for (PlaneCluster& cluster : clusters) {
+            const float length = glm::length(cluster.weightedNormal);
+            if (!faceted && !(cluster.area >= kMinPlaneAreaFraction * groupArea)) {
+                curved.triangles += cluster.triangles.size();
+                continue;
+            }
+            PlanarMirror mirror;
+            // Area-weighted: the normal of the summed normals, through the area-weighted centroid.
+            mirror.normal = length > 0.0f ? cluster.weightedNormal / length : cluster.seedNormal;
+            mirror.offset = glm::dot(mirror.normal, cluster.weightedCentroid / cluster.area);
+            mirror.triangles = std::move(cluster.triangles);
+            std::sort(mirror.triangles.begin(), mirror.triangles.end());
+            mirror.reflectance = reflectance;
+            planes.push_back(std::move(mirror));
         }
-        const float length = glm::length(weighted);
-        if (!(length > 0.0f)) continue;  // degenerate: nothing to reflect in
-        PlanarMirror mirror;
-        mirror.name = name;
-        mirror.normal = weighted / length;
-        mirror.offset = glm::dot(mirror.normal, anchor / static_cast<float>(tris.size()));
-        bool planar = true;
-        for (std::uint32_t t : tris)
-            for (int k = 0; k < 3 && planar; ++k)
-                planar = std::fabs(glm::dot(mirror.normal, mesh.positions[mesh.triangles[t][k]]) - mirror.offset) <= tolerance;
-        if (!planar) {
-            out.curved.push_back(name);
-            continue;
+        const bool onePlane = planes.size() == 1 && curved.triangles == 0;
+        for (std::size_t k = 0; k < planes.size(); ++k) {
+            planes[k].name = onePlane ? name : fmt::format("{} plane {}", name, k + 1);
+            out.planar.push_back(std::move(planes[k]));
         }
-        mirror.triangles = tris;
-        glm::vec3 kd;
-        mirrorAlbedos(material, kd, mirror.reflectance);
-        out.planar.push_back(std::move(mirror));
+        curved.planes = planes.size();
+        if (curved.triangles > 0) out.curved.push_back(std::move(curved));
     }
     return out;
+}
+
+double projectedPixels(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
+                       const std::vector<std::uint32_t>& which, const glm::mat4& viewProj, float nearPlane,
+                       glm::uvec2 pixels) {
+    // Clip-space half-planes of the visible region: x, y within [-w, w], w at least the near plane.
+    const float nearest = nearPlane > 0.0f ? nearPlane : 1e-6f;  // keeps the divide finite
+    const auto inside = [nearest](const glm::vec4& c, int plane) {
+        switch (plane) {
+            case 0: return c.w - c.x;
+            case 1: return c.w + c.x;
+            case 2: return c.w - c.y;
+            case 3: return c.w + c.y;
+            default: return c.w - nearest;
+        }
+    };
+    double ndcArea = 0.0;
+    std::vector<glm::vec4> polygon, clipped;
+    for (const std::uint32_t t : which) {
+        if (t >= triangles.size()) continue;
+        const glm::uvec3 v = triangles[t];
+        if (v.x >= positions.size() || v.y >= positions.size() || v.z >= positions.size()) continue;
+        polygon.clear();
+        for (int k = 0; k < 3; ++k) polygon.push_back(viewProj * glm::vec4(positions[v[k]], 1.0f));
+        for (int plane = 0; plane < 5 && !polygon.empty(); ++plane) {  // Sutherland-Hodgman
+            clipped.clear();
+            for (std::size_t k = 0; k < polygon.size(); ++k) {
+                const glm::vec4& p = polygon[k];
+                const glm::vec4& q = polygon[(k + 1) % polygon.size()];
+                const float dp = inside(p, plane), dq = inside(q, plane);
+                if (dp >= 0.0f) clipped.push_back(p);
+                if ((dp >= 0.0f) != (dq >= 0.0f)) clipped.push_back(p + (dp / (dp - dq)) * (q - p));
+            }
+            std::swap(polygon, clipped);
+        }
+        if (polygon.size() < 3) continue;
+        double twiceArea = 0.0;  // shoelace, after the divide (w >= nearPlane > 0 here)
+        for (std::size_t k = 0; k < polygon.size(); ++k) {
+            const glm::vec4& p = polygon[k];
+            const glm::vec4& q = polygon[(k + 1) % polygon.size()];
+            twiceArea += static_cast<double>(p.x / p.w) * (q.y / q.w) - static_cast<double>(q.x / q.w) * (p.y / p.w);
+        }
+        if (std::isfinite(twiceArea)) ndcArea += 0.5 * std::fabs(twiceArea);
+    }
+    // NDC spans 2 x 2 over the image.
+    return ndcArea * 0.25 * static_cast<double>(pixels.x) * static_cast<double>(pixels.y);
 }
 
 MirrorPass::MirrorPass(VulkanContext& context, const Scene& scene)
@@ -143,50 +344,49 @@ void MirrorPass::buildCompositePipeline() {
                        static_cast<std::uint32_t>(sizeof(gpu::MirrorCompositePush)), VK_SHADER_STAGE_COMPUTE_BIT});
 }
 
-bool MirrorPass::anyInView(const SnapshotView& view) const {
-    return unsupported_.empty() && !visibleMirrors(view).empty();
+bool MirrorPass::anyInView(const SnapshotView& view, glm::uvec2 snapshotPixels) const {
+    return unsupported_.empty() && !selectMirrors(view, snapshotPixels).reflected.empty();
 }
 
-// Visible mirrors, nearest first: the eye off the plane and some part of a triangle inside the
-// frustum (conservative: no vertex set entirely beyond one side plane of the frustum).
-std::vector<MirrorPass::VisibleMirror> MirrorPass::visibleMirrors(const SnapshotView& view) const {
-    const PinholeCamera& camera = view.camera;
-    const float sceneSize = view.sceneSize;
-    const glm::mat4 viewProj = view.reversedViewProjection();
-    std::vector<VisibleMirror> visible;
+// The planes this view reflects: the eye off the plane, then by projected coverage within the
+// budget (kMinReflectedPixels, kMaxMirrors), largest first.
+MirrorPass::MirrorSelection MirrorPass::selectMirrors(const SnapshotView& view, glm::uvec2 snapshotPixels) const {
+    const glm::mat4 viewProj = view.reversedViewProjection();  // x, y and w as the plain projection's
+    MirrorSelection selection;
     for (const PlanarMirror& m : mirrors_.planar) {
-        const float side = glm::dot(m.normal, camera.origin) - m.offset;
-        if (std::fabs(side) <= 1e-6f * sceneSize) continue;
-        bool inView = false;
-        float nearest = INFINITY;
-        for (std::uint32_t t : m.triangles) {
-            int outside[5] = {0, 0, 0, 0, 0};
-            for (int k = 0; k < 3; ++k) {
-                const glm::vec3 p = positions_[triangles_[t][k]];
-                const glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
-                outside[0] += c.w <= 0.0f;
-                outside[1] += c.x > c.w;
-                outside[2] += c.x < -c.w;
-                outside[3] += c.y > c.w;
-                outside[4] += c.y < -c.w;
-                nearest = std::min(nearest, glm::length(p - camera.origin));
-            }
-            inView |= std::none_of(std::begin(outside), std::end(outside), [](int n) { return n == 3; });
+        const float side = glm::dot(m.normal, view.camera.origin) - m.offset;
+        if (!(std::fabs(side) > 1e-6f * view.sceneSize)) continue;  // seen edge-on
+        const double pixels =
+            projectedPixels(positions_, triangles_, m.triangles, viewProj, view.nearPlane, snapshotPixels);
+        if (!(pixels > 0.0)) continue;
+        ++selection.inView;
+        if (pixels < kMinReflectedPixels) {
+            ++selection.tooSmall;
+            continue;
         }
-        if (inView) visible.push_back({&m, side > 0.0f ? 1.0f : -1.0f, nearest});
+        selection.reflected.push_back({&m, side > 0.0f ? 1.0f : -1.0f, pixels});
     }
-    std::sort(visible.begin(), visible.end(),
-              [](const VisibleMirror& a, const VisibleMirror& b) { return a.distance < b.distance; });
-    return visible;
+    std::stable_sort(selection.reflected.begin(), selection.reflected.end(),
+                     [](const VisibleMirror& a, const VisibleMirror& b) { return a.pixels > b.pixels; });
+    if (selection.reflected.size() > kMaxMirrors) {
+        selection.overLimit = selection.reflected.size() - kMaxMirrors;
+        selection.reflected.resize(kMaxMirrors);
+    }
+    return selection;
 }
 
 void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBufferPass& gbuffer,
                      const std::string& snapshot, const std::string& depth, const SnapshotView& snapshotView,
-                     const GBufferShadows& shadows, std::string* why) {
+                     glm::uvec2 snapshotPixels, const GBufferShadows& shadows, std::string* why) {
     const PinholeCamera& camera = snapshotView.camera;
     const float nearPlane = snapshotView.nearPlane, farPlane = snapshotView.farPlane;
     const float sceneSize = snapshotView.sceneSize;
+    std::string curved;  // what gets no reflection in any view
+    for (std::size_t i = 0; i < mirrors_.curved.size() && i < 3; ++i)
+        curved += fmt::format("{}{}", i ? "; " : "", mirrors_.curved[i].describe());
+    if (mirrors_.curved.size() > 3) curved += fmt::format("; ... ({} more groups)", mirrors_.curved.size() - 3);
     const auto explain = [&](std::string text) {
+        if (!curved.empty()) text += "; curved (diffuse part only): " + curved;
         if (why) *why = std::move(text);
     };
     if (!unsupported_.empty()) {
@@ -195,17 +395,27 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
     }
     if (mirrors_.planar.empty()) {
         explain(mirrors_.curved.empty() ? "no mirror pass: the scene has no mirror"
-                                        : fmt::format("no mirror pass: {} mirror group(s) are curved (not coplanar), "
-                                                      "and the Snapshot reflects planar mirrors only",
+                                        : fmt::format("no mirror pass: {} mirror group(s) are curved (no plane holds "
+                                                      "enough of them), and the Snapshot reflects planar mirrors only",
                                                       mirrors_.curved.size()));
         return;
     }
-    std::vector<VisibleMirror> visible = visibleMirrors(snapshotView);
+    const MirrorSelection selection = selectMirrors(snapshotView, snapshotPixels);
+    const std::vector<VisibleMirror>& visible = selection.reflected;
+    std::string skipped;  // the budget's part
+    if (selection.tooSmall > 0)
+        skipped += fmt::format("; {} plane(s) skipped for the budget: under {} snapshot pixels each",
+                               selection.tooSmall, kMinReflectedPixels);
+    if (selection.overLimit > 0)
+        skipped += fmt::format("; {} plane(s) skipped for the budget: beyond the {} largest", selection.overLimit,
+                               kMaxMirrors);
     if (visible.empty()) {
-        explain(fmt::format("no mirror pass: none of the {} planar mirror(s) is in view", mirrors_.planar.size()));
+        explain(selection.inView == 0
+                    ? fmt::format("no mirror pass: none of the {} planar mirror(s) is in view", mirrors_.planar.size())
+                    : fmt::format("no mirror pass: 0 of the {} planar mirror(s) in view reflected{}", selection.inView,
+                                  skipped));
         return;
     }
-    if (visible.size() > kMaxMirrors) visible.resize(kMaxMirrors);
     const glm::mat4 view = camera.viewMatrix();
     const glm::mat4 viewProj = snapshotView.reversedViewProjection();
 
@@ -231,13 +441,13 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
         for (std::uint32_t t : m.triangles)
             for (int k = 0; k < 3; ++k)
                 maskVertices.push_back({positions_[triangles_[t][k]], m.reflectance, static_cast<float>(i)});
-        if (i < 4) names += fmt::format("{}'{}'", i ? ", " : "", m.name);
+        if (i < 4) names += fmt::format("{}'{}' ({:.0f} px)", i ? ", " : "", m.name, visible[i].pixels);
     }
     if (visible.size() > 4) names += fmt::format(", ... ({} more)", visible.size() - 4);
     maskVertexCount_ = static_cast<std::uint32_t>(maskVertices.size());
     maskVertices_ = vk::uploadBuffer(*context_, std::as_bytes(std::span<const MaskVertex>(maskVertices)),
                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
-    explain(fmt::format("{} planar mirror(s) in view: {}", visible.size(), names));
+    explain(fmt::format("{} planar mirror(s) in view reflected: {}{}", visible.size(), names, skipped));
 
     // The array view needs two layers at least (a one-layer image gets a 2D view).
     const auto layers = static_cast<std::uint32_t>(std::max<std::size_t>(visible.size(), 2));

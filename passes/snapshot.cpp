@@ -198,7 +198,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     // The G-buffer writes the aamap's grey itself unless a mirror composite changes the snapshot
     // after it or the map does not read the grey: one compute pass fewer.
     passes::GBufferGrey grey;
-    if (!s.mirrors.anyInView(snapshotView) &&
+    if (!s.mirrors.anyInView(snapshotView, {snapW, snapH}) &&
         settings.map != passes::AamapSource::Geometric) {
         graph.addResource(
             graph::imageResource(passes::kGrey, passes::GBufferPass::kGreyFormat, graph::Size::relative(passes::kSnapshot)));
@@ -206,7 +206,8 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     }
     s.gbuffer.add(graph, s.executor, passes::kSnapshot, passes::kDepth, snapshotView, shadows, grey);
     std::string mirrorWhy;
-    s.mirrors.add(graph, s.executor, s.gbuffer, passes::kSnapshot, passes::kDepth, snapshotView, shadows, &mirrorWhy);
+    s.mirrors.add(graph, s.executor, s.gbuffer, passes::kSnapshot, passes::kDepth, snapshotView, {snapW, snapH},
+                  shadows, &mirrorWhy);
     passes::MapChainInputs mapInputs{passes::kSnapshot, snapshotView, width, height, settings.filter};
     mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
     mapInputs.greyFromGBuffer = !grey.resource.empty();
@@ -256,10 +257,10 @@ std::vector<std::string> snapshotLimitations(const Scene& scene) {
     std::vector<std::string> notes;
     const passes::MirrorGroups mirrors = passes::findPlanarMirrors(scene);
     if (!mirrors.curved.empty())
-        notes.push_back(fmt::format("{} mirror group(s) are not planar ({}{}): the Snapshot shows their diffuse part "
-                                    "only, so the aamap cannot see what they reflect",
-                                    mirrors.curved.size(), mirrors.curved.front(),
-                                    mirrors.curved.size() > 1 ? ", ..." : ""));
+        notes.push_back(fmt::format("{} mirror group(s) are not planar everywhere ({}{}): the Snapshot shows their "
+                                    "curved triangles' diffuse part only, so the aamap cannot see what they reflect",
+                                    mirrors.curved.size(), mirrors.curved.front().describe(),
+                                    mirrors.curved.size() > 1 ? "; ..." : ""));
     std::size_t glass = 0;
     for (const std::uint32_t id : scene.mesh.materialIds)
         if (id < scene.materials.size() && scene.materials[id].kind == MaterialKind::Glass) ++glass;
