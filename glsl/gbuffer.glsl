@@ -3,7 +3,8 @@
 // variants gbuffer.textured*.frag (GBUFFER_TEXTURED: atlas lookup and alpha test), and the mirror
 // variants gbuffer.mirror*.frag (GBUFFER_MIRROR: the clip plane of a reflected view), and the
 // variants *.grey.frag (GBUFFER_GREY: also the greyscale of step 1 of the aamap, a second
-// attachment, so that the luminance pass is not needed). Variants rather than branches, so that
+// attachment, so that the luminance pass is not needed), and gbuffer.glass.frag (GBUFFER_GLASS:
+// glass drawn over what it shows, see main). Variants rather than branches, so that
 // a scene without lights or textures has no binding to fill for them.
 //
 // Local illumination as the paper's snapshot: Lambert from point lights (cosine lobes for the
@@ -113,6 +114,24 @@ void main() {
     const bool front = dot(n, toCamera) >= 0.0;
     if (!front) n = -n;
 
+#ifdef GBUFFER_GLASS
+    // Glass over what the camera sees through it (already in the target): premultiplied
+    // F * reflected + (1 - F) * behind, F by Schlick from the normal-incidence reflectance that
+    // glass vertices carry in kd (a dielectric has no diffuse albedo). The reflected radiance is
+    // estimated as a white Lambert surface's under the same lights, unshadowed: no reflected
+    // geometry, but F -> 1 at grazing angles, so silhouettes and rims show where the tracer's do.
+    const float f0 = vertexKd.x;
+    const float cosView = clamp(dot(n, normalize(toCamera)), 0.0, 1.0);
+    const float fresnel = f0 + (1.0 - f0) * pow(1.0 - cosView, 5.0);
+    vec3 reflected = vec3(0.0);
+#define ADD_INLINE_REFLECTED(k) \
+    if (uint(k) < kLightCount) reflected += lightContribution(INLINE_LIGHT(k), uint(k), n, vec3(1.0));
+    FOR_EACH_INLINE_LIGHT(ADD_INLINE_REFLECTED)
+    for (uint i = LIGHTING_INLINE_LIGHTS; i < kLightCount; ++i) reflected += lightContribution(lights[i], i, n, vec3(1.0));
+    reflected += kInvPi * ambientIrradiance(n);
+    outColour = vec4(fresnel * reflected, fresnel);
+    return;
+#endif
     // Emitters are one-sided along their normal.
     vec3 colour = front ? ke : vec3(0.0);
 #define ADD_INLINE_LIGHT(k) \

@@ -78,10 +78,42 @@ vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, 
                                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT});
 }
 
+// Glass over the opaque surfaces (passes/gbuffer.h): the plain vertex stage reads the first
+// attributes of either layout; depth-tested against the opaque depth, not written; blended.
+vk::Pipeline makeGlassPipeline(VulkanContext& context, bool textured, std::vector<std::uint32_t> lightingConstants) {
+    vk::GraphicsDesc desc;
+    desc.fragmentConstants = std::move(lightingConstants);
+    desc.vertexSpirv = spirv::gbuffer_vert;
+    desc.fragmentSpirv = spirv::gbuffer_glass_frag;
+    desc.vertexInput.stride = textured ? SceneGpu::kTexturedVertexStride : SceneGpu::kVertexStride;
+    desc.vertexInput.attributes = {
+        {GBUFFER_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+        {GBUFFER_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kNormalOffset},
+        {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKdOffset},
+        {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKeOffset},
+    };
+    desc.colorFormats = {vk::toVkFormat(GBufferPass::kColourFormat)};
+    desc.depthFormat = vk::toVkFormat(GBufferPass::kDepthFormat);
+    desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth: in front of the opaque surface
+    desc.depthWrite = false;
+    desc.premultipliedBlend = true;
+    return vk::Pipeline(context, desc,
+                        vk::LayoutDesc{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},  // GBUFFER_BINDING_LIGHTS
+                                       static_cast<std::uint32_t>(sizeof(gpu::GBufferPush)),
+                                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT});
+}
+
 }  // namespace
 
 GBufferPass::GBufferPass(VulkanContext& context, const SceneGpu& scene) : context_(&context), scene_(&scene) {
     if (scene.sharedPositions() && scene.vertexCount() > 0) depthPipeline_ = makeDepthPipeline(context);
+    if (scene.glassVertexCount() > 0) {
+        VkFormatProperties props{};
+        vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), vk::toVkFormat(kColourFormat), &props);
+        if (!(props.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+            glassUnsupported_ = fmt::format("'{}' cannot blend into the snapshot's RGBA32F: glass is seen through",
+                                            context.deviceName());
+    }
 }
 
 glm::mat4 SnapshotView::reversedViewProjection() const {
@@ -102,11 +134,14 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
                               : "rasterise the scene with local illumination") +
              (scene_->textured() ? "; " + scene_->atlasSummary() : "") +
              (grey.resource.empty() ? std::string() : "; and the greyscale of the aamap's step 1") +
-             (scene_->occluderVertexCount() > scene_->vertexCount()
-                  ? fmt::format("; {} glass triangles seen through (they only cast shadows)",
-                                (scene_->occluderVertexCount() - scene_->vertexCount()) / 3)
-                  : std::string())});
-    const vk::Pipeline& pipeline = pipelineFor(executor, kGBufferPass, shadowed, false, !grey.resource.empty(), shadows.pcf);
+             (scene_->glassVertexCount() == 0 ? std::string()
+              : drawsGlass() ? fmt::format("; then {} glass triangles over what they show, Fresnel-weighted",
+                                           scene_->glassVertexCount() / 3)
+                             : fmt::format("; {} glass triangles seen through ({})", scene_->glassVertexCount() / 3,
+                                           glassUnsupported_))});
+    const vk::Pipeline& pipeline =
+        pipelineFor(executor, kGBufferPass, shadowed, false, !grey.resource.empty(), shadows.pcf, drawsGlass());
+    const vk::Pipeline* glass = drawsGlass() ? &glassPipeline_ : nullptr;
     gpu::GBufferPush push{};
     push.exposure = grey.exposure;
     push.viewProj = view.reversedViewProjection();
@@ -114,21 +149,26 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
     push.shadow = glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias,
                             static_cast<float>(shadows.faceSize));
     executor.setRecord(kGBufferPass, [this, colour, depth, push, &pipeline, shadow = shadows.resource,
-                                   grey = grey.resource](vk::PassContext& pc) {
-        record(pc, colour, grey, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass());
+                                   grey = grey.resource, glass](vk::PassContext& pc) {
+        record(pc, colour, grey, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass(), glass);
     });
     return id;
 }
 
 const vk::Pipeline& GBufferPass::pipelineFor(vk::GraphExecutor& executor, const std::string& pass, bool shadowed,
-                                             bool mirrored, bool grey, std::uint32_t pcf) {
+                                             bool mirrored, bool grey, std::uint32_t pcf, bool withGlass) {
     const PipelineKey key{shadowed, mirrored, grey, shadowed ? std::max(pcf, 1u) : 1u, scene_->lightsVersion()};
     std::erase_if(pipelines_, [&](const auto& entry) { return entry.first.lightsVersion != key.lightsVersion; });
+    if (withGlass && glassLightsVersion_ != key.lightsVersion) glassPipeline_.reset();  // lights inlined
     vk::Pipeline& pipeline = pipelines_[key];
-    executor.setPrepare(pass, [this, &pipeline, key] {
+    executor.setPrepare(pass, [this, &pipeline, key, withGlass] {
         if (!pipeline.handle())
             pipeline = makePipeline(*context_, key.shadowed, scene_->textured(), key.mirrored, key.grey,
                                     !key.mirrored && hasDepthPrepass(), scene_->lightingConstants(key.pcf));
+        if (withGlass && !glassPipeline_.handle()) {
+            glassPipeline_ = makeGlassPipeline(*context_, scene_->textured(), scene_->lightingConstants(1));
+            glassLightsVersion_ = key.lightsVersion;
+        }
     });
     return pipeline;
 }
@@ -151,7 +191,7 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
                                         graph::writes(depth, graph::Usage::DepthAttachment)};
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
     const graph::PassId id = graph.addPass({pass, graph::QueueKind::Graphics, accesses, std::move(purpose)});
-    const vk::Pipeline& pipeline = pipelineFor(executor, pass, shadowed, true, false, shadows.pcf);
+    const vk::Pipeline& pipeline = pipelineFor(executor, pass, shadowed, true, false, shadows.pcf, false);
     std::vector<gpu::GBufferPush> pushes;
     for (std::size_t i = 0; i < views.size(); ++i) {
         gpu::GBufferPush push{};
@@ -164,14 +204,14 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
         pushes.push_back(push);
     }
     executor.setRecord(pass, [this, colour, depth, pushes, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
-        record(pc, colour, "", depth, pipeline, shadow, pushes, false);
+        record(pc, colour, "", depth, pipeline, shadow, pushes, false, nullptr);
     });
     return id;
 }
 
 void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const std::string& grey,
                          const std::string& depth, const vk::Pipeline& pipeline, const std::string& shadow,
-                         std::span<const gpu::GBufferPush> draws, bool prepass) const {
+                         std::span<const gpu::GBufferPush> draws, bool prepass, const vk::Pipeline* glass) const {
     const vk::Image& target = pc.image(colour);
     const vk::Image& z = pc.image(depth);
     const VkExtent2D extent{target.info().width, target.info().height};
@@ -233,6 +273,17 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
             if (prepass) vkCmdDrawIndexed(cmd, vertexCount, 1, 0, 0, 0);
             else vkCmdDraw(cmd, vertexCount, 1, 0, 0);
         }
+    }
+    if (glass != nullptr) {  // one view: the camera's (add)
+        glass->bind(cmd);
+        vk::DescriptorPush descriptors;
+        descriptors.uniformBuffer(GBUFFER_BINDING_LIGHTS, scene_->lightBuffer().handle());
+        descriptors.push(*context_, cmd, *glass);
+        const VkBuffer vb = scene_->vertexBuffer().handle();
+        const VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+        glass->pushConstants(cmd, draws[0]);
+        vkCmdDraw(cmd, scene_->glassVertexCount(), 1, vertexCount, 0);
     }
     vkCmdEndRendering(cmd);
 }

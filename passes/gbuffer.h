@@ -10,6 +10,13 @@
 // Where surfaces tie in depth, all of them pass that test and the last drawn wins, so the shading
 // draw goes through the triangles in reverse order (same corners, same provoking vertex): the
 // first triangle of the mesh wins a tie, as with GREATER and no pre-pass, and the image is the same.
+//
+// Glass (passes/scene_gpu.h): the camera's view draws it last, over the opaque surfaces it shows,
+// depth-tested but not written, blended as F * reflected + (1 - F) * behind with Schlick's F
+// (glsl/gbuffer.glsl, GBUFFER_GLASS). Thin panes seen face-on barely change what is behind them,
+// as in the tracer; at grazing angles F -> 1, so a glass object's silhouette and rim are in the
+// snapshot, and in the aamap. Refraction offsets are not modelled. A device that cannot blend the
+// colour format sees through glass as before (glassUnsupported() says why). Mirror views skip glass.
 #include <array>
 #include <compare>
 #include <map>
@@ -89,11 +96,16 @@ public:
     // Reversed depth (z' = w - z, cleared to 0, GREATER wins) applied to projection * view.
     static glm::mat4 reversedViewProjection(const glm::mat4& projection, const glm::mat4& view);
 
+    // Whether the camera's view draws glass over the opaque surfaces (the scene has glass and the
+    // device blends kColourFormat); the G-buffer's grey is then not final (GBufferGrey).
+    bool drawsGlass() const { return scene_->glassVertexCount() > 0 && glassUnsupported_.empty(); }
+    const std::string& glassUnsupported() const { return glassUnsupported_; }
+
 private:
     bool hasDepthPrepass() const { return depthPipeline_.handle() != VK_NULL_HANDLE; }
     void record(vk::PassContext& pc, const std::string& colour, const std::string& grey, const std::string& depth,
                 const vk::Pipeline& pipeline, const std::string& shadow, std::span<const gpu::GBufferPush> draws,
-                bool prepass) const;
+                bool prepass, const vk::Pipeline* glass) const;
 
     // The shading pipeline of each variant, specialised for the scene's light list of
     // `lightsVersion` (older versions are dropped: their recordings must be declared again
@@ -105,12 +117,16 @@ private:
         std::uint64_t lightsVersion = 0;
         auto operator<=>(const PipelineKey&) const = default;
     };
+    // withGlass: the prepare step also builds glassPipeline_ (the camera's view of a glass scene).
     const vk::Pipeline& pipelineFor(vk::GraphExecutor& executor, const std::string& pass, bool shadowed,
-                                    bool mirrored, bool grey, std::uint32_t pcf);
+                                    bool mirrored, bool grey, std::uint32_t pcf, bool withGlass);
 
     VulkanContext* context_;
     const SceneGpu* scene_;
     std::map<PipelineKey, vk::Pipeline> pipelines_;
+    vk::Pipeline glassPipeline_;     // for lightsVersion glassLightsVersion_, built when the pass is kept
+    std::uint64_t glassLightsVersion_ = 0;
+    std::string glassUnsupported_;
     vk::Pipeline depthPipeline_;  // the pre-pass (SceneGpu::sharedPositions() only)
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
@@ -93,6 +94,14 @@ struct FlatMesh {
     bool alphaMasked = false;
 };
 
+// What glass vertices carry in their kd slot (a dielectric has no diffuse albedo): the Fresnel
+// reflectance at normal incidence, ((ior - 1) / (ior + 1))^2, which gbuffer.glass.frag reads.
+glm::vec3 glassKd(const Material& m) {
+    const float ior = std::isfinite(m.ior) && m.ior > 0.0f ? m.ior : 1.5f;
+    const float r = (ior - 1.0f) / (ior + 1.0f);
+    return glm::vec3(r * r);
+}
+
 FlatMesh flatten(const Scene& scene, const TextureAtlas& atlas, bool textured) {
     const TriangleMesh& mesh = scene.mesh;
     const std::vector<Material>& materials = scene.materials;
@@ -132,7 +141,7 @@ FlatMesh flatten(const Scene& scene, const TextureAtlas& atlas, bool textured) {
             glm::vec3 n = hasNormals ? mesh.normals[tri[k]] : face;
             if (!(glm::dot(n, n) > 0.0f)) n = face;  // zero or NaN normals in the file
             TexturedVertex v = ms.fields;
-            v.base = {p[k], n, id < materials.size() ? ms.kd : m.kd, m.ke};
+            v.base = {p[k], n, isGlass(t) ? glassKd(m) : id < materials.size() ? ms.kd : m.kd, m.ke};
             v.uv = hasUvs ? mesh.uvs[tri[k]] : glm::vec2(0.0f);
             const auto* bytes = reinterpret_cast<const std::byte*>(&v);
             out.insert(out.end(), bytes, bytes + stride);

@@ -8,10 +8,12 @@
 //
 // Glass: the tracer ignores a dielectric's kd and shows what lies behind it (Fresnel reflection
 // and refraction; a thin pane transmits ~92 % of it, barely shifted), and its shadow rays stop at
-// glass. So the camera's draws skip glass triangles (the Snapshot sees through them, without the
-// refraction offset: curved glass is out of scope), while the shadow cube maps still draw them.
-// They come last in the vertex buffer, so the camera draws the first vertexCount() vertices and
-// the shadow pass all occluderVertexCount().
+// glass. So the camera's opaque draws skip glass triangles, the G-buffer then draws them over
+// what they show, Fresnel-weighted (passes/gbuffer.h; without the refraction offset), and the
+// shadow cube maps draw them as occluders. They come last in the vertex buffer, so the opaque
+// draws take the first vertexCount() vertices, the glass draw the rest of occluderVertexCount(),
+// and the shadow pass all of them. Glass vertices carry their normal-incidence Fresnel
+// reflectance in the kd slot.
 //
 // Textures and alpha (passes/gbuffer_textures.h): a scene whose used materials sample a texture
 // gets the textured vertex layout (uv and atlas entry per vertex) and an atlas; other scenes bind
@@ -58,6 +60,7 @@ public:
     // shadow pass draws: the same followed by the glass triangles (see "Glass" above).
     std::uint32_t vertexCount() const { return vertexCount_; }
     std::uint32_t occluderVertexCount() const { return occluderVertexCount_; }
+    std::uint32_t glassVertexCount() const { return occluderVertexCount_ - vertexCount_; }
     // The mesh triangle of each triangle of the vertex buffer (occluderVertexCount() / 3 of them).
     std::span<const std::uint32_t> drawnTriangles() const { return drawnTriangles_; }
     bool textured() const { return textured_; }        // the atlas is bound (scene has textures)

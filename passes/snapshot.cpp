@@ -195,10 +195,11 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         s.shadows->add(graph, s.executor, shadows.resource, s.sceneGpu, s.lightNames, shadows.faceSize,
                        shadows.nearPlane);
     }
-    // The G-buffer writes the aamap's grey itself unless a mirror composite changes the snapshot
-    // after it or the map does not read the grey: one compute pass fewer.
+    // The G-buffer writes the aamap's grey itself unless something changes the snapshot after the
+    // opaque draw (a mirror composite, glass blended over it) or the map does not read the grey:
+    // one compute pass fewer.
     passes::GBufferGrey grey;
-    if (!s.mirrors.anyInView(snapshotView, {snapW, snapH}) &&
+    if (!s.mirrors.anyInView(snapshotView, {snapW, snapH}) && !s.gbuffer.drawsGlass() &&
         settings.map != passes::AamapSource::Geometric) {
         graph.addResource(
             graph::imageResource(passes::kGrey, passes::GBufferPass::kGreyFormat, graph::Size::relative(passes::kSnapshot)));
@@ -265,8 +266,9 @@ std::vector<std::string> snapshotLimitations(const Scene& scene) {
     for (const std::uint32_t id : scene.mesh.materialIds)
         if (id < scene.materials.size() && scene.materials[id].kind == MaterialKind::Glass) ++glass;
     if (glass > 0)
-        notes.push_back(fmt::format("{} glass triangle(s): the Snapshot sees through glass, so its silhouettes and "
-                                    "what it refracts are not in the aamap",
+        notes.push_back(fmt::format("{} glass triangle(s): the Snapshot draws glass over what lies straight behind "
+                                    "it, Fresnel-weighted, so its silhouettes are in the aamap but what it refracts "
+                                    "is not",
                                     glass));
     if (scene.environment && !scene.environment->map.empty())
         notes.push_back("an environment map: the Snapshot's background is the sky's mean radiance, not the map, so "

@@ -63,7 +63,7 @@ struct SnapshotResult {
 };
 
 // What of the scene the Snapshot cannot show the way the tracer will, one sentence each (curved
-// mirror triangles, glass seen through): the aamap is blind there, so a run says so up front.
+// mirror triangles, glass refracting): the aamap is blind there, so a run says so up front.
 std::vector<std::string> snapshotLimitations(const Scene& scene);
 
 // Builds the graph for what the scene needs and runs it. Holds per-scene GPU state (vertex

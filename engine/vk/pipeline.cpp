@@ -131,12 +131,19 @@ Pipeline::Pipeline(VulkanContext& context, const GraphicsDesc& desc, const Layou
         VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
         const bool hasDepth = desc.depthFormat != VK_FORMAT_UNDEFINED;
         depth.depthTestEnable = hasDepth;
-        depth.depthWriteEnable = hasDepth;
+        depth.depthWriteEnable = hasDepth && desc.depthWrite;
         depth.depthCompareOp = desc.depthCompare;
         std::vector<VkPipelineColorBlendAttachmentState> blends(desc.colorFormats.size());
-        for (auto& b : blends)
+        for (auto& b : blends) {
             b.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
                                VK_COLOR_COMPONENT_A_BIT;
+            if (desc.premultipliedBlend) {
+                b.blendEnable = VK_TRUE;
+                b.srcColorBlendFactor = b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+                b.dstColorBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+                b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
+            }
+        }
         VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
         blend.attachmentCount = static_cast<std::uint32_t>(blends.size());
         blend.pAttachments = blends.data();

@@ -32,6 +32,9 @@ struct GraphicsDesc {
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;  // none
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
     VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
+    bool depthWrite = true;  // off: test against the depth, keep it (surfaces drawn over others)
+    // Premultiplied "over" on every colour attachment: dst = src.rgb + (1 - src.a) dst.
+    bool premultipliedBlend = false;
     // Specialisation constants of the fragment stage: constant_id i takes fragmentConstants[i]
     // (32 bits each). Values a pipeline never changes, so the driver compiles them in.
     std::vector<std::uint32_t> fragmentConstants;

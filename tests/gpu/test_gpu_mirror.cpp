@@ -13,6 +13,7 @@
 
 #include "gpu_fixture.h"
 #include "passes/mirror.h"
+#include "test_scenes.h"
 #include "passes/snapshot.h"
 #include "scene/camera.h"
 
@@ -97,28 +98,6 @@ Scene framedMirrorScene() {
     addPolygon(s, {{a, a, 0}, {b, b, back}, {-b, b, back}, {-a, a, 0}}, 0, 0);
     addPolygon(s, {{-a, -a, 0}, {-b, -b, back}, {b, -b, back}, {a, -a, 0}}, 0, 0);
     return s;
-}
-
-// A UV sphere of `segments` x `rings` around `centre`, one object and material: a curved mirror.
-void addSphere(Scene& s, glm::vec3 centre, float radius, int segments, int rings, std::uint32_t material,
-               std::uint32_t object) {
-    const auto b = static_cast<std::uint32_t>(s.mesh.positions.size());
-    for (int r = 0; r <= rings; ++r)
-        for (int k = 0; k <= segments; ++k) {
-            const float theta = 3.14159265f * r / rings, phi = 6.28318531f * k / segments;
-            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-            s.mesh.positions.push_back(centre + radius * n);
-            s.mesh.normals.push_back(n);
-        }
-    const auto at = [&](int r, int k) { return b + static_cast<std::uint32_t>(r * (segments + 1) + k); };
-    for (int r = 0; r < rings; ++r)
-        for (int k = 0; k < segments; ++k) {
-            if (r > 0) s.mesh.triangles.push_back({at(r, k), at(r, k + 1), at(r + 1, k)});
-            if (r + 1 < rings) s.mesh.triangles.push_back({at(r, k + 1), at(r + 1, k + 1), at(r + 1, k)});
-        }
-    const std::size_t added = s.mesh.triangles.size() - s.mesh.materialIds.size();
-    s.mesh.materialIds.insert(s.mesh.materialIds.end(), added, material);
-    s.mesh.objectIds.insert(s.mesh.objectIds.end(), added, object);
 }
 
 // The unit cube [-1, 1]^3 as one mirror group: 6 faces of 2 triangles.
