@@ -230,6 +230,7 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
             const float length = glm::length(cluster.weightedNormal);
             if (!faceted && !(cluster.area >= kMinPlaneAreaFraction * groupArea)) {
                 curved.triangles += cluster.triangles.size();
+                curved.triangleIds.insert(curved.triangleIds.end(), cluster.triangles.begin(), cluster.triangles.end());
                 continue;
             }
             PlanarMirror mirror;
@@ -247,6 +248,8 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
             out.planar.push_back(std::move(planes[k]));
         }
         curved.planes = planes.size();
+        std::sort(curved.triangleIds.begin(), curved.triangleIds.end());
+        curved.reflectance = reflectance;
         if (curved.triangles > 0) out.curved.push_back(std::move(curved));
     }
     return out;
@@ -298,18 +301,20 @@ double projectedPixels(const std::vector<glm::vec3>& positions, const std::vecto
     return ndcArea * 0.25 * static_cast<double>(pixels.x) * static_cast<double>(pixels.y);
 }
 
-MirrorPass::MirrorPass(VulkanContext& context, const Scene& scene)
-    : context_(&context), mirrors_(findPlanarMirrors(scene)) {
-    if (mirrors_.planar.empty()) return;  // nothing to test or draw for scenes without one
+std::string reflectedViewsUnsupported(VulkanContext& context, const std::string& pass) {
     // The reflected views go to their layers through gl_Layer from the vertex shader.
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
     vkGetPhysicalDeviceFeatures2(context.physicalDevice(), &f2);
-    if (!f12.shaderOutputLayer) {
-        unsupported_ = fmt::format("'{}' lacks shaderOutputLayer (Vulkan 1.2), which the mirror pass needs",
-                                   context.deviceName());
-        return;
-    }
+    if (f12.shaderOutputLayer) return {};
+    return fmt::format("'{}' lacks shaderOutputLayer (Vulkan 1.2), which the {} pass needs", context.deviceName(), pass);
+}
+
+MirrorPass::MirrorPass(VulkanContext& context, const Scene& scene)
+    : context_(&context), mirrors_(findPlanarMirrors(scene)) {
+    if (mirrors_.planar.empty()) return;  // nothing to test or draw for scenes without one
+    unsupported_ = reflectedViewsUnsupported(context, kMirrorPass);
+    if (!unsupported_.empty()) return;
     positions_ = scene.mesh.positions;
     triangles_ = scene.mesh.triangles;
 }
@@ -386,7 +391,7 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
         curved += fmt::format("{}{}", i ? "; " : "", mirrors_.curved[i].describe());
     if (mirrors_.curved.size() > 3) curved += fmt::format("; ... ({} more groups)", mirrors_.curved.size() - 3);
     const auto explain = [&](std::string text) {
-        if (!curved.empty()) text += "; curved (diffuse part only): " + curved;
+        if (!curved.empty()) text += "; curved (reflected through environment probes): " + curved;
         if (why) *why = std::move(text);
     };
     if (!unsupported_.empty()) {
@@ -396,7 +401,7 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
     if (mirrors_.planar.empty()) {
         explain(mirrors_.curved.empty() ? "no mirror pass: the scene has no mirror"
                                         : fmt::format("no mirror pass: {} mirror group(s) are curved (no plane holds "
-                                                      "enough of them), and the Snapshot reflects planar mirrors only",
+                                                      "enough of them): environment probes reflect them",
                                                       mirrors_.curved.size()));
         return;
     }

@@ -15,9 +15,10 @@
 // The MaterialKind::Mirror triangles of one object and one material form a mirror group, which
 // findPlanarMirrors splits into planes (a wall mirror with its bevel strips, the faces of a
 // mirrored box): each plane is a PlanarMirror. A group of many small planes is a tessellated
-// curved surface: its triangles outside the planes it keeps are curved, shaded with their
-// diffuse part only, and --explain names them. Per view, the planes that cover the most snapshot
-// pixels are reflected (the budget below); the others are shaded like curved ones.
+// curved surface: its triangles outside the planes it keeps are curved, reflected through
+// environment probes (passes/mirror_probes.h), and --explain names them. Per view, the planes
+// that cover the most snapshot pixels are reflected (the budget below); the others show their
+// diffuse part only.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -59,11 +60,14 @@ struct PlanarMirror {
     glm::vec3 reflectance{1.0f};           // the tracer's ks for this material (after energy scaling)
 };
 
-// The triangles of one mirror group that lie in no accepted plane: no reflection.
+// The triangles of one mirror group that lie in no accepted plane: reflected through an
+// environment probe (passes/mirror_probes.h), not a planar view.
 struct CurvedMirror {
     std::string group;           // "object/material"
     std::size_t triangles = 0;   // curved ones
     std::size_t planes = 0;      // of the same group that are PlanarMirrors
+    std::vector<std::uint32_t> triangleIds;  // the curved triangles, ascending
+    glm::vec3 reflectance{1.0f};             // as PlanarMirror::reflectance
     std::string describe() const;  // "object 3/m: 2 planes reflected, 40 triangles curved"
 };
 
@@ -90,13 +94,16 @@ void mirrorAlbedos(const Material& m, glm::vec3& kd, glm::vec3& reflectance);
 // Reflection in the plane dot(n, p) = d (n unit).
 glm::mat4 reflectionMatrix(glm::vec3 n, float d);
 
+// Why the device cannot render reflected views into layers (shaderOutputLayer), or empty.
+std::string reflectedViewsUnsupported(VulkanContext& context, const std::string& pass);
+
 class MirrorPass {
 public:
     // The per-view budget. Each reflected plane costs a full G-buffer render, so the planes that
     // matter for the image go first: the largest projected coverage, at most kMaxMirrors (the
     // layers of mirror.colour). A plane covering fewer than kMinReflectedPixels snapshot pixels
     // cannot hold a reflected edge that the 5 x 5 Laplacian and its blur tell apart from the
-    // mirror's own outline, so it is shaded like a curved mirror.
+    // mirror's own outline, so it shows its diffuse part only.
     static constexpr std::uint32_t kMaxMirrors = 16;
     static constexpr double kMinReflectedPixels = 16.0;
 

@@ -16,6 +16,7 @@
 #include "passes/environment_lighting.h"
 #include "passes/gbuffer.h"
 #include "passes/mirror.h"
+#include "passes/mirror_probes.h"
 #include "passes/gpu_aamap.h"
 #include "passes/scene_gpu.h"
 #include "passes/shadow_cube.h"
@@ -89,6 +90,7 @@ struct SnapshotRenderer::Impl {
     passes::SceneGpu sceneGpu;  // meshes, lights and atlas, read by every raster pass
     passes::GBufferPass gbuffer;
     passes::MirrorPass mirrors;  // planar mirrors: passes only when one is in view
+    passes::MirrorProbes probes;  // curved mirrors: likewise
     passes::FilterChain chain;
     passes::BlockSumPass blockSums;
     passes::GeometryBufferPass geometry;  // uploads its ids on first use
@@ -107,6 +109,7 @@ struct SnapshotRenderer::Impl {
           sceneGpu(c, scene),
           gbuffer(c, sceneGpu),
           mirrors(c, scene),
+          probes(c, scene, mirrors.groups()),
           chain(c),
           blockSums(c),
           geometry(c, scene, sceneGpu),
@@ -199,7 +202,8 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     // opaque draw (a mirror composite, glass blended over it) or the map does not read the grey:
     // one compute pass fewer.
     passes::GBufferGrey grey;
-    if (!s.mirrors.anyInView(snapshotView, {snapW, snapH}) && !s.gbuffer.drawsGlass() &&
+    if (!s.mirrors.anyInView(snapshotView, {snapW, snapH}) && !s.probes.anyInView(snapshotView, {snapW, snapH}) &&
+        !s.gbuffer.drawsGlass() &&
         settings.map != passes::AamapSource::Geometric) {
         graph.addResource(
             graph::imageResource(passes::kGrey, passes::GBufferPass::kGreyFormat, graph::Size::relative(passes::kSnapshot)));
@@ -209,6 +213,9 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     std::string mirrorWhy;
     s.mirrors.add(graph, s.executor, s.gbuffer, passes::kSnapshot, passes::kDepth, snapshotView, {snapW, snapH},
                   shadows, &mirrorWhy);
+    std::string probeWhy;
+    s.probes.add(graph, s.executor, s.gbuffer, passes::kSnapshot, passes::kDepth, snapshotView, {snapW, snapH}, shadows,
+                 &probeWhy);
     passes::MapChainInputs mapInputs{passes::kSnapshot, snapshotView, width, height, settings.filter};
     mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
     mapInputs.greyFromGBuffer = !grey.resource.empty();
@@ -247,7 +254,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     result.readbackSeconds = run.readbackSeconds + secondsSince(convert);
     for (const vk::PassTime& t : run.passTimes) result.passTimes.push_back({t.pass, t.milliseconds});
     result.deviceName = s.context.deviceName();
-    result.explain = explainWithPurposes(graph, compiled) + "mirrors: " + mirrorWhy + "\n";
+    result.explain = explainWithPurposes(graph, compiled) + "mirrors: " + mirrorWhy + "\ncurved mirrors: " + probeWhy + "\n";
     result.dot = compiled.toDot();
     result.shadowCubeMaps = shadowed ? static_cast<int>(s.sceneGpu.lightCount()) : 0;
     result.totalSeconds = secondsSince(start);
@@ -258,8 +265,8 @@ std::vector<std::string> snapshotLimitations(const Scene& scene) {
     std::vector<std::string> notes;
     const passes::MirrorGroups mirrors = passes::findPlanarMirrors(scene);
     if (!mirrors.curved.empty())
-        notes.push_back(fmt::format("{} mirror group(s) are not planar everywhere ({}{}): the Snapshot shows their "
-                                    "curved triangles' diffuse part only, so the aamap cannot see what they reflect",
+        notes.push_back(fmt::format("{} mirror group(s) are not planar everywhere ({}{}): the Snapshot reflects their "
+                                    "curved triangles through a cube probe from the group's centre, without parallax",
                                     mirrors.curved.size(), mirrors.curved.front().describe(),
                                     mirrors.curved.size() > 1 ? "; ..." : ""));
     std::size_t glass = 0;

@@ -107,6 +107,23 @@ struct MirrorMaskPush {
     mat4 viewProj;  // the camera's (reversed depth), as the G-buffer's
 };
 
+// Environment probes of curved mirrors (passes/mirror_probes.h): mirror.probes renders the
+// G-buffer into 6 cube faces per probe (layers 6i..6i+5, the shadow maps' face order and
+// coordinates, shadow_cube.glsl); mirror_probe.* then draws the curved mirror triangles from the
+// camera and adds reflectance x the probe's colour in the reflected direction where they are the
+// visible surface.
+#define MIRROR_PROBE_LOCATION_POSITION 0     // vec3
+#define MIRROR_PROBE_LOCATION_NORMAL 1       // vec3
+#define MIRROR_PROBE_LOCATION_REFLECTANCE 2  // vec3
+#define MIRROR_PROBE_LOCATION_LAYER 3        // float: the probe's first layer (6 x its index)
+#define MIRROR_PROBE_BINDING_DEPTH 0         // texture2D, the camera's depth (reversed)
+#define MIRROR_PROBE_BINDING_COLOUR 1        // texture2DArray, mirror.probes.colour
+
+struct MirrorProbePush {
+    mat4 viewProj;   // the camera's (reversed depth), as the G-buffer's
+    vec4 cameraPos;  // xyz: the eye; w: the probes' face size in texels
+};
+
 struct MirrorCompositePush {
     ivec2 size;
     ivec2 pad;
@@ -200,6 +217,7 @@ static_assert(sizeof(GBufferPush) == 128);  // maxPushConstantsSize's minimum
 static_assert(sizeof(ShadowPush) == 16);
 static_assert(sizeof(MirrorMaskPush) == 64);
 static_assert(sizeof(MirrorCompositePush) == 16);
+static_assert(sizeof(MirrorProbePush) == 80);
 static_assert(sizeof(FilterPush) == 32);
 }  // namespace aamap::gpu
 #endif

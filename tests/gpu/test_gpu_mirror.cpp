@@ -352,8 +352,12 @@ TEST_F(SnapshotMirror, ATessellatedMirrorSphereIsCurved) {
     addRect(scene, kObject, 2.0f, false, 1);
     SnapshotRenderer renderer(context(), scene);
     const SnapshotResult r = renderer.render(frontView(), 32, 32, SnapshotSettings{});
-    for (const PassTiming& t : r.passTimes) EXPECT_NE(t.pass.rfind("mirror", 0), 0u) << t.pass;
+    std::set<std::string> passes;
+    for (const PassTiming& t : r.passTimes) passes.insert(t.pass);
+    EXPECT_FALSE(passes.contains("mirror") || passes.contains("mirror.mask") || passes.contains("mirror.composite"));
+    EXPECT_TRUE(passes.contains("mirror.probes") && passes.contains("mirror.probes.composite"));
     EXPECT_NE(r.explain.find("mirrors: no mirror pass: 1 mirror group(s) are curved"), std::string::npos) << r.explain;
+    EXPECT_NE(r.explain.find("curved mirrors: 1 curved mirror group(s) reflected"), std::string::npos) << r.explain;
     EXPECT_NE(r.explain.find("object 0/mirror: 120 triangles curved"), std::string::npos) << r.explain;
 }
 
@@ -609,6 +613,52 @@ TEST_F(SnapshotMirror, EveryPassAndResourceIsNamedInTheSnapshotGraphHeader) {
         }
     }
     for (const std::string& name : declared) EXPECT_TRUE(used.count(name)) << name << " is declared but never used";
+}
+
+// A curved mirror reflects through its probe: a chrome sphere seen straight on shows, at its
+// centre, the emitter behind the camera (reflected straight back), and at its right rim the
+// emitter on its right (reflected sideways), each at reflectance x emission.
+TEST_F(SnapshotMirror, ACurvedMirrorShowsWhatItsProbeSees) {
+    Scene scene;
+    scene.name = "chrome-sphere";
+    Material chrome, red, green;
+    chrome.kind = MaterialKind::Mirror;
+    chrome.kd = glm::vec3(0.0f);
+    chrome.ks = glm::vec3(0.8f);
+    red.kd = glm::vec3(0.0f);
+    red.ke = {5.0f, 0.0f, 0.0f};
+    green.kd = glm::vec3(0.0f);
+    green.ke = {0.0f, 3.0f, 0.0f};
+    scene.materials = {chrome, red, green};
+    addSphere(scene, {0, 0, 0}, 1.0f, 48, 24, 0, 0);
+    // A quad of `material` through `centre` whose front (winding and normals) faces `normal`.
+    const auto addFacing = [&](glm::vec3 centre, glm::vec3 normal, glm::vec3 u, std::uint32_t material) {
+        const glm::vec3 v = glm::cross(normal, u);
+        const auto base = static_cast<std::uint32_t>(scene.mesh.positions.size());
+        for (const glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+            scene.mesh.positions.push_back(centre + 20.0f * (c.x * u + c.y * v));
+            scene.mesh.normals.push_back(normal);
+        }
+        scene.mesh.triangles.insert(scene.mesh.triangles.end(), {{base, base + 1, base + 2}, {base, base + 2, base + 3}});
+        scene.mesh.materialIds.insert(scene.mesh.materialIds.end(), 2, material);
+        scene.mesh.objectIds.insert(scene.mesh.objectIds.end(), 2, material);
+    };
+    addFacing({0, 0, 8}, {0, 0, -1}, {1, 0, 0}, 1);   // behind the camera, facing the sphere
+    addFacing({8, 0, 0}, {-1, 0, 0}, {0, 0, 1}, 2);   // on the sphere's right
+    const View view = viewDownZ({0.0f, 0.0f, 4.0f}, 40.0f);
+    SnapshotRenderer renderer(context(), scene);
+    constexpr int kSize = 64;
+    const SnapshotResult r = renderer.render(view, kSize, kSize, SnapshotSettings{});
+    ASSERT_NE(r.explain.find("curved mirrors: 1 curved mirror group(s) reflected"), std::string::npos) << r.explain;
+    const glm::uvec2 snap{r.snapshot.width(), r.snapshot.height()};
+    const glm::vec3 centre = r.snapshot.at(snap.x / 2, snap.y / 2);
+    EXPECT_NEAR(centre.r, 0.8f * 5.0f, 0.01f);
+    EXPECT_NEAR(centre.g, 0.0f, 1e-4f);
+    // The right rim: the sphere's silhouette is at tan(asin(1 / 4)) of the half-field tan(20 deg).
+    const float rim = std::tan(std::asin(0.25f)) / std::tan(glm::radians(20.0f)) * 0.5f * static_cast<float>(snap.x);
+    const glm::vec3 right = r.snapshot.at(static_cast<int>(0.5f * snap.x + 0.93f * rim), snap.y / 2);
+    EXPECT_NEAR(right.g, 0.8f * 3.0f, 0.01f) << "reflected sideways: the green emitter";
+    EXPECT_NEAR(right.r, 0.0f, 1e-4f);
 }
 
 }  // namespace
