@@ -22,6 +22,7 @@ layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) flat in vec3 vertexKd;
 layout(location = 3) flat in vec3 ke;
+layout(location = 7) flat in vec4 specular;  // ks, ns (gbuffer_vertex.glsl)
 #ifdef GBUFFER_TEXTURED
 // kd times the base-colour texture (filtered over the pixel's footprint); alpha-tested materials
 // discard where the level-0 coverage < threshold.
@@ -62,7 +63,22 @@ float visibility(uint light, vec3 r, vec3 n) {
 }
 #endif
 
-// Lambert from light i (its shadow-map layers are 6i..6i+5), emission excluded.
+// The glossy lobe's direction (the view reflected about n) and the tracer's modified Phong
+// normalisation (ns + 2) / (2 pi), set in main for materials with ks > 0.
+vec3 mirrorOfView = vec3(0.0);
+vec3 phongKs = vec3(0.0);
+
+// kd / pi plus the tracer's glossy lobe ks (ns + 2) / (2 pi) cos^ns(alpha) for light direction wi.
+vec3 brdf(vec3 kd, vec3 wi) {
+    vec3 f = kd * kInvPi;
+    if (specular.x > 0.0 || specular.y > 0.0 || specular.z > 0.0) {
+        const float c = dot(mirrorOfView, wi);
+        if (c > 0.0) f += phongKs * pow(c, specular.w);
+    }
+    return f;
+}
+
+// Lambert (and the glossy lobe) from light i (its shadow-map layers are 6i..6i+5), emission excluded.
 vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
     if (isDirectional(light)) {  // irradiance E from direction normal.xyz
         float weight = max(dot(n, light.normal.xyz), 0.0);
@@ -70,7 +86,7 @@ vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
         if (weight > 0.0)
             weight *= directionalShadowVisibility(shadowCubes, i, light, worldPosition, n, shadowParams, int(kShadowPcf));
 #endif
-        return kd * kInvPi * light.intensity.rgb * weight;
+        return brdf(kd, light.normal.xyz) * light.intensity.rgb * weight;
     }
     const vec3 toLight = light.position.xyz - worldPosition;
     const float d2 = dot(toLight, toLight);
@@ -82,7 +98,7 @@ vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
 #ifdef GBUFFER_SHADOWS
     if (weight > 0.0) weight *= visibility(i, -toLight, n);  // no lookups for unlit sides
 #endif
-    return kd * kInvPi * light.intensity.rgb * weight;
+    return brdf(kd, wi) * light.intensity.rgb * weight;
 }
 
 void main() {
@@ -132,6 +148,8 @@ void main() {
     outColour = vec4(fresnel * reflected, fresnel);
     return;
 #endif
+    mirrorOfView = reflect(-normalize(toCamera), n);
+    phongKs = specular.xyz * ((specular.w + 2.0) * 0.5 * kInvPi);
     // Emitters are one-sided along their normal.
     vec3 colour = front ? ke : vec3(0.0);
 #define ADD_INLINE_LIGHT(k) \

@@ -13,11 +13,13 @@ layout(location = GBUFFER_LOCATION_POSITION) in vec3 inPosition;
 layout(location = GBUFFER_LOCATION_NORMAL) in vec3 inNormal;
 layout(location = GBUFFER_LOCATION_KD) in vec3 inKd;
 layout(location = GBUFFER_LOCATION_KE) in vec3 inKe;
+layout(location = GBUFFER_LOCATION_SPECULAR) in vec4 inSpecular;
 
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) flat out vec3 kd;
 layout(location = 3) flat out vec3 ke;
+layout(location = 7) flat out vec4 specular;  // after the textured outputs 4..6
 
 #ifdef GBUFFER_TEXTURED
 layout(location = GBUFFER_LOCATION_UV) in vec2 inUv;
@@ -38,6 +40,7 @@ void main() {
     worldNormal = inNormal;
     kd = inKd;
     ke = inKe;
+    specular = inSpecular;
 #ifdef GBUFFER_TEXTURED
     uv = inUv;
     texRect = inTexRect;

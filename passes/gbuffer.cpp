@@ -55,6 +55,7 @@ vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, 
         {GBUFFER_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kNormalOffset},
         {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKdOffset},
         {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKeOffset},
+        {GBUFFER_LOCATION_SPECULAR, 0, VK_FORMAT_R32G32B32A32_SFLOAT, SceneGpu::kSpecularOffset},
     };
     if (textured) {
         desc.vertexInput.attributes.push_back({GBUFFER_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, SceneGpu::kUvOffset});
@@ -91,6 +92,7 @@ vk::Pipeline makeGlassPipeline(VulkanContext& context, bool textured, std::vecto
         {GBUFFER_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kNormalOffset},
         {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKdOffset},
         {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKeOffset},
+        {GBUFFER_LOCATION_SPECULAR, 0, VK_FORMAT_R32G32B32A32_SFLOAT, SceneGpu::kSpecularOffset},
     };
     desc.colorFormats = {vk::toVkFormat(GBufferPass::kColourFormat)};
     desc.depthFormat = vk::toVkFormat(GBufferPass::kDepthFormat);

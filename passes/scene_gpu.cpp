@@ -30,10 +30,11 @@ struct Vertex {
     glm::vec3 normal;
     glm::vec3 kd;
     glm::vec3 ke;
+    glm::vec4 specular;  // ks, ns: the glossy lobe of a diffuse material (ks 0: none)
 };
 static_assert(sizeof(Vertex) == SceneGpu::kVertexStride);
 static_assert(offsetof(Vertex, normal) == SceneGpu::kNormalOffset && offsetof(Vertex, kd) == SceneGpu::kKdOffset &&
-              offsetof(Vertex, ke) == SceneGpu::kKeOffset);
+              offsetof(Vertex, ke) == SceneGpu::kKeOffset && offsetof(Vertex, specular) == SceneGpu::kSpecularOffset);
 
 // The textured layout: the material's atlas entry travels with the vertex too (flat), as kd does.
 struct TexturedVertex {
@@ -50,6 +51,7 @@ static_assert(offsetof(TexturedVertex, params) == SceneGpu::kTexParamsOffset);
 // How one material samples the atlas and tests alpha.
 struct MaterialSampling {
     glm::vec3 kd{0.0f};    // mirrors: the diffuse part the tracer keeps (passes/mirror.h)
+    glm::vec4 specular{0.0f};  // glossy diffuse materials: ks and ns, as the tracer scales them
     bool dropped = false;  // constant coverage below the cutoff: the triangles are never seen
     TexturedVertex fields{};  // rect and params (uv and base filled per vertex)
 };
@@ -60,6 +62,14 @@ MaterialSampling sampling(const Material& m, const Scene& scene, const TextureAt
     if (m.kind == MaterialKind::Mirror) {
         glm::vec3 reflectance;
         mirrorAlbedos(m, out.kd, reflectance);
+    }
+    const glm::vec3 ks = glm::max(m.ks, glm::vec3(0.0f));
+    if (m.kind == MaterialKind::Diffuse && (ks.x > 0.0f || ks.y > 0.0f || ks.z > 0.0f)) {
+        // The tracer's energy rule (tracer/embree_scene.cpp convertMaterial): kd + ks <= 1.
+        const glm::vec3 sum = out.kd + ks;
+        const float most = std::max({sum.x, sum.y, sum.z, 1.0f});
+        out.kd /= most;
+        out.specular = glm::vec4(ks / most, std::max(m.ns, 0.0f));
     }
     const auto key = atlasKey(m, scene);
     const auto entry = atlas.entries.find(key);
@@ -141,7 +151,8 @@ FlatMesh flatten(const Scene& scene, const TextureAtlas& atlas, bool textured) {
             glm::vec3 n = hasNormals ? mesh.normals[tri[k]] : face;
             if (!(glm::dot(n, n) > 0.0f)) n = face;  // zero or NaN normals in the file
             TexturedVertex v = ms.fields;
-            v.base = {p[k], n, isGlass(t) ? glassKd(m) : id < materials.size() ? ms.kd : m.kd, m.ke};
+            v.base = {p[k], n, isGlass(t) ? glassKd(m) : id < materials.size() ? ms.kd : m.kd, m.ke,
+                      id < materials.size() ? ms.specular : glm::vec4(0.0f)};
             v.uv = hasUvs ? mesh.uvs[tri[k]] : glm::vec2(0.0f);
             const auto* bytes = reinterpret_cast<const std::byte*>(&v);
             out.insert(out.end(), bytes, bytes + stride);

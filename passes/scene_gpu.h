@@ -35,12 +35,13 @@ namespace aamap::passes {
 
 class SceneGpu {
 public:
-    // Vertex layout: position, normal, kd, ke (vec3 each); the textured layout adds uv, the atlas
-    // entry (4 x u16) and its parameters (layer, alpha threshold) at the offsets below.
-    static constexpr std::uint32_t kVertexStride = 48;
-    static constexpr std::uint32_t kNormalOffset = 12, kKdOffset = 24, kKeOffset = 36;
-    static constexpr std::uint32_t kTexturedVertexStride = 72;
-    static constexpr std::uint32_t kUvOffset = 48, kTexRectOffset = 56, kTexParamsOffset = 64;
+    // Vertex layout: position, normal, kd, ke (vec3 each), then the glossy lobe (ks, Phong
+    // exponent ns; ks 0: none) as the tracer's modified Phong; the textured layout adds uv, the
+    // atlas entry (4 x u16) and its parameters (layer, alpha threshold) at the offsets below.
+    static constexpr std::uint32_t kVertexStride = 64;
+    static constexpr std::uint32_t kNormalOffset = 12, kKdOffset = 24, kKeOffset = 36, kSpecularOffset = 48;
+    static constexpr std::uint32_t kTexturedVertexStride = 88;
+    static constexpr std::uint32_t kUvOffset = 64, kTexRectOffset = 72, kTexParamsOffset = 80;
 
     SceneGpu(VulkanContext& context, const Scene& scene);  // uploads the mesh with its materials
 

@@ -28,6 +28,7 @@ using uint = std::uint32_t;
 #define GBUFFER_LOCATION_NORMAL 1    // vec3
 #define GBUFFER_LOCATION_KD 2        // vec3, diffuse albedo of the vertex's triangle
 #define GBUFFER_LOCATION_KE 3        // vec3, emitted radiance of the vertex's triangle
+#define GBUFFER_LOCATION_SPECULAR 7  // vec4, ks and Phong exponent ns (ks 0: no glossy lobe)
 // Only in the shadowed variant (gbuffer.shadowed.frag): without shadows there is no binding 1.
 #define GBUFFER_BINDING_SHADOW 1     // texture2DArray (depth), 6 layers per light, SHADOW_* below
 // Only in the textured variants (gbuffer.textured*.{vert,frag}, passes/gbuffer_textures.h): the

@@ -12,6 +12,7 @@
 #include "scene/camera.h"
 #include "scene/lights.h"
 #include "tests/common/image_compare.h"
+#include "test_scenes.h"
 
 namespace aamap::test {
 namespace {
@@ -188,6 +189,41 @@ TEST_F(SnapshotGraph, AreaLightBecomesLobesAndEmitterShowsItsRadiance) {
     const SnapshotResult up = renderer.render(below, 16, 16, settings);
     const glm::vec3 centre = up.snapshot.at(up.snapshot.width() / 2, up.snapshot.height() / 2);
     EXPECT_EQ(centre, glm::vec3(4.0f, 3.0f, 2.0f));
+}
+
+// A glossy floor shows the tracer's highlight: kd / pi plus the modified Phong lobe
+// ks (ns + 2) / (2 pi) cos^ns(alpha) about the view's mirror direction, with kd + ks scaled to 1.
+TEST_F(SnapshotGraph, GlossyMaterialsShowTheTracersHighlight) {
+    Scene scene;
+    Material glossy;
+    glossy.name = "glossy";
+    glossy.kd = glm::vec3(0.6f);
+    glossy.ks = glm::vec3(0.6f);  // kd + ks = 1.2: both scaled by 1 / 1.2, as the tracer does
+    glossy.ns = 40.0f;
+    scene.materials = {glossy};
+    addQuad(scene, -3.0f, 3.0f, -3.0f, 3.0f, 0.0f, {0, 0, 1}, 0);
+    PointLight light;
+    light.position = {0.0f, 0.0f, 3.0f};
+    light.intensity = glm::vec3(9.0f);
+    scene.pointLights.push_back(light);
+    const glm::vec3 eye(0.0f, 0.0f, 2.0f);
+    constexpr float kFov = 60.0f;
+    SnapshotRenderer renderer(context(), scene);
+    const SnapshotResult r = renderer.render(viewDownZ(eye, kFov), 32, 32, SnapshotSettings{});
+    const int w = static_cast<int>(r.snapshot.width()), h = static_cast<int>(r.snapshot.height());
+    const float kd = 0.6f / 1.2f, ks = 0.6f / 1.2f;
+    const float halfWidth = std::tan(glm::radians(kFov * 0.5f)) * eye.z;  // of the floor in view
+    for (const int px : {w / 2, w / 2 + w / 16, w / 2 + w / 8, w / 2 + w / 4}) {
+        const int py = h / 2;
+        const glm::vec3 p(((px + 0.5f) / w * 2.0f - 1.0f) * halfWidth, (1.0f - (py + 0.5f) / h * 2.0f) * halfWidth, 0.0f);
+        const glm::vec3 toLight = light.position - p, wo = glm::normalize(eye - p);
+        const glm::vec3 wi = glm::normalize(toLight), n(0, 0, 1);
+        const glm::vec3 mirror = glm::reflect(-wo, n);
+        const float lobe = std::pow(std::max(glm::dot(mirror, wi), 0.0f), glossy.ns);
+        const float f = kd / kPi + ks * (glossy.ns + 2.0f) / (2.0f * kPi) * lobe;
+        const float expected = f * 9.0f * wi.z / glm::dot(toLight, toLight);
+        EXPECT_NEAR(r.snapshot.at(px, py).g, expected, 2e-3f * expected + 1e-5f) << "pixel " << px;
+    }
 }
 
 // The G-buffer writes the grey of step 1 itself when no mirror composite follows it; the aamap
