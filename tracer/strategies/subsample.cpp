@@ -91,7 +91,7 @@ float predictedInterpolationError(const ImageRGB& image, const Block& block, flo
                 const float d = displayValue(predicted[c], exposure) - displayValue(traced[c], exposure);
                 squared += d * d;
             }
-            worst = std::max(worst, std::sqrt(squared / 3.0f));  // the block's own corners: 0
+            worst = std::max(worst, 255.0f * std::sqrt(squared / 3.0f));  // the block's own corners: 0
         }
     return worst;
 }
@@ -251,8 +251,9 @@ StrategyDescriptor subsampleStrategy() {
                 // Infinity: the map alone decides (the paper's Space 8/16).
                 realParam("gradient_tolerance", 0, std::numeric_limits<double>::infinity(), kDefaultGradientTolerance,
                           "a block to interpolate is split further while its centre and edge midpoints, traced, "
-                          "differ from the bilinear prediction of its corners by more than this (display RMS "
-                          "over R, G, B; 2/255: the display MSE error threshold)"),
+                          "differ from the bilinear prediction of its corners by more than this many 8-bit "
+                          "display code values (RMS over R, G, B; 2: the display MSE error threshold; inf: "
+                          "the map alone decides)"),
                 mappingParam()};
     d.usesAamap = true;
     d.needsBlockSums = true;

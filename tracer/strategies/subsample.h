@@ -45,14 +45,15 @@ float displayValue(float linear, float exposure);
 // The interpolation error predicted for the block: over the corners that splitBlock(block) adds,
 // the largest display-space difference between the traced value there and the bilinear
 // prediction from the block's corners, as the RMS over R, G, B (the display MSE metric's per-pixel
-// error, square-rooted). The image must hold traced values at all those points.
+// error, square-rooted), in 8-bit code values (1 = 1/255). The image must hold traced values at
+// all those points.
 float predictedInterpolationError(const ImageRGB& image, const Block& block, float exposure);
 
-// The gradient tolerance's default: 2/255, the per-pixel display error from which the reports
-// count a pixel as an MSE error (squared error >= (2/255)^2, averaged over the channels). A smooth
-// difference that small stays well below the LDR-FLIP threshold of 0.1, so a block predicted to
-// err by less is interpolated without an error either count sees.
-inline constexpr double kDefaultGradientTolerance = 2.0 / 255.0;
+// The gradient tolerance's default, in 8-bit display code values: 2, the per-pixel error from
+// which the reports count a pixel as an MSE error (squared error >= (2/255)^2, averaged over the
+// channels). A smooth difference that small stays well below the LDR-FLIP threshold of 0.1, so a
+// block predicted to err by less is interpolated without an error either count sees.
+inline constexpr double kDefaultGradientTolerance = 2.0;
 
 // Bilinear from the four corners, for the pixels strictly inside the block.
 void interpolateBlock(ImageRGB& image, const Block& block);
