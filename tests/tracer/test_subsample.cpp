@@ -104,7 +104,7 @@ TEST(Subsample, HugeThresholdTracesOnlyTheGridAndIsExactOnARamp) {
         StrategySettings st = strategy("aamap-subsample", 1, &map);
         st.params.set("spacing", s);
         st.params.set("threshold", std::numeric_limits<double>::infinity());
-        st.params.set("gradient_tolerance", std::numeric_limits<double>::infinity());  // the map alone
+        st.params.set("gradient_tolerance", kGradientToleranceOff);  // the map alone, as a config says it
         const StrategyImages out = runStrategy(st, src);
         const std::vector<int> xs = gridLines(w, s), ys = gridLines(h, s);
         for (int y = 0; y < h; ++y)

@@ -179,7 +179,9 @@ public:
     }
 
 private:
-    bool refinesGradients() const { return std::isfinite(gradientTolerance_); }
+    // No display difference exceeds 255 code values: a tolerance that high could never split, so
+    // no probe is traced and the map alone decides (the paper's Space 8/16; a config's way to it).
+    bool refinesGradients() const { return gradientTolerance_ < kGradientToleranceOff; }
 
     // Traces every pixel marked in `traced` that has no ray yet (k >= 1: a traced pixel has rays).
     // One parallel phase: each pixel is written by its own tile only.
@@ -231,7 +233,7 @@ private:
     StrataMapping mapping_;
     int spacing_;
     double threshold_;
-    double gradientTolerance_;  // infinity: no gradient rounds (the paper's map-only plan)
+    double gradientTolerance_;  // >= kGradientToleranceOff: no gradient rounds
     float exposure_;
     const ImageGrey& map_;
     const BlockSums* sums_;
@@ -248,12 +250,11 @@ StrategyDescriptor subsampleStrategy() {
                 // Infinity: never split (only the grid is traced); the config takes finite values.
                 realParam("threshold", 0, std::numeric_limits<double>::infinity(), 0,
                           "blocks whose aamap sum exceeds it are split, the rest interpolated"),
-                // Infinity: the map alone decides (the paper's Space 8/16).
                 realParam("gradient_tolerance", 0, std::numeric_limits<double>::infinity(), kDefaultGradientTolerance,
                           "a block to interpolate is split further while its centre and edge midpoints, traced, "
                           "differ from the bilinear prediction of its corners by more than this many 8-bit "
-                          "display code values (RMS over R, G, B; 2: the display MSE error threshold; inf: "
-                          "the map alone decides)"),
+                          "display code values (RMS over R, G, B; 2: the display MSE error threshold; 255 or "
+                          "more: the map alone decides, as the paper)"),
                 mappingParam()};
     d.usesAamap = true;
     d.needsBlockSums = true;

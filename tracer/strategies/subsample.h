@@ -54,6 +54,9 @@ float predictedInterpolationError(const ImageRGB& image, const Block& block, flo
 // channels). A smooth difference that small stays well below the LDR-FLIP threshold of 0.1, so a
 // block predicted to err by less is interpolated without an error either count sees.
 inline constexpr double kDefaultGradientTolerance = 2.0;
+// From this tolerance on no block can be split (a display difference is at most 255 code values):
+// the rounds are skipped and no probe is traced.
+inline constexpr double kGradientToleranceOff = 255.0;
 
 // Bilinear from the four corners, for the pixels strictly inside the block.
 void interpolateBlock(ImageRGB& image, const Block& block);
