@@ -51,8 +51,9 @@ float predictedInterpolationError(const ImageRGB& image, const Block& block, flo
 
 // The gradient tolerance's default, in 8-bit display code values: 2, the per-pixel error from
 // which the reports count a pixel as an MSE error (squared error >= (2/255)^2, averaged over the
-// channels). A smooth difference that small stays well below the LDR-FLIP threshold of 0.1, so a
-// block predicted to err by less is interpolated without an error either count sees.
+// channels). LDR-FLIP reaches the reports' 0.1 only for a smooth difference of 4 to 8 code values
+// (a grey bump, `aamap diff`), so a block predicted to err by less is interpolated without an
+// error either count sees.
 inline constexpr double kDefaultGradientTolerance = 2.0;
 // From this tolerance on no block can be split (a display difference is at most 255 code values):
 // the rounds are skipped and no probe is traced.
