@@ -8,6 +8,7 @@
 
 #include "tests/tracer/scene_builder.h"
 #include "tests/tracer/synthetic_source.h"
+#include "tracer/strategies/subsample.h"
 #include "tracer/tracer.h"
 
 namespace aamap {
@@ -68,6 +69,54 @@ TEST(StrategyRender, FlatColourGivesUniformsImageForEveryStrategy) {
             EXPECT_LT(std::abs(d.x) + std::abs(d.y) + std::abs(d.z), 1e-5f);
         }
         EXPECT_EQ(r.rays.primary, sumOf(r.primaryRays));
+    }
+}
+
+// A point lamp just above a diffuse floor: a steep smooth hot spot, and an aamap of zeros (no
+// edge anywhere). Traced pixels of aamap-subsample equal uniform n = 1's bit for bit, so the
+// difference to uniform is the interpolation error alone.
+TEST(StrategyRender, SubsampleGradientRoundsFollowAHotSpotTheMapDoesNotSee) {
+    testing::SceneBuilder b;
+    const auto floor = b.material("floor", glm::vec3(0.5f));
+    b.quad({-50, 0, -50}, {0, 0, 100}, {100, 0, 0}, floor);
+    b.pointLight({0.1f, 0.3f, -0.05f}, glm::vec3(0.45f, 0.4f, 0.35f));  // peak radiance ~0.8
+    const Tracer tracer(b.scene());
+    View v;
+    v.position = {0, 2, 2};
+    v.direction = glm::normalize(glm::vec3(0, -2, -2));
+    v.horizontalFovDeg = v.verticalFovDeg = 60;
+    const int w = 64, h = 64;
+    const ImageGrey zeros(w, h, 0.0f);
+    const TraceResult uniform = tracer.render(v, settingsFor(w, h, 2), strategy("uniform", 1));
+    auto maxCodeValueError = [&](const ImageRGB& image) {
+        float worst = 0.0f;
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                float squared = 0.0f;
+                for (int c = 0; c < 3; ++c) {
+                    const float d = displayValue(image.at(x, y)[c], 1.0f) - displayValue(uniform.image.at(x, y)[c], 1.0f);
+                    squared += d * d;
+                }
+                worst = std::max(worst, 255.0f * std::sqrt(squared / 3.0f));
+            }
+        return worst;
+    };
+    for (int spacing : {8, 16}) {
+        SCOPED_TRACE(spacing);
+        StrategySettings s = strategy("aamap-subsample", 4, &zeros);
+        s.params.set("spacing", spacing);
+        const TraceResult refined = tracer.render(v, settingsFor(w, h, 2), s);
+        s.params.set("gradient_tolerance", kGradientToleranceOff);
+        const TraceResult mapOnly = tracer.render(v, settingsFor(w, h, 2), s);
+        std::uint64_t traced = 0;
+        for (std::uint8_t t : refined.traced.pixels()) traced += t;
+        // The probes hold the error to the tolerance where they are; between them, and from the
+        // shading's noise, it may exceed it a little (here 2.6 code values, against 53 and 77
+        // for the map alone).
+        EXPECT_LT(maxCodeValueError(refined.image), 2.0f * static_cast<float>(kDefaultGradientTolerance));
+        EXPECT_GT(maxCodeValueError(mapOnly.image), 10.0f * static_cast<float>(kDefaultGradientTolerance));
+        EXPECT_LT(traced, static_cast<std::uint64_t>(w * h) * 3 / 4);  // the far floor stays interpolated
+        EXPECT_EQ(refined.rays.primary, sumOf(refined.primaryRays));
     }
 }
 
