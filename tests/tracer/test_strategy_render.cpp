@@ -110,9 +110,9 @@ TEST(StrategyRender, SubsampleGradientRoundsFollowAHotSpotTheMapDoesNotSee) {
         const TraceResult mapOnly = tracer.render(v, settingsFor(w, h, 2), s);
         std::uint64_t traced = 0;
         for (std::uint8_t t : refined.traced.pixels()) traced += t;
-        // The probes hold the error to the tolerance where they are; between them, and from the
-        // shading's noise, it may exceed it a little (here 2.6 code values, against 53 and 77
-        // for the map alone).
+        // The probes hold the error to the tolerance where they are; between them, and where a
+        // pixel's jittered sample differs from its neighbours', it may exceed it a little (here
+        // 2.6 code values, against 53 and 77 for the map alone).
         EXPECT_LT(maxCodeValueError(refined.image), 2.0f * static_cast<float>(kDefaultGradientTolerance));
         EXPECT_GT(maxCodeValueError(mapOnly.image), 10.0f * static_cast<float>(kDefaultGradientTolerance));
         EXPECT_LT(traced, static_cast<std::uint64_t>(w * h) * 3 / 4);  // the far floor stays interpolated
