@@ -263,6 +263,7 @@ public:
         TraceSettings ts = traceSettingsFor(config_, render, info_.width, info_.height, options_.threads);
         ts.onTileDone = progress;
         StrategySettings ss = toStrategySettings(render, aamap);
+        ss.exposure = static_cast<float>(config_.image.exposure);  // display-space tests (Space's gradients)
         std::string blockSums;
         if (findStrategy(ss.name)->needsBlockSums) {
             // The Snapshot's GPU tables when this run rendered it and the map is that one; the CPU

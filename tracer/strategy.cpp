@@ -140,7 +140,9 @@ std::unique_ptr<SamplingStrategy> makeStrategy(const StrategySettings& s, int wi
     require(d != nullptr, fmt::format("unknown sampling strategy '{}'", s.name));
     const int n = s.strata;
     require(n >= 1 && n <= kMaxStrata, fmt::format("strata must be in [1, {}], got {}", kMaxStrata, n));
-    const StrategyInputs inputs{width, height, n, s.aamap, s.blockSums};
+    require(std::isfinite(s.exposure) && s.exposure > 0.0f,
+            fmt::format("the display exposure must be finite and > 0, got {}", s.exposure));
+    const StrategyInputs inputs{width, height, n, s.aamap, s.blockSums, s.exposure};
     if (d->usesAamap) {
         require(s.aamap != nullptr, fmt::format("{} strategy needs an aamap image", d->name));
         require(s.aamap->width() == width && s.aamap->height() == height,

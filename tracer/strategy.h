@@ -30,6 +30,9 @@ struct StrategySettings {
     // Strategies that need block sums: those of `aamap` computed elsewhere (the Snapshot's GPU
     // pass); null: the strategy builds them on the CPU. Must be of the same map. Not owned.
     const BlockSums* blockSums = nullptr;
+    // The display exposure (image.exposure): strategies that judge image differences as the PNGs
+    // and the error metrics show them (exposure, clamp, sRGB). Finite and > 0.
+    float exposure = 1.0f;
 };
 
 class SamplingStrategy {
@@ -61,6 +64,7 @@ struct StrategyInputs {
     int strata = 1;             // n, in [1, kMaxStrata]
     const ImageGrey* aamap = nullptr;      // usesAamap: present, of the render's size (not owned)
     const BlockSums* blockSums = nullptr;  // needsBlockSums: null or of the render's size (not owned)
+    float exposure = 1.0f;                 // StrategySettings::exposure, checked
 };
 
 // One sampling strategy, as the config, the runner, the viewer and the documentation see it.

@@ -202,7 +202,8 @@ void ViewerSession::runTrace(TraceJob& job) {
                         liveRays_.at(x, y) = t.primaryRays.at(x, y);
                     }
             };
-            const StrategySettings strategy = toStrategySettings(job.render, &job.aamap);
+            StrategySettings strategy = toStrategySettings(job.render, &job.aamap);
+            strategy.exposure = static_cast<float>(config_.image.exposure);  // as `aamap run` renders it
             TraceResult r = tracer_.render(job.view, ts, strategy);
             const double meanRpp = static_cast<double>(r.rays.primary) / (static_cast<double>(width_) * height_);
             spdlog::info("view: {} traced in {:.2f} s, {} rays ({:.2f} primary/pixel)", r.strategy, r.seconds,

@@ -91,7 +91,7 @@ TEST(StrategyRegistry, EveryChoiceRoundTrips) {
 TEST(StrategyRegistry, RenderKeysKeepTheirParameterFormat) {
     const ExperimentConfig c = parse("scene: builtin:cornell\nrenders:\n  - {strategy: aamap-subsample, rpp: 4}\n"
                                      "  - {strategy: supersample, rpp: 4, filter: gaussian}\n");
-    EXPECT_NE(renderKeyJson(c, c.renders[0]).find(R"("params":{"spacing":8.0,"threshold":0.0,"mapping":"paper"})"),
+    EXPECT_NE(renderKeyJson(c, c.renders[0]).find(R"("params":{"spacing":8.0,"threshold":0.0,"gradient_tolerance":2.0,"mapping":"paper"})"),
               std::string::npos)
         << renderKeyJson(c, c.renders[0]);
     EXPECT_NE(renderKeyJson(c, c.renders[1])

@@ -101,8 +101,8 @@ TEST_F(Extremes, LargeImage2048) {
 }
 
 // 8192 x 8192, the largest supported size, through the cheapest strategy that still writes every
-// pixel: aamap-subsample with s = 64 and t = infinity traces only the grid (129 x 129 rays, one
-// per grid pixel) and interpolates the rest. Budget, stated up front: 64 Mpx x (12 B RGB + 2 B rays
+// pixel: aamap-subsample with s = 64, t = infinity and no gradient rounds traces only the grid
+// (129 x 129 rays, one per grid pixel) and interpolates the rest. Budget, stated up front: 64 Mpx x (12 B RGB + 2 B rays
 // + 1 B traced + 4 B aamap + 12 B block sums: a double table and a uint32 count table) = 1.9 GiB
 // (peak RSS and time: docs/robustness.md). Every pixel must be finite, and the interpolation
 // between finite corners must stay within their range.
@@ -115,6 +115,7 @@ TEST_F(Extremes, LargeImage8192BySubsampling) {
     st.aamap = &map;
     st.params.set("spacing", 64);
     st.params.set("threshold", std::numeric_limits<double>::infinity());
+    st.params.set("gradient_tolerance", std::numeric_limits<double>::infinity());  // no gradient rounds
     TraceSettings s = settings(kSize, kSize);
     s.shading.areaLightSamples = 1;
     const TraceResult r = tracer_->render(view(), s, st);

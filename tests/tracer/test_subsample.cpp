@@ -104,6 +104,7 @@ TEST(Subsample, HugeThresholdTracesOnlyTheGridAndIsExactOnARamp) {
         StrategySettings st = strategy("aamap-subsample", 1, &map);
         st.params.set("spacing", s);
         st.params.set("threshold", std::numeric_limits<double>::infinity());
+        st.params.set("gradient_tolerance", kGradientToleranceOff);  // the map alone, as a config says it
         const StrategyImages out = runStrategy(st, src);
         const std::vector<int> xs = gridLines(w, s), ys = gridLines(h, s);
         for (int y = 0; y < h; ++y)
@@ -125,6 +126,7 @@ TEST(Subsample, RefinesOnlyWhereTheMapIsNonZeroWithoutCracks) {
     const SyntheticSource src(w, h, ramp, true);
     StrategySettings st = strategy("aamap-subsample", 3, &map);
     st.params.set("spacing", 8);
+    st.params.set("gradient_tolerance", std::numeric_limits<double>::infinity());  // the map alone
     const StrategyImages out = runStrategy(st, src);
     EXPECT_EQ(out.traced.at(13, 21), 1);
     EXPECT_EQ(out.primaryRays.at(13, 21), 4);  // k = 1 + round(0.3 * 2) = 2
@@ -216,6 +218,7 @@ TEST(Subsample, GivenBlockSumsDecideTheSplitsAndAreNamed) {
     const BlockSums given(zeros);
     StrategySettings st = strategy("aamap-subsample", 2, &ones);
     st.params.set("spacing", 8);
+    st.params.set("gradient_tolerance", std::numeric_limits<double>::infinity());  // the map alone
     const SyntheticSource a(w, h, [](float fx, float) { return glm::vec3(fx); }, true);
     const StrategyImages cpu = runStrategy(st, a);
     st.blockSums = &given;
@@ -227,6 +230,170 @@ TEST(Subsample, GivenBlockSumsDecideTheSplitsAndAreNamed) {
     EXPECT_NE(makeStrategy(st, w, h)->describe().find("block-sums=given"), std::string::npos);
     st.blockSums = nullptr;
     EXPECT_NE(makeStrategy(st, w, h)->describe().find("block-sums=cpu"), std::string::npos);
+}
+
+// Gradient rounds. A point lamp at height d over a plane: irradiance ~ d / (r^2 + d^2)^(3/2), a
+// steep smooth hot spot that no aamap flags. Peak 0.8, so nothing clips at exposure 1.
+constexpr float kLampX = 27.3f, kLampY = 30.6f, kLampHeight = 9.0f;
+glm::vec3 hotSpot(float fx, float fy) {
+    const float r2 = (fx - kLampX) * (fx - kLampX) + (fy - kLampY) * (fy - kLampY);
+    const float falloff = std::pow(1.0f + r2 / (kLampHeight * kLampHeight), -1.5f);
+    return glm::vec3(0.8f, 0.7f, 0.6f) * falloff + glm::vec3(0.02f);
+}
+
+// The largest display error of `test` against the exact pixel-centre values, in 8-bit code
+// values (RMS over R, G, B), as predictedInterpolationError() measures it.
+float maxDisplayError(const ImageRGB& test, const SyntheticSource::Radiance& f, float exposure = 1.0f) {
+    float worst = 0.0f;
+    for (int y = 0; y < test.height(); ++y)
+        for (int x = 0; x < test.width(); ++x) {
+            const glm::vec3 exact = f(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+            float squared = 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                const float d = displayValue(test.at(x, y)[c], exposure) - displayValue(exact[c], exposure);
+                squared += d * d;
+            }
+            worst = std::max(worst, 255.0f * std::sqrt(squared / 3.0f));
+        }
+    return worst;
+}
+
+std::uint64_t tracedCount(const StrategyImages& out) {
+    std::uint64_t n = 0;
+    for (std::uint8_t t : out.traced.pixels()) n += t;
+    return n;
+}
+
+TEST(SubsampleGradients, PredictedErrorIsZeroOnBilinearAndSeesACentredBump) {
+    ImageRGB img(9, 9, glm::vec3(0.0f));
+    for (int y = 0; y < 9; ++y)
+        for (int x = 0; x < 9; ++x) img.at(x, y) = glm::vec3(0.01f * static_cast<float>(x * y) + 0.1f);  // bilinear
+    const Block b{0, 0, 8, 8};
+    EXPECT_LT(predictedInterpolationError(img, b, 1.0f), 1e-4f);
+    img.at(4, 4) += glm::vec3(0.2f);  // the centre, between four corners of which none sees it
+    const float expected = displayValue(img.at(4, 4).x, 1.0f) - displayValue(img.at(4, 4).x - 0.2f, 1.0f);
+    EXPECT_NEAR(predictedInterpolationError(img, b, 1.0f), 255.0f * expected, 1e-4f);  // code values
+    // Halves: a block one pixel wide probes only the midpoints of its long sides.
+    EXPECT_EQ(splitBlock({3, 0, 4, 8}).size(), 2u);
+    EXPECT_LT(predictedInterpolationError(img, {0, 0, 1, 8}, 1.0f), 1e-4f);
+    // Saturated in display space: any radiance above white is white, so no error.
+    EXPECT_EQ(predictedInterpolationError(img, b, 1000.0f), 0.0f);
+}
+
+TEST(SubsampleGradients, SteepFalloffStaysWithinTheToleranceOnlyWithGradientRounds) {
+    const int w = 64, h = 56;
+    const ImageGrey zeros(w, h, 0.0f);  // the map sees nothing
+    const double tolerance = kDefaultGradientTolerance;
+    for (int spacing : {8, 16}) {
+        SCOPED_TRACE(spacing);
+        StrategySettings st = strategy("aamap-subsample", 1, &zeros);
+        st.params.set("spacing", spacing);
+        const SyntheticSource refined(w, h, hotSpot, true);
+        const StrategyImages with = runStrategy(st, refined);
+        st.params.set("gradient_tolerance", std::numeric_limits<double>::infinity());
+        const SyntheticSource mapOnly(w, h, hotSpot, true);
+        const StrategyImages without = runStrategy(st, mapOnly);
+        const float errorWith = maxDisplayError(with.image, hotSpot);
+        const float errorWithout = maxDisplayError(without.image, hotSpot);
+        // The probes bound the error where they are, and between them a smooth falloff errs less
+        // (here at most 1.06 code values, against 36 and 66 without the rounds).
+        EXPECT_LT(errorWith, tolerance);
+        EXPECT_GT(errorWithout, 10.0 * tolerance);
+        // Rays only near the spot: far fewer than every pixel.
+        EXPECT_LT(tracedCount(with), static_cast<std::uint64_t>(w * h) / 2);
+        EXPECT_GT(tracedCount(with), tracedCount(without));
+        EXPECT_EQ(refined.totalCalls(), testing::sumOf(with.primaryRays));
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) EXPECT_EQ(refined.calls(x, y), with.primaryRays.at(x, y));
+    }
+}
+
+// A block the plan would interpolate traces the corners its split adds, once; in a flat (or
+// linear) image they match the prediction, so no block is split further.
+Image<std::uint8_t> gridAndOneSplit(int w, int h, int spacing) {
+    const SubsamplePlan plan = planSubsampling(BlockSums(ImageGrey(w, h, 0.0f)), spacing, 0.0);
+    Image<std::uint8_t> expected = plan.traced;
+    for (const Block& b : plan.interpolated)
+        for (const Block& part : splitBlock(b))
+            for (const auto& [x, y] : {std::pair{part.x0, part.y0}, std::pair{part.x1, part.y0},
+                                       std::pair{part.x0, part.y1}, std::pair{part.x1, part.y1}})
+                expected.at(x, y) = 1;
+    return expected;
+}
+
+TEST(SubsampleGradients, FlatAndLinearImagesAreNeverSplitBeyondTheProbes) {
+    const int w = 37, h = 21;
+    const ImageGrey zeros(w, h, 0.0f);
+    const SyntheticSource::Radiance flat = [](float, float) { return glm::vec3(0.3f, 0.5f, 0.1f); };
+    for (int spacing : {4, 8, 16}) {
+        SCOPED_TRACE(spacing);
+        const Image<std::uint8_t> expected = gridAndOneSplit(w, h, spacing);
+        for (double tolerance : {0.0, kDefaultGradientTolerance}) {
+            StrategySettings st = strategy("aamap-subsample", 2, &zeros);
+            st.params.set("spacing", spacing);
+            st.params.set("gradient_tolerance", tolerance);
+            const SyntheticSource constant(w, h, flat);  // jittered: a constant is exact anyway
+            const StrategyImages out = runStrategy(st, constant);
+            EXPECT_TRUE(out.traced == expected);
+            EXPECT_EQ(constant.totalCalls(), tracedCount(out));  // k = 1 where the map is 0
+            for (const glm::vec3& v : out.image.pixels()) EXPECT_EQ(v, flat(0.0f, 0.0f));
+        }
+        StrategySettings st = strategy("aamap-subsample", 2, &zeros);
+        st.params.set("spacing", spacing);
+        const SyntheticSource linear(w, h, ramp, true);
+        const StrategyImages out = runStrategy(st, linear);
+        EXPECT_TRUE(out.traced == expected);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                const glm::vec3 d = out.image.at(x, y) - rampAtCentre(x, y);
+                EXPECT_LT(std::abs(d.x) + std::abs(d.y) + std::abs(d.z), 1e-4f) << x << "," << y;
+            }
+    }
+}
+
+TEST(SubsampleGradients, DecidedInDisplaySpace) {
+    const int w = 64, h = 56;
+    const ImageGrey zeros(w, h, 0.0f);
+    StrategySettings st = strategy("aamap-subsample", 1, &zeros);
+    st.params.set("spacing", 16);
+    const SyntheticSource normal(w, h, hotSpot, true);
+    const std::uint64_t atOne = tracedCount(runStrategy(st, normal));
+    // Every value far above white: the display is flat, so only the probes are traced.
+    st.exposure = 1000.0f;
+    const SyntheticSource bright(w, h, hotSpot, true);
+    const StrategyImages white = runStrategy(st, bright);
+    EXPECT_TRUE(white.traced == gridAndOneSplit(w, h, 16));
+    // Dim: the same radiance differences are smaller on the display, fewer splits.
+    st.exposure = 0.05f;
+    const SyntheticSource dim(w, h, hotSpot, true);
+    const StrategyImages dark = runStrategy(st, dim);
+    EXPECT_LT(tracedCount(dark), atOne);
+    EXPECT_LT(maxDisplayError(dark.image, hotSpot, 0.05f), 2.0 * kDefaultGradientTolerance);
+    for (float bad : {0.0f, -1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+        st.exposure = bad;
+        EXPECT_THROW(makeStrategy(st, w, h), std::invalid_argument);
+    }
+}
+
+TEST(SubsampleGradients, BitIdenticalForAnyThreadCount) {
+    const int w = 61, h = 47;
+    ImageGrey map(w, h, 0.0f);
+    for (int y = 30; y < 36; ++y) map.at(50, y) = 0.6f;  // map-driven splits beside gradient ones
+    for (int spacing : {8, 16}) {
+        StrategySettings st = strategy("aamap-subsample", 3, &map);
+        st.params.set("spacing", spacing);
+        const SyntheticSource a(w, h, hotSpot), b(w, h, hotSpot), c(w, h, hotSpot);  // jittered
+        const StrategyImages one = runStrategy(st, a, 1), two = runStrategy(st, b, 2), five = runStrategy(st, c, 5);
+        EXPECT_TRUE(one.image == two.image && one.image == five.image);
+        EXPECT_TRUE(one.primaryRays == two.primaryRays && one.primaryRays == five.primaryRays);
+        EXPECT_TRUE(one.traced == two.traced && one.traced == five.traced);
+        EXPECT_EQ(a.totalCalls(), testing::sumOf(one.primaryRays));
+        EXPECT_EQ(c.totalCalls(), a.totalCalls());
+        const Image<std::uint8_t> firstProbes = gridAndOneSplit(w, h, spacing);
+        std::uint64_t probesOnly = 0;  // the rounds went deeper than the first probes
+        for (std::uint8_t t : firstProbes.pixels()) probesOnly += t;
+        EXPECT_GT(tracedCount(one), probesOnly);
+    }
 }
 
 }  // namespace

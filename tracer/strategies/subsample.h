@@ -1,9 +1,14 @@
 #pragma once
-// The paper's adaptive subsampling (section 4): trace a grid of spacing s (plus the last row and
-// column, so any size is covered). Each s x s block whose aamap sum (corners included) exceeds t
-// is split into four, recursively down to single pixels; the inside of every other block is
-// interpolated from its traced corners. Traced pixels get k(p) x k(p) strata ("Space 8/16").
-// The decision depends on the map only, so it is planned before any ray is traced.
+// The paper's adaptive subsampling (section 4), with a gradient refinement beyond the paper. Trace
+// a grid of spacing s (plus the last row and column, so any size is covered). Each s x s block
+// whose aamap sum (corners included) exceeds t is split into four, recursively down to single
+// pixels: that decision depends on the map only, so it is planned before any ray is traced. Then,
+// in rounds, every block that would be interpolated traces the points a split adds (its edge
+// midpoints and centre) and compares them with the bilinear prediction from its corners, in
+// display space: where the prediction is off by more than the gradient tolerance (a steep smooth
+// gradient the map does not see: a hot spot, a light's falloff, a soft shadow) its four quarters
+// are tested in turn, down to the pixel; otherwise the quarters, whose corners are now all traced,
+// are interpolated. Traced pixels get k(p) x k(p) strata ("Space 8/16").
 #include <cstdint>
 #include <vector>
 
@@ -25,7 +30,34 @@ struct SubsamplePlan {
 // Grid positions 0, s, 2s, ... and size - 1.
 std::vector<int> gridLines(int size, int spacing);
 
+// Whether the block has a pixel that is not one of its corners (something to interpolate).
+bool hasInnerPixels(const Block& block);
+// The blocks a split gives: four quarters at the midpoints (x0 + x1) / 2, (y0 + y1) / 2, or two
+// halves where one side has no pixel between its corners. Their corners are the block's corners,
+// its edge midpoints and its centre. Only for blocks with inner pixels.
+std::vector<Block> splitBlock(const Block& block);
+
 SubsamplePlan planSubsampling(const BlockSums& sums, int spacing, double threshold);
+
+// The value the error metrics compare for a linear channel: exposure, non-finite -> 0, clamp to
+// [0,1], the sRGB OETF (core's srgbEncode, as toneMap() and metrics::displayEncode()).
+float displayValue(float linear, float exposure);
+// The interpolation error predicted for the block: over the corners that splitBlock(block) adds,
+// the largest display-space difference between the traced value there and the bilinear
+// prediction from the block's corners, as the RMS over R, G, B (the display MSE metric's per-pixel
+// error, square-rooted), in 8-bit code values (1 = 1/255). The image must hold traced values at
+// all those points.
+float predictedInterpolationError(const ImageRGB& image, const Block& block, float exposure);
+
+// The gradient tolerance's default, in 8-bit display code values: 2, the per-pixel error from
+// which the reports count a pixel as an MSE error (squared error >= (2/255)^2, averaged over the
+// channels). LDR-FLIP reaches the reports' 0.1 only for a smooth difference of 4 to 8 code values
+// (a grey bump, `aamap diff`), so a block predicted to err by less is interpolated without an
+// error either count sees.
+inline constexpr double kDefaultGradientTolerance = 2.0;
+// From this tolerance on no block can be split (a display difference is at most 255 code values):
+// the rounds are skipped and no probe is traced.
+inline constexpr double kGradientToleranceOff = 255.0;
 
 // Bilinear from the four corners, for the pixels strictly inside the block.
 void interpolateBlock(ImageRGB& image, const Block& block);
