@@ -310,7 +310,7 @@ std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-6";  // bump as the render key
+    j["format"] = "aamap-snapshot-7";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c);
     return fnv1a64Hex(j.dump());
