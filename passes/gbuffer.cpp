@@ -16,6 +16,17 @@
 namespace aamap::passes {
 namespace {
 
+// The attributes of gbuffer_vertex.glsl every layout has (SceneGpu's first kVertexStride bytes).
+std::vector<VkVertexInputAttributeDescription> baseVertexAttributes() {
+    return {
+        {GBUFFER_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+        {GBUFFER_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kNormalOffset},
+        {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKdOffset},
+        {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKeOffset},
+        {GBUFFER_LOCATION_SPECULAR, 0, VK_FORMAT_R32G32B32A32_SFLOAT, SceneGpu::kSpecularOffset},
+    };
+}
+
 // The pre-pass: positions in, depth out, no fragment work (the empty depth-only shader).
 vk::Pipeline makeDepthPipeline(VulkanContext& context) {
     vk::GraphicsDesc desc;
@@ -50,13 +61,7 @@ vk::Pipeline makePipeline(VulkanContext& context, bool shadowed, bool textured, 
                                       : (shadowed ? spirv::gbuffer_shadowed_frag : spirv::gbuffer_frag);
     }
     desc.vertexInput.stride = textured ? SceneGpu::kTexturedVertexStride : SceneGpu::kVertexStride;
-    desc.vertexInput.attributes = {
-        {GBUFFER_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-        {GBUFFER_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kNormalOffset},
-        {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKdOffset},
-        {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKeOffset},
-        {GBUFFER_LOCATION_SPECULAR, 0, VK_FORMAT_R32G32B32A32_SFLOAT, SceneGpu::kSpecularOffset},
-    };
+    desc.vertexInput.attributes = baseVertexAttributes();
     if (textured) {
         desc.vertexInput.attributes.push_back({GBUFFER_LOCATION_UV, 0, VK_FORMAT_R32G32_SFLOAT, SceneGpu::kUvOffset});
         desc.vertexInput.attributes.push_back(
@@ -87,13 +92,7 @@ vk::Pipeline makeGlassPipeline(VulkanContext& context, bool textured, std::vecto
     desc.vertexSpirv = spirv::gbuffer_vert;
     desc.fragmentSpirv = spirv::gbuffer_glass_frag;
     desc.vertexInput.stride = textured ? SceneGpu::kTexturedVertexStride : SceneGpu::kVertexStride;
-    desc.vertexInput.attributes = {
-        {GBUFFER_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
-        {GBUFFER_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kNormalOffset},
-        {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKdOffset},
-        {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKeOffset},
-        {GBUFFER_LOCATION_SPECULAR, 0, VK_FORMAT_R32G32B32A32_SFLOAT, SceneGpu::kSpecularOffset},
-    };
+    desc.vertexInput.attributes = baseVertexAttributes();
     desc.colorFormats = {vk::toVkFormat(GBufferPass::kColourFormat)};
     desc.depthFormat = vk::toVkFormat(GBufferPass::kDepthFormat);
     desc.depthCompare = VK_COMPARE_OP_GREATER;  // reversed depth: in front of the opaque surface

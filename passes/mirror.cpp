@@ -487,15 +487,8 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
     executor.setRecord(kMirrorMaskPass, [this, depth, maskPush](vk::PassContext& pc) {
         const vk::Image& target = pc.image(kMirrorMask);
         const VkExtent2D extent{target.info().width, target.info().height};
-        const VkRenderingAttachmentInfo colourInfo = vk::clearedColourAttachment(target.view());  // layer + 1 = 0: no mirror
-        VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        rendering.renderArea = {{0, 0}, extent};
-        rendering.layerCount = 1;
-        rendering.colorAttachmentCount = 1;
-        rendering.pColorAttachments = &colourInfo;
         VkCommandBuffer cmd = pc.cmd();
-        vkCmdBeginRendering(cmd, &rendering);
-        vk::setFullViewport(cmd, extent);
+        vk::beginColourRendering(cmd, vk::clearedColourAttachment(target.view()), extent);  // layer + 1 = 0: no mirror
         maskPipeline_.bind(cmd);
         vk::DescriptorPush()
             .sampledImage(MIRROR_MASK_BINDING_DEPTH, pc.image(depth).view(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)

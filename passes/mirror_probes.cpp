@@ -182,19 +182,8 @@ void MirrorProbes::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, G
     executor.setRecord(kMirrorProbeCompositePass, [this, snapshot, depth, push](vk::PassContext& pc) {
         const vk::Image& target = pc.image(snapshot);
         const VkExtent2D extent{target.info().width, target.info().height};
-        VkRenderingAttachmentInfo colourInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        colourInfo.imageView = target.view();
-        colourInfo.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        colourInfo.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // add to the shaded snapshot
-        colourInfo.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        rendering.renderArea = {{0, 0}, extent};
-        rendering.layerCount = 1;
-        rendering.colorAttachmentCount = 1;
-        rendering.pColorAttachments = &colourInfo;
         VkCommandBuffer cmd = pc.cmd();
-        vkCmdBeginRendering(cmd, &rendering);
-        vk::setFullViewport(cmd, extent);
+        vk::beginColourRendering(cmd, vk::loadedColourAttachment(target.view()), extent);  // add to the shading
         compositePipeline_.bind(cmd);
         vk::DescriptorPush()
             .sampledImage(MIRROR_PROBE_BINDING_DEPTH, pc.image(depth).view(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL)

@@ -261,6 +261,22 @@ VkRenderingAttachmentInfo clearedColourAttachment(VkImageView view, VkClearColor
     return info;
 }
 
+VkRenderingAttachmentInfo loadedColourAttachment(VkImageView view) {
+    VkRenderingAttachmentInfo info = clearedColourAttachment(view);
+    info.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    return info;
+}
+
+void beginColourRendering(VkCommandBuffer cmd, const VkRenderingAttachmentInfo& colour, VkExtent2D extent) {
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, extent};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = 1;
+    rendering.pColorAttachments = &colour;
+    vkCmdBeginRendering(cmd, &rendering);
+    setFullViewport(cmd, extent);
+}
+
 void dispatch2D(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height, std::uint32_t groupX,
                 std::uint32_t groupY) {
     vkCmdDispatch(cmd, (width + groupX - 1) / groupX, (height + groupY - 1) / groupY, 1);

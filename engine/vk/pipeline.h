@@ -106,6 +106,12 @@ void setFullViewport(VkCommandBuffer cmd, VkExtent2D extent);
 // pass of the Snapshot starts from (black, as rays that miss; 0 also means "nothing here" in the
 // id and mask targets).
 VkRenderingAttachmentInfo clearedColourAttachment(VkImageView view, VkClearColorValue clear = {});
+// The same, loading what the attachment holds: a pass that draws over an earlier one's image.
+VkRenderingAttachmentInfo loadedColourAttachment(VkImageView view);
+
+// Begins dynamic rendering into the one colour attachment `colour` (one layer, no depth) of
+// `extent`, with the full viewport set: the mask and overlay passes' whole setup.
+void beginColourRendering(VkCommandBuffer cmd, const VkRenderingAttachmentInfo& colour, VkExtent2D extent);
 
 // Dispatches enough workgroups of size groupX x groupY to cover width x height.
 void dispatch2D(VkCommandBuffer cmd, std::uint32_t width, std::uint32_t height, std::uint32_t groupX,

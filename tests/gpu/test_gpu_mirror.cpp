@@ -540,11 +540,7 @@ TEST(MirrorGeometry, BadTrianglesAreSkipped) {
 // Projected coverage: a square filling the middle quarter of a 90-degree view covers a quarter of
 // the pixels; one crossing the eye's plane counts its part in front; one behind counts nothing.
 TEST(MirrorGeometry, ProjectedPixelsOfAQuad) {
-    View v;
-    v.position = {0, 0, 0};
-    v.direction = {0, 0, -1};
-    v.up = {0, 1, 0};
-    v.horizontalFovDeg = v.verticalFovDeg = 90.0f;
+    const View v = viewDownZ({0, 0, 0}, 90.0f);
     const PinholeCamera camera = PinholeCamera::fromView(v);
     const glm::mat4 viewProj = camera.projectionMatrix(0.01f, 100.0f) * camera.viewMatrix();
     Scene s;
