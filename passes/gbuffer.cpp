@@ -194,7 +194,9 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
     const graph::PassId id = graph.addPass({pass, graph::QueueKind::Graphics, accesses, std::move(purpose)});
     const vk::Pipeline& pipeline = pipelineFor(executor, pass, shadowed, true, false, shadows.pcf, false);
     std::vector<gpu::GBufferPush> pushes;
+    std::vector<VkRect2D> scissors;
     for (std::size_t i = 0; i < views.size(); ++i) {
+        scissors.push_back(views[i].scissor);
         gpu::GBufferPush push{};
         push.viewProj = views[i].viewProj;
         push.cameraPos = glm::vec4(views[i].eye, 1.0f);
@@ -204,15 +206,17 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
         push.clipPlane = views[i].clipPlane;
         pushes.push_back(push);
     }
-    executor.setRecord(pass, [this, colour, depth, pushes, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
-        record(pc, colour, "", depth, pipeline, shadow, pushes, false, nullptr);
+    executor.setRecord(pass, [this, colour, depth, pushes, scissors, &pipeline,
+                              shadow = shadows.resource](vk::PassContext& pc) {
+        record(pc, colour, "", depth, pipeline, shadow, pushes, false, nullptr, scissors);
     });
     return id;
 }
 
 void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const std::string& grey,
                          const std::string& depth, const vk::Pipeline& pipeline, const std::string& shadow,
-                         std::span<const gpu::GBufferPush> draws, bool prepass, const vk::Pipeline* glass) const {
+                         std::span<const gpu::GBufferPush> draws, bool prepass, const vk::Pipeline* glass,
+                         std::span<const VkRect2D> scissors) const {
     const vk::Image& target = pc.image(colour);
     const vk::Image& z = pc.image(depth);
     const VkExtent2D extent{target.info().width, target.info().height};
@@ -269,7 +273,12 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
         const VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
         if (prepass) vkCmdBindIndexBuffer(cmd, scene_->reversedTriangleBuffer().handle(), 0, VK_INDEX_TYPE_UINT32);
-        for (const gpu::GBufferPush& push : draws) {
+        for (std::size_t d = 0; d < draws.size(); ++d) {
+            const gpu::GBufferPush& push = draws[d];
+            if (d < scissors.size()) {
+                const VkRect2D rect = scissors[d].extent.width > 0 ? scissors[d] : VkRect2D{{0, 0}, extent};
+                vkCmdSetScissor(cmd, 0, 1, &rect);
+            }
             pipeline.pushConstants(cmd, push);
             if (prepass) vkCmdDrawIndexed(cmd, vertexCount, 1, 0, 0, 0);
             else vkCmdDraw(cmd, vertexCount, 1, 0, 0);

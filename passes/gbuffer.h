@@ -58,6 +58,7 @@ struct ReflectedView {
     glm::mat4 viewProj{1.0f};
     glm::vec3 eye{0.0f};
     glm::vec4 clipPlane{0.0f};
+    VkRect2D scissor{};  // the pixels the view must shade (width 0: all)
 };
 
 // The camera a Snapshot raster draws from: its clip planes enclose the scene's bounding sphere
@@ -103,9 +104,10 @@ public:
 
 private:
     bool hasDepthPrepass() const { return depthPipeline_.handle() != VK_NULL_HANDLE; }
+    // scissors: one per draw (width 0: the whole target), or empty for none.
     void record(vk::PassContext& pc, const std::string& colour, const std::string& grey, const std::string& depth,
                 const vk::Pipeline& pipeline, const std::string& shadow, std::span<const gpu::GBufferPush> draws,
-                bool prepass, const vk::Pipeline* glass) const;
+                bool prepass, const vk::Pipeline* glass, std::span<const VkRect2D> scissors = {}) const;
 
     // The shading pipeline of each variant, specialised for the scene's light list of
     // `lightsVersion` (older versions are dropped: their recordings must be declared again

@@ -27,6 +27,20 @@ struct MaskVertex {
 
 bool positive(glm::vec3 c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
 
+// The pixels of an image of `pixels` that NDC bounds (min x, min y, max x, max y) touch, one pixel
+// of slack for the raster's rounding; the whole image if the bounds are empty or not finite.
+VkRect2D scissorOf(glm::vec4 ndc, glm::uvec2 pixels) {
+    const auto toPixel = [](float v, std::uint32_t size) {
+        const float p = (v + 1.0f) * 0.5f * static_cast<float>(size);
+        return std::isfinite(p) ? static_cast<int>(std::clamp(p, 0.0f, static_cast<float>(size))) : 0;
+    };
+    if (!(ndc.x <= ndc.z && ndc.y <= ndc.w)) return {{0, 0}, {pixels.x, pixels.y}};
+    const int x0 = std::max(toPixel(ndc.x, pixels.x) - 1, 0), y0 = std::max(toPixel(ndc.y, pixels.y) - 1, 0);
+    const int x1 = std::min(toPixel(ndc.z, pixels.x) + 2, static_cast<int>(pixels.x));
+    const int y1 = std::min(toPixel(ndc.w, pixels.y) + 2, static_cast<int>(pixels.y));
+    return {{x0, y0}, {static_cast<std::uint32_t>(std::max(x1 - x0, 1)), static_cast<std::uint32_t>(std::max(y1 - y0, 1))}};
+}
+
 }  // namespace
 
 void mirrorAlbedos(const Material& m, glm::vec3& kd, glm::vec3& reflectance) {
@@ -257,7 +271,8 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
 
 double projectedPixels(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
                        const std::vector<std::uint32_t>& which, const glm::mat4& viewProj, float nearPlane,
-                       glm::uvec2 pixels) {
+                       glm::uvec2 pixels, glm::vec4* ndcBounds) {
+    glm::vec4 bounds(INFINITY, INFINITY, -INFINITY, -INFINITY);
     // Clip-space half-planes of the visible region: x, y within [-w, w], w at least the near plane.
     const float nearest = nearPlane > 0.0f ? nearPlane : 1e-6f;  // keeps the divide finite
     const auto inside = [nearest](const glm::vec4& c, int plane) {
@@ -295,8 +310,14 @@ double projectedPixels(const std::vector<glm::vec3>& positions, const std::vecto
             const glm::vec4& q = polygon[(k + 1) % polygon.size()];
             twiceArea += static_cast<double>(p.x / p.w) * (q.y / q.w) - static_cast<double>(q.x / q.w) * (p.y / p.w);
         }
-        if (std::isfinite(twiceArea)) ndcArea += 0.5 * std::fabs(twiceArea);
+        if (!std::isfinite(twiceArea)) continue;
+        ndcArea += 0.5 * std::fabs(twiceArea);
+        for (const glm::vec4& p : polygon) {
+            const glm::vec2 ndc(p.x / p.w, p.y / p.w);
+            bounds = glm::vec4(glm::min(glm::vec2(bounds), ndc), glm::max(glm::vec2(bounds.z, bounds.w), ndc));
+        }
     }
+    if (ndcBounds) *ndcBounds = bounds;
     // NDC spans 2 x 2 over the image.
     return ndcArea * 0.25 * static_cast<double>(pixels.x) * static_cast<double>(pixels.y);
 }
@@ -442,6 +463,10 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
         v.eye = glm::vec3(reflect * glm::vec4(camera.origin, 1.0f));
         const glm::vec3 n = visible[i].sign * m.normal;
         v.clipPlane = glm::vec4(n, visible[i].sign * m.offset + 1e-5f * sceneSize);
+        // Only the mirror's own pixels are composited: the view shades its screen rectangle.
+        glm::vec4 ndc;
+        projectedPixels(positions_, triangles_, m.triangles, viewProj, nearPlane, snapshotPixels, &ndc);
+        v.scissor = scissorOf(ndc, snapshotPixels);
         views.push_back(v);
         for (std::uint32_t t : m.triangles)
             for (int k = 0; k < 3; ++k)

@@ -82,10 +82,11 @@ MirrorGroups findPlanarMirrors(const Scene& scene);
 // Snapshot pixels that `triangles` (of `positions`) cover under `viewProj` (w the view depth),
 // each clipped to the frustum and to w >= nearPlane, in a `pixels`-sized image. Overlaps count
 // twice and occlusion is ignored: an over-estimate, so a plane that shows is never skipped for
-// being small. Indices out of range count nothing.
+// being small. Indices out of range count nothing. ndcBounds (if given) gets the clipped
+// triangles' NDC bounding box (min x, min y, max x, max y; empty: min > max).
 double projectedPixels(const std::vector<glm::vec3>& positions, const std::vector<glm::uvec3>& triangles,
                        const std::vector<std::uint32_t>& which, const glm::mat4& viewProj, float nearPlane,
-                       glm::uvec2 pixels);
+                       glm::uvec2 pixels, glm::vec4* ndcBounds = nullptr);
 
 // Diffuse albedo and reflectance of a Mirror material as the tracer splits them
 // (tracer/embree_scene.cpp convertMaterial): ks 0 means a perfect mirror, and kd + ks <= 1.

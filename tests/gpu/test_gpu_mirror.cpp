@@ -546,8 +546,12 @@ TEST(MirrorGeometry, ProjectedPixelsOfAQuad) {
     Scene s;
     addPolygon(s, {{-0.5f, -0.5f, -1}, {0.5f, -0.5f, -1}, {0.5f, 0.5f, -1}, {-0.5f, 0.5f, -1}}, 0, 0);
     const std::vector<std::uint32_t> both{0, 1};
-    EXPECT_NEAR(passes::projectedPixels(s.mesh.positions, s.mesh.triangles, both, viewProj, 0.01f, {64, 32}),
+    glm::vec4 ndc;
+    EXPECT_NEAR(passes::projectedPixels(s.mesh.positions, s.mesh.triangles, both, viewProj, 0.01f, {64, 32}, &ndc),
                 64.0 * 32.0 / 4.0, 1e-2);
+    for (int k = 0; k < 4; ++k) EXPECT_NEAR(std::fabs(ndc[k]), 0.5f, 1e-5f) << "the quad's NDC bounds, " << k;
+    EXPECT_LT(ndc.x, ndc.z);
+    EXPECT_LT(ndc.y, ndc.w);
     // A floor under the eye reaching from behind it to far ahead: clipped to the view, at most all pixels.
     s.mesh = {};
     addPolygon(s, {{-50, -1, 50}, {50, -1, 50}, {50, -1, -50}, {-50, -1, -50}}, 0, 0);
@@ -556,7 +560,8 @@ TEST(MirrorGeometry, ProjectedPixelsOfAQuad) {
     EXPECT_LE(floor, 0.5 * 64 * 64 + 1e-3);  // the lower half of the image at most
     s.mesh = {};
     addPolygon(s, {{-0.5f, -0.5f, 1}, {0.5f, -0.5f, 1}, {0.5f, 0.5f, 1}, {-0.5f, 0.5f, 1}}, 0, 0);
-    EXPECT_EQ(passes::projectedPixels(s.mesh.positions, s.mesh.triangles, both, viewProj, 0.01f, {64, 64}), 0.0);
+    EXPECT_EQ(passes::projectedPixels(s.mesh.positions, s.mesh.triangles, both, viewProj, 0.01f, {64, 64}, &ndc), 0.0);
+    EXPECT_GT(ndc.x, ndc.z) << "nothing in view: empty bounds";
 }
 
 // What the Snapshot cannot show is named up front: a planar mirror is no limitation, a curved one
