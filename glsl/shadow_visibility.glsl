@@ -59,3 +59,95 @@ float directionalShadowVisibility(texture2DArray shadowCubes, uint light, GpuLig
     const int layer = int(light * 6u);
     return litFraction(shadowCubes, st, layer, size, threshold, pcf);
 }
+
+// --- Soft shadows of area-light samples ------------------------------------------------------
+// A sample that stands for a square patch of an area light (GpuLight::cone.w, its half side)
+// casts the patch's penumbra, estimated as in percentage-closer soft shadows (Fernando 2005):
+// a blocker search around the receiver's texel gives the mean occluder distance d_b, similar
+// triangles give the penumbra's half width on the map, patch (d_r - d_b) / (d_r d_b) in units of
+// the face's tangent plane, and a percentage-closer filter of that half width gives the lit
+// fraction. The taps are a fixed pattern (no noise: every run and every pixel alike).
+const int kSoftSearchSide = 3;  // blocker search: 3 x 3 taps
+const int kSoftFilterSide = 4;  // filter: 4 x 4 taps
+// Blockers are searched for as near to the light as a quarter of the receiver's distance.
+const float kSoftSearchReach = 3.0;  // = (d_r - d_r / 4) / (d_r / 4)
+const float kSoftMaxRadius = 0.125;  // the widest kernel's half width, in face widths
+
+// Tap (i, j) of an n x n grid over [-1, 1]^2, sheared so that its n^2 taps have n^2 distinct
+// coordinates along either axis: an edge along a face axis steps n^2 times across the kernel,
+// in steps of 1 / n^2, rather than n times in steps of 1 / n.
+vec2 shearedGridTap(int i, int j, int n) {
+    const float m = float(n);
+    return vec2(float(i * n + j) + 0.5, float(j * n + i) + 0.5) / (m * m) * 2.0 - 1.0;
+}
+
+// Whether texel t of `layer` (face size `size`) holds an occluder nearer the light than the
+// receiver's plane along that texel's ray, by more than `bias`; its distance along the face axis
+// in occluderDepth. The plane (nl . x = planeDot in the face's (sc, tc, ma) frame) rather than
+// the receiver's own depth: across a wide kernel a tilted receiver does not shadow itself.
+bool tapOccluded(texture2DArray shadowCubes, vec2 st, int layer, float size, vec3 nl, float planeDot, float ma,
+                 float bias, float nearPlane, out float occluderDepth) {
+    const ivec2 t = clamp(ivec2(floor(st)), ivec2(0), ivec2(int(size) - 1));
+    const vec3 ray = vec3((vec2(t) + 0.5) / size * 2.0 - 1.0, 1.0);  // the texel centre's direction, ma = 1
+    const float denom = dot(nl, ray);
+    // Where the plane meets the ray behind the light or at a grazing angle, the receiver's depth
+    // bounds it: within a factor 2 of ma.
+    const float planeDepth = denom * planeDot > 0.0 ? clamp(planeDot / denom, 0.5 * ma, 2.0 * ma) : 2.0 * ma;
+    const float stored = texelFetch(shadowCubes, ivec3(t, layer), 0).r;
+    occluderDepth = nearPlane / max(stored, 1e-30);
+    return stored > nearPlane / max(planeDepth - bias, nearPlane);
+}
+
+// The lit fraction of the patch (half side patchHalfSide) of area-light sample `light` seen
+// from a receiver with unit normal n; r, shadow and pcf as shadowVisibility, whose footprint is
+// the kernel's least half width, so that contact shadows stay as sharp as a point light's.
+float softShadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 n, vec4 shadow, float patchHalfSide,
+                           int pcf) {
+    uint face;
+    const vec3 f = cubeLookup(r, face);
+    const float ma = f.z;
+    const float size = shadow.w;
+    // n in the face's (sc, tc, ma) frame: cubeLookup's signed permutation applied to n.
+    const vec3 s = mix(vec3(-1.0), vec3(1.0), greaterThanEqual(r, vec3(0.0)));
+    const vec3 nl = face < 2u ? vec3(-s.x * n.z, -n.y, s.x * n.x)
+                              : (face < 4u ? vec3(n.x, s.y * n.z, s.y * n.y) : vec3(s.z * n.x, -n.y, s.z * n.z));
+    const float planeDot = dot(nl, f);
+    // Each tap tests the plane at its texel's centre: the bias covers depth quantisation and
+    // curvature within one texel only.
+    const float texel = 2.0 * ma / size;
+    const float cosAxis = abs(nl.z);
+    const float tanTheta = min(sqrt(max(1.0 - cosAxis * cosAxis, 0.0)) / max(cosAxis, 1e-4), 10.0);
+    const float bias = texel * (shadow.y + shadow.z * tanTheta);
+    const vec2 st = (f.xy / ma * 0.5 + 0.5) * size;
+    const int layer = int(light * 6u + face);
+    const float texelsPerTangent = 0.5 * size;
+    const float minRadius = 0.5 * float(pcf);
+    const float maxRadius = max(kSoftMaxRadius * size, minRadius);
+    const float searchRadius = clamp(kSoftSearchReach * patchHalfSide / ma * texelsPerTangent, minRadius, maxRadius);
+
+    float blockerDepthSum = 0.0;
+    int blockers = 0;
+    for (int j = 0; j < kSoftSearchSide; ++j) {
+        for (int i = 0; i < kSoftSearchSide; ++i) {
+            float depth;
+            const vec2 tap = st + searchRadius * shearedGridTap(i, j, kSoftSearchSide);
+            if (tapOccluded(shadowCubes, tap, layer, size, nl, planeDot, ma, bias, shadow.x, depth)) {
+                blockerDepthSum += depth;
+                ++blockers;
+            }
+        }
+    }
+    // No blocker found: the least kernel (the point light's lookup, lit but for what it finds).
+    const float blockerDepth = blockers > 0 ? min(blockerDepthSum / float(blockers), ma) : ma;
+    const float penumbra = patchHalfSide * (ma - blockerDepth) / (ma * max(blockerDepth, shadow.x));
+    const float filterRadius = clamp(penumbra * texelsPerTangent, minRadius, searchRadius);
+    int lit = 0;
+    for (int j = 0; j < kSoftFilterSide; ++j) {
+        for (int i = 0; i < kSoftFilterSide; ++i) {
+            float depth;
+            const vec2 tap = st + filterRadius * shearedGridTap(i, j, kSoftFilterSide);
+            lit += tapOccluded(shadowCubes, tap, layer, size, nl, planeDot, ma, bias, shadow.x, depth) ? 0 : 1;
+        }
+    }
+    return float(lit) / float(kSoftFilterSide * kSoftFilterSide);
+}

@@ -238,6 +238,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                           becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.gain; }, 3.5f)};
     t["snapshot.environment_lights"] = {{}, {"snapshot.environment_lights=3"}, Renders::UsingAamap, true,
                                         becomes([](const ExperimentConfig& c, int) { return snap(c, 0).environmentLights; }, 3)};
+    t["snapshot.soft_shadows"] = {{}, {"snapshot.soft_shadows=false"}, Renders::UsingAamap, true,
+                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).shadows.softShadows; }, false)};
     t["snapshot.map"] = {{}, {"snapshot.map=geometric"}, Renders::UsingAamap, true,
                          becomes([](const ExperimentConfig& c, int) { return snap(c, 0).map; }, passes::AamapSource::Geometric)};
     // Shading: every traced image, never the Snapshot.
