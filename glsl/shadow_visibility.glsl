@@ -67,35 +67,34 @@ float directionalShadowVisibility(texture2DArray shadowCubes, uint light, GpuLig
 // triangles give the penumbra's half width on the map, patch (d_r - d_b) / (d_r d_b) in units of
 // the face's tangent plane, and a percentage-closer filter of that half width gives the lit
 // fraction. The taps are a fixed pattern (no noise: every run and every pixel alike).
-const int kSoftSearchSide = 3;  // blocker search: 3 x 3 taps
-const int kSoftFilterSide = 4;  // filter: 4 x 4 taps
+const int kSoftSearchSide = 2;  // blocker search: 2 x 2 taps
+const int kSoftFilterSide = 3;  // filter: 3 x 3 taps
 // Blockers are searched for as near to the light as a quarter of the receiver's distance.
 const float kSoftSearchReach = 3.0;  // = (d_r - d_r / 4) / (d_r / 4)
 const float kSoftMaxRadius = 0.125;  // the widest kernel's half width, in face widths
 
 // Tap (i, j) of an n x n grid over [-1, 1]^2, sheared so that its n^2 taps have n^2 distinct
 // coordinates along either axis: an edge along a face axis steps n^2 times across the kernel,
-// in steps of 1 / n^2, rather than n times in steps of 1 / n.
-vec2 shearedGridTap(int i, int j, int n) {
+// in steps of 1 / n^2, rather than n times in steps of 1 / n. Shifted by `phase` (in [-0.5, 0.5])
+// of the spacing of those coordinates.
+vec2 shearedGridTap(int i, int j, int n, float phase) {
     const float m = float(n);
-    return vec2(float(i * n + j) + 0.5, float(j * n + i) + 0.5) / (m * m) * 2.0 - 1.0;
+    return (vec2(float(i * n + j), float(j * n + i)) + 0.5 + phase) / (m * m) * 2.0 - 1.0;
 }
 
-// Whether texel t of `layer` (face size `size`) holds an occluder nearer the light than the
-// receiver's plane along that texel's ray, by more than `bias`; its distance along the face axis
-// in occluderDepth. The plane (nl . x = planeDot in the face's (sc, tc, ma) frame) rather than
-// the receiver's own depth: across a wide kernel a tilted receiver does not shadow itself.
-bool tapOccluded(texture2DArray shadowCubes, vec2 st, int layer, float size, vec3 nl, float planeDot, float ma,
-                 float bias, float nearPlane, out float occluderDepth) {
-    const ivec2 t = clamp(ivec2(floor(st)), ivec2(0), ivec2(int(size) - 1));
-    const vec3 ray = vec3((vec2(t) + 0.5) / size * 2.0 - 1.0, 1.0);  // the texel centre's direction, ma = 1
-    const float denom = dot(nl, ray);
-    // Where the plane meets the ray behind the light or at a grazing angle, the receiver's depth
-    // bounds it: within a factor 2 of ma.
-    const float planeDepth = denom * planeDot > 0.0 ? clamp(planeDot / denom, 0.5 * ma, 2.0 * ma) : 2.0 * ma;
-    const float stored = texelFetch(shadowCubes, ivec3(t, layer), 0).r;
-    occluderDepth = nearPlane / max(stored, 1e-30);
-    return stored > nearPlane / max(planeDepth - bias, nearPlane);
+// The stored value (near / distance along the face axis) of the texel under map position st of
+// `layer`, and whether it occludes: the occluder is nearer the light than the receiver's plane
+// along that texel's ray, by more than `bias`. The plane rather than the receiver's own depth, so
+// that a tilted receiver does not shadow itself across a wide kernel: linearised about the
+// receiver (st0, distance ma) with slope (distance per texel), exact for planes seen head-on.
+bool tapOccluded(texture2DArray shadowCubes, vec2 st, vec2 st0, int layer, int size, float ma, vec2 slope,
+                 float bias, float nearPlane, out float stored) {
+    const ivec2 t = clamp(ivec2(floor(st)), ivec2(0), ivec2(size - 1));
+    const float planeDepth = ma + dot(slope, vec2(t) + 0.5 - st0);
+    stored = texelFetch(shadowCubes, ivec3(t, layer), 0).r;
+    // stored > near / (planeDepth - bias), without the division; never where the plane is nearer
+    // than the near plane (stored <= 1).
+    return stored * (planeDepth - bias) > nearPlane;
 }
 
 // The lit fraction of the patch (half side patchHalfSide) of area-light sample `light` seen
@@ -106,47 +105,56 @@ float softShadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 
     uint face;
     const vec3 f = cubeLookup(r, face);
     const float ma = f.z;
-    const float size = shadow.w;
+    const int size = int(shadow.w);
+    const float fsize = shadow.w;
     // n in the face's (sc, tc, ma) frame: cubeLookup's signed permutation applied to n.
     const vec3 s = mix(vec3(-1.0), vec3(1.0), greaterThanEqual(r, vec3(0.0)));
     const vec3 nl = face < 2u ? vec3(-s.x * n.z, -n.y, s.x * n.x)
                               : (face < 4u ? vec3(n.x, s.y * n.z, s.y * n.y) : vec3(s.z * n.x, -n.y, s.z * n.z));
-    const float planeDot = dot(nl, f);
-    // Each tap tests the plane at its texel's centre: the bias covers depth quantisation and
-    // curvature within one texel only.
-    const float texel = 2.0 * ma / size;
+    // The receiver's plane nl . x = nl . f meets the ray (u, v, 1) at distance (nl . f) / (nl . (u, v, 1));
+    // its derivative at the receiver, per texel (2 / size in u and v), bounded as the bias's slope.
+    const float texel = 2.0 * ma / fsize;
+    const float facing = dot(nl, f) / ma;  // nl . (u0, v0, 1)
     const float cosAxis = abs(nl.z);
     const float tanTheta = min(sqrt(max(1.0 - cosAxis * cosAxis, 0.0)) / max(cosAxis, 1e-4), 10.0);
+    const float maxSlope = 10.0 * texel;
+    const vec2 slope = clamp(-nl.xy * texel / (abs(facing) > 1e-6 ? facing : 1e-6), vec2(-maxSlope), vec2(maxSlope));
+    // Each tap tests the plane at its texel's centre: the bias covers depth quantisation and
+    // curvature within one texel only.
     const float bias = texel * (shadow.y + shadow.z * tanTheta);
-    const vec2 st = (f.xy / ma * 0.5 + 0.5) * size;
+    const vec2 st = (f.xy / ma * 0.5 + 0.5) * fsize;
     const int layer = int(light * 6u + face);
-    const float texelsPerTangent = 0.5 * size;
+    const float texelsPerTangent = 0.5 * fsize;
     const float minRadius = 0.5 * float(pcf);
-    const float maxRadius = max(kSoftMaxRadius * size, minRadius);
+    const float maxRadius = max(kSoftMaxRadius * fsize, minRadius);
     const float searchRadius = clamp(kSoftSearchReach * patchHalfSide / ma * texelsPerTangent, minRadius, maxRadius);
+    // The samples of one area light see an edge at nearby places of their maps: each shifts its
+    // pattern by its own fraction of a tap spacing (golden-ratio steps), so that their taps flip
+    // at interleaved rather than coinciding receiver positions.
+    const float phase = fract(float(light) * 0.618034) - 0.5;
 
-    float blockerDepthSum = 0.0;
+    float blockerSum = 0.0;  // of the stored near / distance
     int blockers = 0;
     for (int j = 0; j < kSoftSearchSide; ++j) {
         for (int i = 0; i < kSoftSearchSide; ++i) {
-            float depth;
-            const vec2 tap = st + searchRadius * shearedGridTap(i, j, kSoftSearchSide);
-            if (tapOccluded(shadowCubes, tap, layer, size, nl, planeDot, ma, bias, shadow.x, depth)) {
-                blockerDepthSum += depth;
+            float stored;
+            const vec2 tap = st + searchRadius * shearedGridTap(i, j, kSoftSearchSide, phase);
+            if (tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, shadow.x, stored)) {
+                blockerSum += stored;
                 ++blockers;
             }
         }
     }
-    // No blocker found: the least kernel (the point light's lookup, lit but for what it finds).
-    const float blockerDepth = blockers > 0 ? min(blockerDepthSum / float(blockers), ma) : ma;
-    const float penumbra = patchHalfSide * (ma - blockerDepth) / (ma * max(blockerDepth, shadow.x));
+    // The blockers' distance (harmonic mean); none found: the least kernel, the point light's lookup.
+    const float blockerDepth = blockers > 0 ? clamp(shadow.x * float(blockers) / blockerSum, shadow.x, ma) : ma;
+    const float penumbra = patchHalfSide * (ma - blockerDepth) / (ma * blockerDepth);
     const float filterRadius = clamp(penumbra * texelsPerTangent, minRadius, searchRadius);
     int lit = 0;
     for (int j = 0; j < kSoftFilterSide; ++j) {
         for (int i = 0; i < kSoftFilterSide; ++i) {
-            float depth;
-            const vec2 tap = st + filterRadius * shearedGridTap(i, j, kSoftFilterSide);
-            lit += tapOccluded(shadowCubes, tap, layer, size, nl, planeDot, ma, bias, shadow.x, depth) ? 0 : 1;
+            float stored;
+            const vec2 tap = st + filterRadius * shearedGridTap(i, j, kSoftFilterSide, phase);
+            lit += tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, shadow.x, stored) ? 0 : 1;
         }
     }
     return float(lit) / float(kSoftFilterSide * kSoftFilterSide);
