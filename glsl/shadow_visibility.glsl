@@ -66,20 +66,18 @@ float directionalShadowVisibility(texture2DArray shadowCubes, uint light, GpuLig
 // a blocker search around the receiver's texel gives the mean occluder distance d_b, similar
 // triangles give the penumbra's half width on the map, patch (d_r - d_b) / (d_r d_b) in units of
 // the face's tangent plane, and a percentage-closer filter of that half width gives the lit
-// fraction. The taps are a fixed pattern (no noise: every run and every pixel alike).
+// fraction. The taps are a fixed pattern (no noise: every run and every pixel alike): 4 for the
+// search, 9 for the filter.
 const int kSoftSearchSide = 2;  // blocker search: 2 x 2 taps
-const int kSoftFilterSide = 3;  // filter: 3 x 3 taps
 // Blockers are searched for as near to the light as a quarter of the receiver's distance.
 const float kSoftSearchReach = 3.0;  // = (d_r - d_r / 4) / (d_r / 4)
 const float kSoftMaxRadius = 0.125;  // the widest kernel's half width, in face widths
 
 // Tap (i, j) of an n x n grid over [-1, 1]^2, sheared so that its n^2 taps have n^2 distinct
-// coordinates along either axis: an edge along a face axis steps n^2 times across the kernel,
-// in steps of 1 / n^2, rather than n times in steps of 1 / n. Shifted by `phase` (in [-0.5, 0.5])
-// of the spacing of those coordinates.
-vec2 shearedGridTap(int i, int j, int n, float phase) {
+// coordinates along either axis: they cover the search square's rows and columns n times finer.
+vec2 shearedGridTap(int i, int j, int n) {
     const float m = float(n);
-    return (vec2(float(i * n + j), float(j * n + i)) + 0.5 + phase) / (m * m) * 2.0 - 1.0;
+    return (vec2(float(i * n + j), float(j * n + i)) + 0.5) / (m * m) * 2.0 - 1.0;
 }
 
 // The stored value (near / distance along the face axis) of the texel under map position st of
@@ -128,17 +126,12 @@ float softShadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 
     const float minRadius = 0.5 * float(pcf);
     const float maxRadius = max(kSoftMaxRadius * fsize, minRadius);
     const float searchRadius = clamp(kSoftSearchReach * patchHalfSide / ma * texelsPerTangent, minRadius, maxRadius);
-    // The samples of one area light see an edge at nearby places of their maps: each shifts its
-    // pattern by its own fraction of a tap spacing (golden-ratio steps), so that their taps flip
-    // at interleaved rather than coinciding receiver positions.
-    const float phase = fract(float(light) * 0.618034) - 0.5;
-
     float blockerSum = 0.0;  // of the stored near / distance
     int blockers = 0;
     for (int j = 0; j < kSoftSearchSide; ++j) {
         for (int i = 0; i < kSoftSearchSide; ++i) {
             float stored;
-            const vec2 tap = st + searchRadius * shearedGridTap(i, j, kSoftSearchSide, phase);
+            const vec2 tap = st + searchRadius * shearedGridTap(i, j, kSoftSearchSide);
             if (tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, shadow.x, stored)) {
                 blockerSum += stored;
                 ++blockers;
@@ -149,13 +142,23 @@ float softShadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 
     const float blockerDepth = blockers > 0 ? clamp(shadow.x * float(blockers) / blockerSum, shadow.x, ma) : ma;
     const float penumbra = patchHalfSide * (ma - blockerDepth) / (ma * blockerDepth);
     const float filterRadius = clamp(penumbra * texelsPerTangent, minRadius, searchRadius);
-    int lit = 0;
-    for (int j = 0; j < kSoftFilterSide; ++j) {
-        for (int i = 0; i < kSoftFilterSide; ++i) {
+    // A box of half width filterRadius over the map point-sampled every filterRadius texels: the
+    // box overlaps 3 x 3 cells of that grid, the middle ones wholly, the outer ones in part, each
+    // weighted by its overlap. As the receiver moves the weights change linearly and a cell enters
+    // or leaves at weight 0, so the lit fraction is continuous: a ramp, never a staircase.
+    const float spacing = filterRadius;
+    const vec2 from = (st - filterRadius) / spacing;  // the box's low corner, in grid cells
+    const vec2 firstCell = floor(from + 0.5);           // the cell (centre k spacing) that holds it
+    const vec2 firstWeight = 0.5 * (firstCell + 0.5 - from);
+    float lit = 0.0;
+    for (int j = 0; j < 3; ++j) {
+        const float wy = j == 0 ? firstWeight.y : (j == 1 ? 0.5 : 0.5 - firstWeight.y);
+        for (int i = 0; i < 3; ++i) {
+            const float wx = i == 0 ? firstWeight.x : (i == 1 ? 0.5 : 0.5 - firstWeight.x);
             float stored;
-            const vec2 tap = st + filterRadius * shearedGridTap(i, j, kSoftFilterSide, phase);
-            lit += tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, shadow.x, stored) ? 0 : 1;
+            const vec2 tap = (firstCell + vec2(i, j)) * spacing;
+            lit += tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, shadow.x, stored) ? 0.0 : wx * wy;
         }
     }
-    return float(lit) / float(kSoftFilterSide * kSoftFilterSide);
+    return lit;
 }
