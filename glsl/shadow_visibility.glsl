@@ -68,17 +68,9 @@ float directionalShadowVisibility(texture2DArray shadowCubes, uint light, GpuLig
 // the face's tangent plane, and a percentage-closer filter of that half width gives the lit
 // fraction. The taps are a fixed pattern (no noise: every run and every pixel alike): 4 for the
 // search, 9 for the filter.
-const int kSoftSearchSide = 2;  // blocker search: 2 x 2 taps
 // Blockers are searched for as near to the light as a quarter of the receiver's distance.
 const float kSoftSearchReach = 3.0;  // = (d_r - d_r / 4) / (d_r / 4)
 const float kSoftMaxRadius = 0.125;  // the widest kernel's half width, in face widths
-
-// Tap (i, j) of an n x n grid over [-1, 1]^2, sheared so that its n^2 taps have n^2 distinct
-// coordinates along either axis: they cover the search square's rows and columns n times finer.
-vec2 shearedGridTap(int i, int j, int n) {
-    const float m = float(n);
-    return (vec2(float(i * n + j), float(j * n + i)) + 0.5) / (m * m) * 2.0 - 1.0;
-}
 
 // The stored value (near / distance along the face axis) of the texel under map position st of
 // `layer`, and whether it occludes: the occluder is nearer the light than the receiver's plane
@@ -126,22 +118,28 @@ float softShadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 
     const float minRadius = 0.5 * float(pcf);
     const float maxRadius = max(kSoftMaxRadius * fsize, minRadius);
     const float searchRadius = clamp(kSoftSearchReach * patchHalfSide / ma * texelsPerTangent, minRadius, maxRadius);
-    float blockerSum = 0.0;  // of the stored near / distance
-    int blockers = 0;
-    for (int j = 0; j < kSoftSearchSide; ++j) {
-        for (int i = 0; i < kSoftSearchSide; ++i) {
+    // The search: the map point-sampled every searchRadius texels, bilinearly weighted (a tent of
+    // half width searchRadius), so that the blockers' share and mean distance change continuously.
+    const vec2 searchCell = floor(st / searchRadius);
+    const vec2 searchFraction = st / searchRadius - searchCell;
+    float blockerWeight = 0.0, blockerSum = 0.0;  // of the stored near / distance, weighted
+    for (int j = 0; j < 2; ++j) {
+        for (int i = 0; i < 2; ++i) {
+            const vec2 w2 = mix(1.0 - searchFraction, searchFraction, vec2(i, j));
             float stored;
-            const vec2 tap = st + searchRadius * shearedGridTap(i, j, kSoftSearchSide);
+            const vec2 tap = (searchCell + vec2(i, j)) * searchRadius;
             if (tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, shadow.x, stored)) {
-                blockerSum += stored;
-                ++blockers;
+                blockerWeight += w2.x * w2.y;
+                blockerSum += w2.x * w2.y * stored;
             }
         }
     }
-    // The blockers' distance (harmonic mean); none found: the least kernel, the point light's lookup.
-    const float blockerDepth = blockers > 0 ? clamp(shadow.x * float(blockers) / blockerSum, shadow.x, ma) : ma;
+    // The blockers' distance (weighted harmonic mean) sets the kernel; where they thin out, the
+    // kernel shrinks continuously to the least one, the point light's lookup.
+    const float blockerDepth = blockerSum > 0.0 ? clamp(shadow.x * blockerWeight / blockerSum, shadow.x, ma) : ma;
     const float penumbra = patchHalfSide * (ma - blockerDepth) / (ma * blockerDepth);
-    const float filterRadius = clamp(penumbra * texelsPerTangent, minRadius, searchRadius);
+    const float filterRadius =
+        mix(minRadius, clamp(penumbra * texelsPerTangent, minRadius, searchRadius), min(4.0 * blockerWeight, 1.0));
     // A box of half width filterRadius over the map point-sampled every filterRadius texels: the
     // box overlaps 3 x 3 cells of that grid, the middle ones wholly, the outer ones in part, each
     // weighted by its overlap. As the receiver moves the weights change linearly and a cell enters
