@@ -67,7 +67,7 @@ float directionalShadowVisibility(texture2DArray shadowCubes, uint light, GpuLig
 // triangles give the penumbra's half width on the map, patch (d_r - d_b) / (d_r d_b) in units of
 // the face's tangent plane, and a percentage-closer filter of that half width gives the lit
 // fraction. The taps are a fixed pattern (no noise: every run and every pixel alike): 4 for the
-// search, 9 for the filter.
+// search, 18 for the filter.
 // Blockers are searched for as near to the light as a quarter of the receiver's distance.
 const float kSoftSearchReach = 3.0;  // = (d_r - d_r / 4) / (d_r / 4)
 const float kSoftMaxRadius = 0.125;  // the widest kernel's half width, in face widths
@@ -85,6 +85,29 @@ bool tapOccluded(texture2DArray shadowCubes, vec2 st, vec2 st0, int layer, int s
     // stored > near / (planeDepth - bias), without the division; never where the plane is nearer
     // than the near plane (stored <= 1).
     return stored * (planeDepth - bias) > nearPlane;
+}
+
+// The lit fraction under a box of half width `radius` texels about st over the map point-sampled
+// every `radius` texels: the box overlaps 3 x 3 cells of that grid, the middle ones wholly, the
+// outer ones in part, each weighted by its overlap. As the receiver moves the weights change
+// linearly and a cell enters or leaves at weight 0, so the lit fraction is continuous: a ramp,
+// never a staircase.
+float boxOfNearest(texture2DArray shadowCubes, vec2 st, int layer, int size, float ma, vec2 slope, float bias,
+                   float nearPlane, float radius) {
+    const vec2 from = (st - radius) / radius;  // the box's low corner, in grid cells
+    const vec2 firstCell = floor(from + 0.5);  // the cell (centre k radius) that holds it
+    const vec2 firstWeight = 0.5 * (firstCell + 0.5 - from);
+    float lit = 0.0;
+    for (int j = 0; j < 3; ++j) {
+        const float wy = j == 0 ? firstWeight.y : (j == 1 ? 0.5 : 0.5 - firstWeight.y);
+        for (int i = 0; i < 3; ++i) {
+            const float wx = i == 0 ? firstWeight.x : (i == 1 ? 0.5 : 0.5 - firstWeight.x);
+            float stored;
+            const vec2 tap = (firstCell + vec2(i, j)) * radius;
+            lit += tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, nearPlane, stored) ? 0.0 : wx * wy;
+        }
+    }
+    return lit;
 }
 
 // The lit fraction of the patch (half side patchHalfSide) of area-light sample `light` seen
@@ -119,15 +142,16 @@ float softShadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 
     const float maxRadius = max(kSoftMaxRadius * fsize, minRadius);
     const float searchRadius = clamp(kSoftSearchReach * patchHalfSide / ma * texelsPerTangent, minRadius, maxRadius);
     // The search: the map point-sampled every searchRadius texels, bilinearly weighted (a tent of
-    // half width searchRadius), so that the blockers' share and mean distance change continuously.
-    const vec2 searchCell = floor(st / searchRadius);
-    const vec2 searchFraction = st / searchRadius - searchCell;
+    // that half width), so that the blockers' share and mean distance change continuously.
+    const float searchSpacing = searchRadius;
+    const vec2 searchCell = floor(st / searchSpacing);
+    const vec2 searchFraction = st / searchSpacing - searchCell;
     float blockerWeight = 0.0, blockerSum = 0.0;  // of the stored near / distance, weighted
     for (int j = 0; j < 2; ++j) {
         for (int i = 0; i < 2; ++i) {
             const vec2 w2 = mix(1.0 - searchFraction, searchFraction, vec2(i, j));
             float stored;
-            const vec2 tap = (searchCell + vec2(i, j)) * searchRadius;
+            const vec2 tap = (searchCell + vec2(i, j)) * searchSpacing;
             if (tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, shadow.x, stored)) {
                 blockerWeight += w2.x * w2.y;
                 blockerSum += w2.x * w2.y * stored;
@@ -140,23 +164,11 @@ float softShadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 
     const float penumbra = patchHalfSide * (ma - blockerDepth) / (ma * blockerDepth);
     const float filterRadius =
         mix(minRadius, clamp(penumbra * texelsPerTangent, minRadius, searchRadius), min(4.0 * blockerWeight, 1.0));
-    // A box of half width filterRadius over the map point-sampled every filterRadius texels: the
-    // box overlaps 3 x 3 cells of that grid, the middle ones wholly, the outer ones in part, each
-    // weighted by its overlap. As the receiver moves the weights change linearly and a cell enters
-    // or leaves at weight 0, so the lit fraction is continuous: a ramp, never a staircase.
-    const float spacing = filterRadius;
-    const vec2 from = (st - filterRadius) / spacing;  // the box's low corner, in grid cells
-    const vec2 firstCell = floor(from + 0.5);           // the cell (centre k spacing) that holds it
-    const vec2 firstWeight = 0.5 * (firstCell + 0.5 - from);
-    float lit = 0.0;
-    for (int j = 0; j < 3; ++j) {
-        const float wy = j == 0 ? firstWeight.y : (j == 1 ? 0.5 : 0.5 - firstWeight.y);
-        for (int i = 0; i < 3; ++i) {
-            const float wx = i == 0 ? firstWeight.x : (i == 1 ? 0.5 : 0.5 - firstWeight.x);
-            float stored;
-            const vec2 tap = (firstCell + vec2(i, j)) * spacing;
-            lit += tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, shadow.x, stored) ? 0.0 : wx * wy;
-        }
-    }
-    return lit;
+    // Kernel widths between powers of two blend the two boxes around them: a grid whose spacing
+    // followed the width continuously would move its points across texels.
+    const float level = floor(log2(filterRadius));
+    const float narrow = exp2(level);
+    return mix(boxOfNearest(shadowCubes, st, layer, size, ma, slope, bias, shadow.x, narrow),
+               boxOfNearest(shadowCubes, st, layer, size, ma, slope, bias, shadow.x, 2.0 * narrow),
+               filterRadius / narrow - 1.0);
 }
