@@ -69,6 +69,7 @@ float directionalShadowVisibility(texture2DArray shadowCubes, uint light, GpuLig
 // fraction. The taps are a fixed pattern (no noise: every run and every pixel alike): 4 for the
 // search, 18 for the filter.
 // Blockers are searched for as near to the light as a quarter of the receiver's distance.
+const int kSoftFilterCells = 3;  // the filter's grid: 3 x 3 cells per box (2 x 2 a coarser, cheaper one)
 const float kSoftSearchReach = 3.0;  // = (d_r - d_r / 4) / (d_r / 4)
 const float kSoftMaxRadius = 0.125;  // the widest kernel's half width, in face widths
 
@@ -88,22 +89,26 @@ bool tapOccluded(texture2DArray shadowCubes, vec2 st, vec2 st0, int layer, int s
 }
 
 // The lit fraction under a box of half width `radius` texels about st over the map point-sampled
-// every `radius` texels: the box overlaps 3 x 3 cells of that grid, the middle ones wholly, the
-// outer ones in part, each weighted by its overlap. As the receiver moves the weights change
-// linearly and a cell enters or leaves at weight 0, so the lit fraction is continuous: a ramp,
-// never a staircase.
+// on a grid of kSoftFilterCells - 1 cells per box width: the box overlaps kSoftFilterCells^2
+// cells, the inner ones wholly, the outer ones in part, each weighted by its overlap. As the
+// receiver moves the weights change linearly and a cell enters or leaves at weight 0, so the lit
+// fraction is continuous: a ramp, never a staircase.
 float boxOfNearest(texture2DArray shadowCubes, vec2 st, int layer, int size, float ma, vec2 slope, float bias,
                    float nearPlane, float radius) {
-    const vec2 from = (st - radius) / radius;  // the box's low corner, in grid cells
-    const vec2 firstCell = floor(from + 0.5);  // the cell (centre k radius) that holds it
-    const vec2 firstWeight = 0.5 * (firstCell + 0.5 - from);
+    const float cellsPerBox = float(kSoftFilterCells - 1);
+    const float spacing = 2.0 * radius / cellsPerBox;
+    const vec2 from = (st - radius) / spacing;  // the box's low corner, in grid cells
+    const vec2 firstCell = floor(from + 0.5);   // the cell (centre k spacing) that holds it
+    const vec2 firstWeight = (firstCell + 0.5 - from) / cellsPerBox;
+    const float innerWeight = 1.0 / cellsPerBox;
     float lit = 0.0;
-    for (int j = 0; j < 3; ++j) {
-        const float wy = j == 0 ? firstWeight.y : (j == 1 ? 0.5 : 0.5 - firstWeight.y);
-        for (int i = 0; i < 3; ++i) {
-            const float wx = i == 0 ? firstWeight.x : (i == 1 ? 0.5 : 0.5 - firstWeight.x);
+    for (int j = 0; j < kSoftFilterCells; ++j) {
+        const float wy = j == 0 ? firstWeight.y : (j < kSoftFilterCells - 1 ? innerWeight : innerWeight - firstWeight.y);
+        for (int i = 0; i < kSoftFilterCells; ++i) {
+            const float wx =
+                i == 0 ? firstWeight.x : (i < kSoftFilterCells - 1 ? innerWeight : innerWeight - firstWeight.x);
             float stored;
-            const vec2 tap = (firstCell + vec2(i, j)) * radius;
+            const vec2 tap = (firstCell + vec2(i, j)) * spacing;
             lit += tapOccluded(shadowCubes, tap, st, layer, size, ma, slope, bias, nearPlane, stored) ? 0.0 : wx * wy;
         }
     }
