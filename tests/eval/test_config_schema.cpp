@@ -229,6 +229,7 @@ TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
 
     hand.snapshot.map = "geometric";
     hand.snapshot.environmentLights = 2;
+    hand.snapshot.softShadows = false;
     const nlohmann::json key = nlohmann::json::parse(renderKeyJson(hand, hand.renders[0]));
     std::vector<std::string> names;
     for (const auto& [name, value] : key.at("snapshot").items()) names.push_back(name);
