@@ -79,7 +79,7 @@ const float kSoftMaxRadius = 0.125;  // the widest kernel's half width, in face 
 // `layer`, and whether it occludes: the occluder is nearer the light than the receiver's plane
 // along that texel's ray, by more than `bias`. The plane rather than the receiver's own depth, so
 // that a tilted receiver does not shadow itself across a wide kernel: linearised about the
-// receiver (st0, distance ma) with slope (distance per texel), exact for planes seen head-on.
+// receiver (st0, distance ma) with slope (distance per texel): exact to first order.
 bool tapOccluded(texture2DArray shadowCubes, vec2 st, vec2 st0, int layer, int size, float ma, vec2 slope,
                  float bias, float nearPlane, out float stored) {
     const ivec2 t = clamp(ivec2(floor(st)), ivec2(0), ivec2(size - 1));
@@ -149,7 +149,8 @@ float softShadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 
     const float maxRadius = max(kSoftMaxRadius * fsize, minRadius);
     const float searchRadius = clamp(kSoftSearchReach * patchHalfSide / ma * texelsPerTangent, minRadius, maxRadius);
     // The search: the map point-sampled every searchRadius texels, bilinearly weighted (a tent of
-    // that half width), so that the blockers' share and mean distance change continuously.
+    // that half width), so that the blockers' share and mean distance change continuously across
+    // receivers at one distance (where the distance changes, the grid's points move with it).
     const float searchSpacing = searchRadius;
     const vec2 searchCell = floor(st / searchSpacing);
     const vec2 searchFraction = st / searchSpacing - searchCell;
