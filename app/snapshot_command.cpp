@@ -125,6 +125,8 @@ CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
     cmd->add_option("--shadow-resolution", o.shadowResolution, "Shadow cube-face size in texels")
         ->check(CLI::Range(1, 8192))->capture_default_str();
     cmd->add_flag("--no-shadows", o.noShadows, "No shadow maps");
+    cmd->add_flag("--hard-shadows", o.hardShadows,
+                  "Area-light samples cast hard shadows (snapshot.soft_shadows: false)");
     cmd->add_option("--device", o.device, "Vulkan device: index or name substring (default: best GPU)")
         ->type_name("NAME");
     cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; any message fails (exit 3)");
@@ -147,6 +149,7 @@ int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::str
     settings.environmentLights = o.environmentLights;
     settings.filter.exposure = o.exposure;
     settings.shadows.enabled = !o.noShadows;
+    settings.shadows.softShadows = !o.hardShadows;
     settings.shadows.resolution = o.shadowResolution;
     settings.keepDebugImages = true;
 

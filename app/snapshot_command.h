@@ -18,6 +18,7 @@ struct SnapshotOptions {
     float exposure = 1.0f;
     int shadowResolution = 256;
     bool noShadows = false;
+    bool hardShadows = false;
     bool explain = false;
     std::string device;       // "" = AAMAP_DEVICE or the best GPU
     bool validation = false;  // or AAMAP_VALIDATION=1

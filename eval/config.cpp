@@ -125,6 +125,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.snapshot.scale = sv.real("scale");
     c.snapshot.areaLightSamples = sv.integer("area_light_samples");
     c.snapshot.environmentLights = sv.integer("environment_lights");
+    c.snapshot.softShadows = sv.boolean("soft_shadows");
     c.snapshot.blurRadius = sv.integer("blur_radius");
     c.snapshot.noiseFloor = sv.real("noise_floor");
     c.snapshot.gain = sv.real("gain");
@@ -225,6 +226,7 @@ Json snapshotJson(const ExperimentConfig& c) {
               {"gain", c.snapshot.gain}};
     if (c.snapshot.map != "luminance") j["map"] = c.snapshot.map;  // keeps the keys of luminance runs
     if (c.snapshot.environmentLights != 1) j["environment_lights"] = c.snapshot.environmentLights;  // likewise
+    if (!c.snapshot.softShadows) j["soft_shadows"] = false;  // likewise
     return j;
 }
 
@@ -310,7 +312,7 @@ std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-7";  // bump as the render key
+    j["format"] = "aamap-snapshot-8";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c);
     return fnv1a64Hex(j.dump());

@@ -55,6 +55,9 @@ struct SnapshotConfig {
     // The environment map's brightest regions as this many shadowed directional lights, 0..16
     // (0: all of it in the SH ambient term); no effect without an environment map.
     int environmentLights = 1;
+    // Area-light samples' shadows filtered over the penumbra of their patch of the light
+    // (passes/snapshot.h ShadowSettings::softShadows); false: hard shadows from every sample.
+    bool softShadows = true;
 };
 
 struct ShadingConfig {

@@ -110,6 +110,7 @@ SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
     s.scale = static_cast<float>(c.snapshot.scale);
     s.areaLightSamples = c.snapshot.areaLightSamples;
     s.environmentLights = c.snapshot.environmentLights;
+    s.shadows.softShadows = c.snapshot.softShadows;
     s.filter.exposure = static_cast<float>(c.image.exposure);  // edges as the viewer will see them
     s.filter.blurRadius = c.snapshot.blurRadius;
     s.filter.noiseFloor = static_cast<float>(c.snapshot.noiseFloor);

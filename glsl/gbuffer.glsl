@@ -58,7 +58,11 @@ layout(binding = GBUFFER_BINDING_SHADOW) uniform texture2DArray shadowCubes;
 // re-reads it after every shadow-map fetch otherwise.
 vec4 shadowParams;
 
-float visibility(uint light, vec3 r, vec3 n) {
+// Area-light samples (a patch in cone.w) cast soft shadows; point and spot lights hard ones. For
+// the inline lights the test folds, and without patches (kSoftShadows 0) so does the soft code.
+float visibility(GpuLight l, uint light, vec3 r, vec3 n) {
+    if (kSoftShadows != 0u && l.cone.w > 0.0)
+        return softShadowVisibility(shadowCubes, light, r, n, shadowParams, l.cone.w, int(kShadowPcf));
     return shadowVisibility(shadowCubes, light, r, n, shadowParams, int(kShadowPcf));
 }
 #endif
@@ -96,7 +100,7 @@ vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
     const float lobe = angularFactor(light.normal.xyz, light.cone, wi);
     float weight = cosSurface * lobe / d2;
 #ifdef GBUFFER_SHADOWS
-    if (weight > 0.0) weight *= visibility(i, -toLight, n);  // no lookups for unlit sides
+    if (weight > 0.0) weight *= visibility(light, i, -toLight, n);  // no lookups for unlit sides
 #endif
     return brdf(kd, wi) * light.intensity.rgb * weight;
 }

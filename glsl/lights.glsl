@@ -6,8 +6,10 @@ layout(constant_id = LIGHTING_SPEC_LIGHT_COUNT) const uint kLightCount = 0u;
 layout(constant_id = LIGHTING_SPEC_SHADOW_PCF) const uint kShadowPcf = 1u;
 layout(constant_id = LIGHTING_SPEC_LIGHT_KINDS) const uint kLightKinds =
     LIGHT_KIND_ISOTROPIC | LIGHT_KIND_LOBE | LIGHT_KIND_SPOT;
+// 0: every light is a point (hard shadows only, the soft-shadow code folds away).
+layout(constant_id = LIGHTING_SPEC_SOFT_SHADOWS) const uint kSoftShadows = 0u;
 
-// Light k < LIGHTING_INLINE_LIGHTS as constants kLight<k>_<field> (field 0..11 as
+// Light k < LIGHTING_INLINE_LIGHTS as constants kLight<k>_<field> (field 0..12 as
 // LIGHTING_SPEC_LIGHT_DATA says), and INLINE_LIGHT(k) its GpuLight.
 #define LIGHT_CONSTANT(k, f)                                                                        \
     layout(constant_id = LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * k + f) const float \
@@ -15,12 +17,12 @@ layout(constant_id = LIGHTING_SPEC_LIGHT_KINDS) const uint kLightKinds =
 #define DECLARE_INLINE_LIGHT(k)                                                                     \
     LIGHT_CONSTANT(k, 0) LIGHT_CONSTANT(k, 1) LIGHT_CONSTANT(k, 2) LIGHT_CONSTANT(k, 3)             \
     LIGHT_CONSTANT(k, 4) LIGHT_CONSTANT(k, 5) LIGHT_CONSTANT(k, 6) LIGHT_CONSTANT(k, 7)             \
-    LIGHT_CONSTANT(k, 8) LIGHT_CONSTANT(k, 9) LIGHT_CONSTANT(k, 10) LIGHT_CONSTANT(k, 11)
+    LIGHT_CONSTANT(k, 8) LIGHT_CONSTANT(k, 9) LIGHT_CONSTANT(k, 10) LIGHT_CONSTANT(k, 11) LIGHT_CONSTANT(k, 12)
 #define INLINE_LIGHT(k)                                                                             \
     GpuLight(vec4(kLight##k##_0, kLight##k##_1, kLight##k##_2, 1.0),                                 \
              vec4(kLight##k##_3, kLight##k##_4, kLight##k##_5, 0.0),                                 \
              vec4(kLight##k##_6, kLight##k##_7, kLight##k##_8, 0.0),                                 \
-             vec4(kLight##k##_9, kLight##k##_10, kLight##k##_11, 0.0))
+             vec4(kLight##k##_9, kLight##k##_10, kLight##k##_11, kLight##k##_12))
 // APPLY(k) for k = 0 .. LIGHTING_INLINE_LIGHTS - 1: the callers unroll their light loop with it,
 // guarding each with k < kLightCount (folded), then loop over lights[] from LIGHTING_INLINE_LIGHTS.
 #define FOR_EACH_INLINE_LIGHT(APPLY) APPLY(0) APPLY(1) APPLY(2) APPLY(3) APPLY(4) APPLY(5) APPLY(6) APPLY(7)

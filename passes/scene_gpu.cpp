@@ -249,14 +249,21 @@ SceneGpu::SceneGpu(VulkanContext& context, const Scene& scene) : context_(&conte
 }
 
 void SceneGpu::setLights(std::span<const PointLight> lights, std::span<const DirectionalLight> directionals,
-                            const std::array<glm::vec3, 9>* ambientSH) {
+                            const std::array<glm::vec3, 9>* ambientSH, std::span<const float> patchHalfSides) {
     std::vector<gpu::GpuLight> gpuLights;
-    for (const PointLight& l : lights) {
+    softShadows_ = false;
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const PointLight& l = lights[i];
         // A lobe wins over a spot cone, as in the tracer (tracer/lights.cpp).
         const bool spot = glm::dot(l.normal, l.normal) == 0.0f && glm::dot(l.spotDirection, l.spotDirection) > 0.0f;
+        // Only lobes (area-light samples) have patches; anything else keeps its hard shadow.
+        const float given = i < patchHalfSides.size() ? patchHalfSides[i] : 0.0f;
+        const bool lobe = glm::dot(l.normal, l.normal) > 0.0f;
+        const float patch = lobe && std::isfinite(given) && given > 0.0f ? given : 0.0f;
+        softShadows_ = softShadows_ || patch > 0.0f;
         gpuLights.push_back({glm::vec4(l.position, 1.0f), glm::vec4(l.intensity, 0.0f),
                              glm::vec4(spot ? glm::normalize(l.spotDirection) : l.normal, 0.0f),
-                             glm::vec4(l.cosInner, std::min(l.cosOuter, l.cosInner), spot ? 1.0f : 0.0f, 0.0f)});
+                             glm::vec4(l.cosInner, std::min(l.cosOuter, l.cosInner), spot ? 1.0f : 0.0f, patch)});
     }
     for (const DirectionalLight& d : directionals) {
         const float len = glm::length(d.direction);
@@ -296,14 +303,15 @@ std::vector<std::uint32_t> SceneGpu::lightingConstants(std::uint32_t pcf) const 
     constants[LIGHTING_SPEC_LIGHT_COUNT] = lightCount_;
     constants[LIGHTING_SPEC_SHADOW_PCF] = std::max(pcf, 1u);
     constants[LIGHTING_SPEC_LIGHT_KINDS] = lightKinds_;
-    static_assert(sizeof(gpu::GpuLight) == 4 * sizeof(glm::vec4) && LIGHTING_SPEC_FLOATS_PER_LIGHT == 12);
+    constants[LIGHTING_SPEC_SOFT_SHADOWS] = softShadows_ ? 1u : 0u;
+    static_assert(sizeof(gpu::GpuLight) == 4 * sizeof(glm::vec4) && LIGHTING_SPEC_FLOATS_PER_LIGHT == 13);
     for (std::size_t k = 0; k < inlineLights_.size(); ++k) {
         const gpu::GpuLight& l = inlineLights_[k];
         const glm::vec4 fields[4] = {l.position, l.intensity, l.normal, l.cone};
+        const std::size_t first = LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * k;
         for (int f = 0; f < 4; ++f)  // xyz of each field, w dropped
-            for (int c = 0; c < 3; ++c)
-                constants[LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * k + 3 * f + c] =
-                    std::bit_cast<std::uint32_t>(fields[f][c]);
+            for (int c = 0; c < 3; ++c) constants[first + 3 * f + c] = std::bit_cast<std::uint32_t>(fields[f][c]);
+        constants[first + 12] = std::bit_cast<std::uint32_t>(l.cone.w);  // the patch's half side
     }
     constants[LIGHTING_SPEC_AMBIENT] = ambient_ ? 1u : 0u;
     for (int i = 0; i < 9; ++i)

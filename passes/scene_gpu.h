@@ -50,8 +50,12 @@ public:
     // (passes/environment_lighting.h; null: none). Throws std::invalid_argument past
     // GBUFFER_MAX_LIGHTS (256) lights. Passes declared before must be declared again before they
     // execute (the light buffer is replaced), and lightsVersion() counts the calls.
+    // patchHalfSides[i] > 0 marks point light i (a cosine lobe) as the sample of a patch of an area
+    // light, a square of that half side: its shadows are soft (GpuLight::cone.w). Missing entries,
+    // zeros, non-finite values and non-lobe lights: hard shadows.
     void setLights(std::span<const PointLight> lights, std::span<const DirectionalLight> directionals = {},
-                   const std::array<glm::vec3, 9>* ambientSH = nullptr);
+                   const std::array<glm::vec3, 9>* ambientSH = nullptr, std::span<const float> patchHalfSides = {});
+    bool softShadows() const { return softShadows_; }  // some light has a patch
     // Radiance of the background (where no surface is drawn); black by default. Passes declared
     // before must be declared again, as after setLights.
     void setBackground(const glm::vec3& radiance) { background_ = radiance; }
@@ -118,6 +122,7 @@ private:
     std::uint32_t vertexCount_ = 0, occluderVertexCount_ = 0;
     std::vector<std::uint32_t> drawnTriangles_;
     std::uint32_t lightCount_ = 0, lightKinds_ = 0;  // LIGHT_KIND_* bits
+    bool softShadows_ = false;
     std::vector<gpu::GpuLight> inlineLights_;        // the first LIGHTING_INLINE_LIGHTS, for the constants
 };
 

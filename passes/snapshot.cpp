@@ -98,6 +98,7 @@ struct SnapshotRenderer::Impl {
     vk::GraphExecutor executor;
     int lightSamples = -1;  // k the light buffer was built for
     int environmentLights = -1;  // and the environment's extracted lights
+    bool softShadows = false;    // and whether area-light samples had patches
     std::vector<std::string> lightNames;     // of the light buffer, in order
     std::optional<passes::ShadowCubePass> shadows;  // built on first use (needs a light)
 
@@ -116,8 +117,8 @@ struct SnapshotRenderer::Impl {
           geometricEdges(c),
           executor(c) {}
 
-    void updateLights(int k, int fromEnvironment) {
-        if (k == lightSamples && fromEnvironment == environmentLights) return;
+    void updateLights(int k, int fromEnvironment, bool soft) {
+        if (k == lightSamples && fromEnvironment == environmentLights && soft == softShadows) return;
         if (k < 1 && !lighting.areaLights.empty())
             throw std::invalid_argument("SnapshotSettings::areaLightSamples must be at least 1, got " +
                                         std::to_string(k));
@@ -125,9 +126,16 @@ struct SnapshotRenderer::Impl {
             throw std::invalid_argument("SnapshotSettings::environmentLights must be in [0, 16], got " +
                                         std::to_string(fromEnvironment));
         std::vector<PointLight> lights = lighting.pointLights;
+        std::vector<float> patchHalfSides(lights.size(), 0.0f);  // true point lights: hard shadows
         for (const AreaLight& area : lighting.areaLights) {
             const std::vector<PointLight> samples = approximateAreaLight(lighting, area, k);
             lights.insert(lights.end(), samples.begin(), samples.end());
+            // Each sample stands for 1/k of the light: a square of that area, whose penumbra its
+            // shadow lookup spreads (glsl/shadow_visibility.glsl softShadowVisibility).
+            double total = 0.0;
+            for (std::uint32_t t : area.triangles) total += triangleArea(lighting.mesh, t);
+            const float halfSide = soft ? static_cast<float>(0.5 * std::sqrt(total / k)) : 0.0f;
+            patchHalfSides.insert(patchHalfSides.end(), samples.size(), halfSide);
         }
         std::vector<DirectionalLight> directionals = lighting.directionalLights;
         std::optional<passes::EnvironmentLighting> env;
@@ -135,7 +143,7 @@ struct SnapshotRenderer::Impl {
             env = passes::prepareEnvironmentLighting(*lighting.environment, fromEnvironment);
             directionals.insert(directionals.end(), env->lights.begin(), env->lights.end());
         }
-        sceneGpu.setLights(lights, directionals, env ? &env->irradianceSH : nullptr);
+        sceneGpu.setLights(lights, directionals, env ? &env->irradianceSH : nullptr, patchHalfSides);
         sceneGpu.setBackground(env ? env->background : glm::vec3(0.0f));
         lightNames.clear();
         for (const PointLight& l : lights) lightNames.push_back(l.name);
@@ -143,6 +151,7 @@ struct SnapshotRenderer::Impl {
             if (glm::length(d.direction) > 0.0f) lightNames.push_back(d.name);
         lightSamples = k;
         environmentLights = fromEnvironment;
+        softShadows = soft;
     }
 };
 
@@ -159,7 +168,8 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         throw std::invalid_argument("SnapshotSettings::scale must be positive");
     validate(settings.shadows);
     Impl& s = *impl_;
-    s.updateLights(settings.areaLightSamples, settings.environmentLights);
+    s.updateLights(settings.areaLightSamples, settings.environmentLights,
+                   settings.shadows.enabled && settings.shadows.softShadows);
 
     auto scaled = [&](int v) {
         return static_cast<std::uint32_t>(std::max(1L, std::lround(settings.scale * static_cast<float>(v))));

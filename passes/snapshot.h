@@ -22,6 +22,9 @@ struct ShadowSettings {
     float depthBias = 0.5f;  // constant bias, in shadow-map texels at the receiver
     float slopeBias = 1.0f;  // times tan(incidence angle), in texels (slope-scaled bias)
     int pcf = 1;             // percentage-closer filter kernel side in texels; 1 = one tap
+    // Area-light samples filter their lookups over the penumbra of the patch of the light each
+    // stands for (PCSS): smooth penumbrae. Point and spot lights keep the pcf lookup either way.
+    bool softShadows = true;
 };
 
 struct SnapshotSettings {

@@ -7,6 +7,8 @@ const std::vector<ParamSpec>& snapshotParams() {
         realParam("scale", 1.0, 4.0, 1.5, "snapshot resolution / render resolution"),
         intParam("area_light_samples", 1, 64, 5, "point lights approximating each area light"),
         intParam("environment_lights", 0, 16, 1, "the environment map's brightest regions as shadowed directional lights"),
+        boolParam("soft_shadows", true,
+                  "area-light samples cast the soft shadow of the patch of light each stands for (PCSS)"),
         intParam("blur_radius", 0, 16, 1, "box blur radius after the Laplacian, in snapshot pixels"),
         realParam("noise_floor", 0.0, 1.0, 0.02, "blurred edge responses below this are smooth shading"),
         realParamAbove("gain", 0.0, 1e6, 1.0, "map = clamp(gain * (blurred - noise_floor), 0, 1)"),

@@ -35,6 +35,8 @@ int main(int argc, char** argv) {
     app.add_option("--shadow-pcf", options.settings.shadows.pcf, "shadow PCF kernel side (1: one tap)");
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "snapshot without shadow cube maps");
+    bool hardShadows = false;
+    app.add_flag("--hard-shadows", hardShadows, "area-light samples cast hard shadows (no soft-shadow filter)");
     app.add_option("--warmup", options.warmup, "untimed runs first");
     app.add_option("--iterations", options.iterations, "timed runs (the median is reported)");
     app.add_option("--device", contextOptions.device, "Vulkan device index or name substring");
@@ -43,6 +45,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     options.width = options.height = size;
     options.settings.shadows.enabled = !noShadows;
+    options.settings.shadows.softShadows = !hardShadows;
     options.settings.keepDebugImages = false;  // the aamap alone, as the experiment pipeline reads it
 
     try {

@@ -49,12 +49,15 @@ struct GpuLight {
     vec4 position;   // xyz
     vec4 intensity;  // rgb, W/sr
     vec4 normal;     // xyz: lobe or spot-cone axis (unit), or 0 for an isotropic light
-    vec4 cone;       // x: cos inner, y: cos outer half-angle; z: 1 for a spot (axis in normal), else 0
+    vec4 cone;       // x: cos inner, y: cos outer half-angle; z: 1 for a spot (axis in normal), else 0;
+                     // w: half the side of the patch of an area light that this point sample stands
+                     // for (a square of area A / samples), 0 for a true point: its soft-shadow size
 };
 #define LIGHT_CONE_DIRECTIONAL 2.0  // GpuLight::cone.z of a directional light
 
 // Specialisation constants of the lit fragment shaders (gbuffer*.frag, geometry_buffer.shadowed*
-// .frag; glsl/lights.glsl): the light list's length and kinds, the PCF side and the first
+// .frag; glsl/lights.glsl): the light list's length and kinds, the PCF side, whether some light
+// is a patch of an area light (soft shadows, glsl/shadow_visibility.glsl) and the first
 // LIGHTING_INLINE_LIGHTS lights themselves are fixed per pipeline. So the code of absent light
 // kinds and of the other PCF path is dropped (lavapipe's SIMD lanes run both sides of every
 // branch), and those lights cost no uniform loads (lavapipe gathers every uniform load lane by
@@ -63,11 +66,12 @@ struct GpuLight {
 #define LIGHTING_SPEC_LIGHT_COUNT 0  // uint: lights[0 .. count)
 #define LIGHTING_SPEC_SHADOW_PCF 1   // uint: PCF kernel side in texels (1: one tap)
 #define LIGHTING_SPEC_LIGHT_KINDS 2  // uint: the LIGHT_KIND_* bits of the kinds in the list
-// Then light k < LIGHTING_INLINE_LIGHTS as floats from LIGHTING_SPEC_LIGHT_DATA + 12 k: position
-// xyz, intensity rgb, normal xyz, cone xyz (GpuLight's fields in order, w dropped); zeros past
-// the list. Lights from LIGHTING_INLINE_LIGHTS on are read from the uniform buffer.
-#define LIGHTING_SPEC_LIGHT_DATA 3
-#define LIGHTING_SPEC_FLOATS_PER_LIGHT 12
+#define LIGHTING_SPEC_SOFT_SHADOWS 3 // uint: 1 if some light has a patch (GpuLight::cone.w > 0)
+// Then light k < LIGHTING_INLINE_LIGHTS as floats from LIGHTING_SPEC_LIGHT_DATA + 13 k: position
+// xyz, intensity rgb, normal xyz, cone xyzw (GpuLight's fields in order, the other w dropped);
+// zeros past the list. Lights from LIGHTING_INLINE_LIGHTS on are read from the uniform buffer.
+#define LIGHTING_SPEC_LIGHT_DATA 4
+#define LIGHTING_SPEC_FLOATS_PER_LIGHT 13
 #define LIGHTING_INLINE_LIGHTS 8  // = the APPLY list of FOR_EACH_INLINE_LIGHT (glsl/lights.glsl)
 #define LIGHT_KIND_ISOTROPIC 1u      // GpuLight::normal is 0
 #define LIGHT_KIND_LOBE 2u           // cosine lobe about GpuLight::normal (area-light samples)

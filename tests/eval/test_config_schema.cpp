@@ -40,6 +40,7 @@ const std::map<std::string, Field>& fields() {
         {"snapshot.scale", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.scale); }},
         {"snapshot.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.areaLightSamples); }},
         {"snapshot.environment_lights", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.environmentLights); }},
+        {"snapshot.soft_shadows", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.softShadows); }},
         {"snapshot.blur_radius", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.blurRadius); }},
         {"snapshot.noise_floor", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.noiseFloor); }},
         {"snapshot.gain", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.gain); }},
@@ -228,6 +229,7 @@ TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
 
     hand.snapshot.map = "geometric";
     hand.snapshot.environmentLights = 2;
+    hand.snapshot.softShadows = false;
     const nlohmann::json key = nlohmann::json::parse(renderKeyJson(hand, hand.renders[0]));
     std::vector<std::string> names;
     for (const auto& [name, value] : key.at("snapshot").items()) names.push_back(name);

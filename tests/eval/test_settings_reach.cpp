@@ -238,6 +238,9 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                           becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.gain; }, 3.5f)};
     t["snapshot.environment_lights"] = {{}, {"snapshot.environment_lights=3"}, Renders::UsingAamap, true,
                                         becomes([](const ExperimentConfig& c, int) { return snap(c, 0).environmentLights; }, 3)};
+    // Written only when false: the "infinity" base sets it, so the alternative is true.
+    t["snapshot.soft_shadows"] = {{}, {"snapshot.soft_shadows=true"}, Renders::UsingAamap, true,
+                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).shadows.softShadows; }, true)};
     t["snapshot.map"] = {{}, {"snapshot.map=geometric"}, Renders::UsingAamap, true,
                          becomes([](const ExperimentConfig& c, int) { return snap(c, 0).map; }, passes::AamapSource::Geometric)};
     // Shading: every traced image, never the Snapshot.
@@ -432,7 +435,7 @@ protected:
                              "lights:\n"
                              "  - {type: directional, name: sun, direction: [0.3, -1, 0.2], irradiance: [2, 2, 2]}\n"
                              "  - {type: environment, name: sky, map: sky.exr, scale: 1.5, rotation: 30, up: [0, 1, 0]}\n"
-                             "snapshot: {environment_lights: 2}\n"
+                             "snapshot: {environment_lights: 2, soft_shadows: false}\n"
                              "shading: {mode: cache, cache: {bounces: 2, divisions: 64, supersamples: 32, accuracy: 0.25,\n"
                              "          resolution: 32, grid_step: 8}}\n"
                              "metrics: {causes: false, oracle: true}\n"

@@ -1,6 +1,9 @@
 // Shadow cube maps in the Snapshot: the shadow edge of a box lies where the analytic projection
 // from the light puts it, the passes exist only for lights, and occluders darken.
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <vector>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -218,6 +221,210 @@ TEST_F(SnapshotShadows, OccluderDarkensTheSurface) {
     // Lit floor far from the box looks the same with or without the box: no acne.
     EXPECT_NEAR(b.snapshot.at(60, 32).r, a.snapshot.at(60, 32).r, 1e-5f);
     EXPECT_NEAR(b.snapshot.at(60, 5).r, a.snapshot.at(60, 5).r, 1e-5f);
+}
+
+// --- Soft shadows of area-light samples ------------------------------------------------------
+// A square lamp (side kLampSide, facing down at height kLampHeight, centred at x = kLampX) over a
+// floor z = 0, and optionally an opaque plate at height kPlateHeight over x < 0: the plate's edge
+// x = 0 casts a penumbra on the floor. Every plane is horizontal, so similar triangles give it
+// exactly: lamp point x_L shadows floor points x < -x_L h / (H - h), a band of width
+// side * h / (H - h) around -kLampX h / (H - h), across which the visible part of the lamp grows
+// linearly (the edge runs along the lamp's side).
+constexpr float kLampSide = 0.4f, kLampHeight = 1.5f, kLampX = -0.6f, kPlateHeight = 0.5f;
+constexpr float kShadowScale = kPlateHeight / (kLampHeight - kPlateHeight);
+constexpr float kPenumbraWidth = kLampSide * kShadowScale;   // 0.2
+constexpr float kPenumbraCentre = -kLampX * kShadowScale;    // 0.3
+
+Scene lampOverPlate(bool withPlate) {
+    Scene scene;
+    scene.name = "lamp over plate";
+    Material grey;
+    grey.name = "grey";
+    grey.kd = glm::vec3(0.8f);
+    scene.materials.push_back(grey);
+    addQuad(scene, 2, 0.0f, -2.0f, 2.0f, -2.0f, 2.0f, true);
+    if (withPlate) addQuad(scene, 2, kPlateHeight, -2.0f, 0.0f, -2.0f, 2.0f, true);
+    Material lamp;
+    lamp.name = "lamp";
+    lamp.ke = glm::vec3(5.0f);
+    scene.materials.push_back(lamp);
+    const float h = 0.5f * kLampSide;
+    addQuad(scene, 2, kLampHeight, kLampX - h, kLampX + h, -h, h, false);  // facing down
+    scene.mesh.materialIds.back() = scene.mesh.materialIds[scene.mesh.materialIds.size() - 2] = 1;
+    scene.mesh.objectIds.back() = scene.mesh.objectIds[scene.mesh.objectIds.size() - 2] = 1;
+    scene.areaLights = buildAreaLights(scene);
+    return scene;
+}
+
+// Straight down onto the penumbra; the plate (x < 0) stays out of the picture's middle rows.
+View penumbraView() { return viewDownZ({kPenumbraCentre, 0.0f, 2.0f}, 15.0f); }
+
+// Per pixel of the middle row: the floor's x, and the snapshot's red (grey scene, white lamp).
+struct FloorRow {
+    std::vector<float> x, value;
+};
+
+FloorRow middleRow(const SnapshotResult& r, const View& view) {
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    const int w = r.snapshot.width(), h = r.snapshot.height();
+    FloorRow row;
+    for (int x = 0; x < w; ++x) {
+        const glm::vec3 d = camera.direction((x + 0.5f) / w, 0.5f);
+        row.x.push_back(camera.origin.x + (-camera.origin.z / d.z) * d.x);
+        row.value.push_back(r.snapshot.at(x, h / 2).r);
+    }
+    return row;
+}
+
+// The floor's x where the visibility (shadowed / open) first reaches `level`, linearly
+// interpolated between pixels; NaN if it never does.
+float crossing(const FloorRow& row, const std::vector<float>& visibility, float level) {
+    for (std::size_t i = 1; i < visibility.size(); ++i)
+        if (visibility[i - 1] < level && visibility[i] >= level) {
+            const float t = (level - visibility[i - 1]) / (visibility[i] - visibility[i - 1]);
+            return row.x[i - 1] + t * (row.x[i] - row.x[i - 1]);
+        }
+    return std::nanf("");
+}
+
+struct PenumbraProfile {
+    FloorRow row;
+    std::vector<float> visibility;  // shadowed / open floor, per pixel of the row
+};
+
+PenumbraProfile penumbraProfile(VulkanContext& context, bool soft, int samples) {
+    SnapshotSettings settings;
+    settings.scale = 1.0f;
+    settings.areaLightSamples = samples;
+    settings.shadows.softShadows = soft;
+    const int size = 160;
+    SnapshotRenderer shadowed(context, lampOverPlate(true));
+    SnapshotRenderer open(context, lampOverPlate(false));
+    const SnapshotResult a = shadowed.render(penumbraView(), size, size, settings);
+    const SnapshotResult b = open.render(penumbraView(), size, size, settings);
+    PenumbraProfile p{middleRow(a, penumbraView()), {}};
+    const FloorRow lit = middleRow(b, penumbraView());
+    for (std::size_t i = 0; i < p.row.value.size(); ++i)
+        p.visibility.push_back(lit.value[i] > 0.0f ? p.row.value[i] / lit.value[i] : 0.0f);
+    return p;
+}
+
+// The largest rise of the visibility from one pixel to the next, and the largest fall.
+std::pair<float, float> largestSteps(const std::vector<float>& v) {
+    float rise = 0.0f, fall = 0.0f;
+    for (std::size_t i = 1; i < v.size(); ++i) {
+        rise = std::max(rise, v[i] - v[i - 1]);
+        fall = std::max(fall, v[i - 1] - v[i]);
+    }
+    return {rise, fall};
+}
+
+TEST_F(SnapshotShadows, AreaLightPenumbraIsASmoothRampOfTheAnalyticWidth) {
+    // One sample: its patch is the whole lamp, and the kernel is the similar triangles' width (up
+    // to where the filter's grid puts the edge, a fraction of a kernel). More: each patch's
+    // penumbra is narrower, spread by where the samples sit; the triangular van der Corput points
+    // keep nearer the lamp's middle than a tiling would, so the ramp comes out up to a third
+    // narrower.
+    for (const auto& [samples, tolerance] : {std::pair{1, 0.3f}, std::pair{5, 0.35f}, std::pair{16, 0.35f}}) {
+        const PenumbraProfile soft = penumbraProfile(context(), true, samples);
+        ASSERT_GT(soft.row.x.front(), 0.0f) << "the plate is in view";
+        ASSERT_LT(soft.row.x.front(), kPenumbraCentre - kPenumbraWidth);
+        ASSERT_GT(soft.row.x.back(), kPenumbraCentre + kPenumbraWidth);
+        // Umbra left, full light right.
+        EXPECT_LT(soft.visibility.front(), 0.01f) << samples << " samples";
+        EXPECT_GT(soft.visibility.back(), 0.99f) << samples << " samples";
+        // A ramp: never darker to the right, and no step of a whole light sample (1/5).
+        const auto [rise, fall] = largestSteps(soft.visibility);
+        EXPECT_LE(fall, 1e-3f) << "not monotone, " << samples << " samples";
+        EXPECT_LT(rise, 0.05f) << "a staircase, " << samples << " samples";
+        // 10-90 % width: the analytic ramp is linear over kPenumbraWidth, so 0.8 of it.
+        const float x10 = crossing(soft.row, soft.visibility, 0.1f), x90 = crossing(soft.row, soft.visibility, 0.9f);
+        const float analytic = 0.8f * kPenumbraWidth;
+        EXPECT_NEAR(x90 - x10, analytic, tolerance * analytic)
+            << samples << " samples: 10 % at " << x10 << ", 90 % at " << x90;
+        EXPECT_NEAR(0.5f * (x10 + x90), kPenumbraCentre, 0.25f * kPenumbraWidth) << samples << " samples";
+        if (std::getenv("AAMAP_DUMP_PENUMBRA"))
+            fmt::print("{} samples: 10-90 % width {}, analytic {}, largest rise {}\n", samples, x90 - x10, analytic, rise);
+    }
+    // Hard shadows from five samples: a staircase of steps of about a fifth.
+    const PenumbraProfile hard = penumbraProfile(context(), false, 5);
+    EXPECT_GT(largestSteps(hard.visibility).first, 0.15f);
+}
+
+TEST_F(SnapshotShadows, PointLightShadowIsTheSameWithSoftShadowsOnOrOff) {
+    const Scene scene = boxScene(true);
+    SnapshotSettings settings;
+    settings.scale = 1.0f;
+    SnapshotRenderer renderer(context(), scene);
+    settings.shadows.softShadows = false;
+    const SnapshotResult hard = renderer.render(topView(), 96, 96, settings);
+    settings.shadows.softShadows = true;
+    const SnapshotResult soft = renderer.render(topView(), 96, 96, settings);
+    EXPECT_EQ(hard.snapshot, soft.snapshot);  // no patch: the point light keeps its lookup
+    EXPECT_EQ(hard.aamap, soft.aamap);
+}
+
+// Acne: an unoccluded plane must look as if shadows were off. The floor, or a plane tilted by
+// 60 degrees about y (its normal leaning towards the light), each alone under the lamp (soft
+// shadows) or under a point light at the lamp's centre (hard ones).
+TEST_F(SnapshotShadows, UnoccludedPlanesHaveNoAcne) {
+    for (bool tilted : {false, true})
+        for (bool lamp : {true, false}) {
+            Scene scene;
+            scene.name = "acne";
+            Material grey;
+            grey.name = "grey";
+            grey.kd = glm::vec3(0.8f);
+            scene.materials.push_back(grey);
+            if (!tilted) {
+                addQuad(scene, 2, 0.0f, -2.0f, 2.0f, -2.0f, 2.0f, true);
+            } else {
+                const auto base = static_cast<std::uint32_t>(scene.mesh.positions.size());
+                const float c = 0.5f, s = std::sqrt(3.0f) / 2.0f;  // cos, sin 60 degrees
+                const glm::vec3 centre{0.3f, 0.0f, 0.0f}, along{c, 0.0f, s}, across{0.0f, 1.0f, 0.0f};
+                for (glm::vec2 k : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+                    scene.mesh.positions.push_back(centre + 0.6f * (k.x * along + k.y * across));
+                scene.mesh.normals.insert(scene.mesh.normals.end(), 4, glm::vec3(-s, 0.0f, c));
+                scene.mesh.triangles.insert(scene.mesh.triangles.end(),
+                                            {{base, base + 2, base + 1}, {base, base + 3, base + 2}});
+                scene.mesh.materialIds.insert(scene.mesh.materialIds.end(), 2, 0u);
+                scene.mesh.objectIds.insert(scene.mesh.objectIds.end(), 2, 0u);
+            }
+            if (lamp) {
+                Material emitter;
+                emitter.name = "lamp";
+                emitter.ke = glm::vec3(5.0f);
+                scene.materials.push_back(emitter);
+                const float h = 0.5f * kLampSide;
+                addQuad(scene, 2, kLampHeight, kLampX - h, kLampX + h, -h, h, false);
+                scene.mesh.materialIds.back() = scene.mesh.materialIds[scene.mesh.materialIds.size() - 2] = 1;
+                scene.areaLights = buildAreaLights(scene);
+            } else {
+                PointLight bulb;
+                bulb.name = "bulb";
+                bulb.position = {kLampX, 0.0f, kLampHeight};
+                bulb.intensity = glm::vec3(1.0f);
+                scene.pointLights.push_back(bulb);
+            }
+            SnapshotRenderer renderer(context(), scene);
+            SnapshotSettings settings;
+            settings.scale = 1.0f;
+            const View view = viewDownZ({0.3f, 0.0f, 3.0f}, 20.0f);  // inside the tilted plane
+            const SnapshotResult shadowed = renderer.render(view, 96, 96, settings);
+            settings.shadows.enabled = false;
+            const SnapshotResult unshadowed = renderer.render(view, 96, 96, settings);
+            float worst = 0.0f;
+            int lit = 0;
+            for (int y = 0; y < 96; ++y)
+                for (int x = 0; x < 96; ++x) {
+                    const float a = shadowed.snapshot.at(x, y).r, b = unshadowed.snapshot.at(x, y).r;
+                    if (b <= 0.0f) continue;
+                    ++lit;
+                    worst = std::max(worst, std::abs(a - b) / b);
+                }
+            EXPECT_GT(lit, 96 * 96 / 2);
+            EXPECT_LT(worst, 1e-3f) << (tilted ? "tilted plane, " : "floor, ") << (lamp ? "lamp" : "point light");
+        }
 }
 
 }  // namespace
