@@ -64,9 +64,10 @@ glm::mat4 reflectionMatrix(glm::vec3 n, float d) {
 }
 
 std::string CurvedMirror::describe() const {
-    if (planes == 0) return fmt::format("{}: {} triangle{} curved", group, triangles, triangles == 1 ? "" : "s");
-    return fmt::format("{}: {} plane{} reflected, {} triangle{} curved", group, planes, planes == 1 ? "" : "s",
-                       triangles, triangles == 1 ? "" : "s");
+    const std::size_t n = triangles.size();
+    if (planes == 0) return fmt::format("{}: {} triangle{} curved", group, n, n == 1 ? "" : "s");
+    return fmt::format("{}: {} plane{} reflected, {} triangle{} curved", group, planes, planes == 1 ? "" : "s", n,
+                       n == 1 ? "" : "s");
 }
 
 namespace {
@@ -243,8 +244,7 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
         for (PlaneCluster& cluster : clusters) {
             const float length = glm::length(cluster.weightedNormal);
             if (!faceted && !(cluster.area >= kMinPlaneAreaFraction * groupArea)) {
-                curved.triangles += cluster.triangles.size();
-                curved.triangleIds.insert(curved.triangleIds.end(), cluster.triangles.begin(), cluster.triangles.end());
+                curved.triangles.insert(curved.triangles.end(), cluster.triangles.begin(), cluster.triangles.end());
                 continue;
             }
             PlanarMirror mirror;
@@ -256,15 +256,15 @@ MirrorGroups findPlanarMirrors(const Scene& scene) {
             mirror.reflectance = reflectance;
             planes.push_back(std::move(mirror));
         }
-        const bool onePlane = planes.size() == 1 && curved.triangles == 0;
+        const bool onePlane = planes.size() == 1 && curved.triangles.empty();
         for (std::size_t k = 0; k < planes.size(); ++k) {
             planes[k].name = onePlane ? name : fmt::format("{} plane {}", name, k + 1);
             out.planar.push_back(std::move(planes[k]));
         }
         curved.planes = planes.size();
-        std::sort(curved.triangleIds.begin(), curved.triangleIds.end());
+        std::sort(curved.triangles.begin(), curved.triangles.end());
         curved.reflectance = reflectance;
-        if (curved.triangles > 0) out.curved.push_back(std::move(curved));
+        if (!curved.triangles.empty()) out.curved.push_back(std::move(curved));
     }
     return out;
 }

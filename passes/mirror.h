@@ -64,9 +64,8 @@ struct PlanarMirror {
 // environment probe (passes/mirror_probes.h), not a planar view.
 struct CurvedMirror {
     std::string group;           // "object/material"
-    std::size_t triangles = 0;   // curved ones
     std::size_t planes = 0;      // of the same group that are PlanarMirrors
-    std::vector<std::uint32_t> triangleIds;  // the curved triangles, ascending
+    std::vector<std::uint32_t> triangles;  // the curved ones, ascending
     glm::vec3 reflectance{1.0f};             // as PlanarMirror::reflectance
     std::string describe() const;  // "object 3/m: 2 planes reflected, 40 triangles curved"
 };

@@ -55,17 +55,17 @@ MirrorProbes::MirrorProbes(VulkanContext& context, const Scene& scene, const Mir
         probe.name = curved.group;
         probe.reflectance = curved.reflectance;
         glm::vec3 lo(INFINITY), hi(-INFINITY);
-        for (const std::uint32_t t : curved.triangleIds)
+        for (const std::uint32_t t : curved.triangles)
             for (int k = 0; k < 3; ++k) {
                 lo = glm::min(lo, mesh.positions[mesh.triangles[t][k]]);
                 hi = glm::max(hi, mesh.positions[mesh.triangles[t][k]]);
             }
         probe.centre = 0.5f * (lo + hi);
-        for (const std::uint32_t t : curved.triangleIds)
+        for (const std::uint32_t t : curved.triangles)
             for (int k = 0; k < 3; ++k)
                 probe.radius = std::max(probe.radius, glm::length(mesh.positions[mesh.triangles[t][k]] - probe.centre));
         if (!(probe.radius > 0.0f) || !std::isfinite(probe.radius)) continue;  // nothing to see from
-        probe.triangles = curved.triangleIds;
+        probe.triangles = curved.triangles;
         probes_.push_back(std::move(probe));
     }
     if (probes_.empty()) return;

@@ -491,7 +491,7 @@ TEST(MirrorGeometry, TessellatedCurvesStayCurved) {
     passes::MirrorGroups g = passes::findPlanarMirrors(s);
     EXPECT_TRUE(g.planar.empty());
     ASSERT_EQ(g.curved.size(), 1u);
-    EXPECT_EQ(g.curved[0].triangles, s.mesh.triangles.size());
+    EXPECT_EQ(g.curved[0].triangles.size(), s.mesh.triangles.size());
     EXPECT_EQ(g.curved[0].planes, 0u);
     EXPECT_EQ(g.curved[0].describe(), fmt::format("object 3/mirror: {} triangles curved", s.mesh.triangles.size()));
 
