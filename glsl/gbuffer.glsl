@@ -105,6 +105,17 @@ vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
     return brdf(kd, wi) * light.intensity.rgb * weight;
 }
 
+// Every light's contribution (lightContribution), emission and the ambient term excluded: the
+// inlined lights from specialisation constants, then the rest from the uniform buffer.
+vec3 lighting(vec3 n, vec3 kd) {
+    vec3 sum = vec3(0.0);
+#define ADD_INLINE_LIGHT(k) \
+    if (uint(k) < kLightCount) sum += lightContribution(INLINE_LIGHT(k), uint(k), n, kd);
+    FOR_EACH_INLINE_LIGHT(ADD_INLINE_LIGHT)
+    for (uint i = LIGHTING_INLINE_LIGHTS; i < kLightCount; ++i) sum += lightContribution(lights[i], i, n, kd);
+    return sum;
+}
+
 void main() {
 #ifdef GBUFFER_TEXTURED
     // The pixel's footprint in uv, before any discard (derivatives need the whole quad). The
@@ -143,23 +154,14 @@ void main() {
     const float f0 = vertexKd.x;
     const float cosView = clamp(dot(n, normalize(toCamera)), 0.0, 1.0);
     const float fresnel = f0 + (1.0 - f0) * pow(1.0 - cosView, 5.0);
-    vec3 reflected = vec3(0.0);
-#define ADD_INLINE_REFLECTED(k) \
-    if (uint(k) < kLightCount) reflected += lightContribution(INLINE_LIGHT(k), uint(k), n, vec3(1.0));
-    FOR_EACH_INLINE_LIGHT(ADD_INLINE_REFLECTED)
-    for (uint i = LIGHTING_INLINE_LIGHTS; i < kLightCount; ++i) reflected += lightContribution(lights[i], i, n, vec3(1.0));
-    reflected += kInvPi * ambientIrradiance(n);
+    const vec3 reflected = lighting(n, vec3(1.0)) + kInvPi * ambientIrradiance(n);
     outColour = vec4(fresnel * reflected, fresnel);
     return;
 #endif
     mirrorOfView = reflect(-normalize(toCamera), n);
     phongKs = specular.xyz * ((specular.w + 2.0) * 0.5 * kInvPi);
     // Emitters are one-sided along their normal.
-    vec3 colour = front ? ke : vec3(0.0);
-#define ADD_INLINE_LIGHT(k) \
-    if (uint(k) < kLightCount) colour += lightContribution(INLINE_LIGHT(k), uint(k), n, kd);
-    FOR_EACH_INLINE_LIGHT(ADD_INLINE_LIGHT)
-    for (uint i = LIGHTING_INLINE_LIGHTS; i < kLightCount; ++i) colour += lightContribution(lights[i], i, n, kd);
+    vec3 colour = (front ? ke : vec3(0.0)) + lighting(n, kd);
     colour += kd * kInvPi * ambientIrradiance(n);  // the environment's remainder (unshadowed)
     outColour = vec4(colour, 1.0);
 #ifdef GBUFFER_GREY
