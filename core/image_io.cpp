@@ -189,6 +189,12 @@ ImageRGB8 readPng(const std::filesystem::path& path) {
     return image;
 }
 
+float displayEncode(float linear, float exposure) {
+    const float v = linear * exposure;
+    if (!std::isfinite(v)) return 0.0f;  // as toneMap(): a clamp would turn +inf white
+    return srgbEncode(v);                // clamps to [0,1] first
+}
+
 float srgbEncode(float v) {
     v = std::clamp(v, 0.0f, 1.0f);
     return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;

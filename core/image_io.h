@@ -37,6 +37,10 @@ ImageRGB8 toneMap(const ImageRGB& image, float exposure = 1.0f);
 ImageGrey8 quantise(const ImageGrey& image, float scale = 1.0f);
 
 float srgbEncode(float linear);  // the sRGB OETF on [0,1]
+// The display value of one linear channel, as toneMap() shows it before rounding: exposure,
+// non-finite -> 0, clamp to [0,1], sRGB OETF. What the display-space metrics and the Space
+// strategy's gradient test compare.
+float displayEncode(float linear, float exposure = 1.0f);
 
 // Perceptual colour ramp (viridis) for t in [0,1].
 glm::u8vec3 colourRamp(float t);

@@ -38,12 +38,6 @@ double pixelSquaredError(const glm::vec3& r, const glm::vec3& t, const PixelErro
 
 }  // namespace
 
-float displayEncode(float linear, float exposure) {
-    const float v = linear * exposure;
-    if (!std::isfinite(v)) return 0.0f;  // as toneMap(): a clamp would turn +inf white
-    return srgbEncode(v);                // clamps to [0,1] first
-}
-
 double psnrFromMse(double mse, double peak) {
     if (mse <= 0.0) return std::numeric_limits<double>::infinity();
     return 10.0 * std::log10(peak * peak / mse);

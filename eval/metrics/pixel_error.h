@@ -58,7 +58,4 @@ ImageGrey squaredErrorMap(const ImageRGB& reference, const ImageRGB& test, const
 // 10 log10(peak^2 / mse); +infinity for mse == 0. (JSON writers emit +inf as null.)
 double psnrFromMse(double mse, double peak = 1.0);
 
-// The Display-space value of one linear channel: exposure, non-finite -> 0, clamp, sRGB OETF.
-float displayEncode(float linear, float exposure = 1.0f);
-
 }  // namespace aamap::metrics

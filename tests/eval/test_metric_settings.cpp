@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "core/image_io.h"
 #include "eval/config.h"
 #include "eval/evaluate.h"
 #include "eval/metrics/flip.h"
@@ -105,7 +106,7 @@ TEST(MetricSettings, MseThresholdIsWherePctErrorMseCounts) {
 TEST(MetricSettings, APixelExactlyAtTheMseThresholdCounts) {
     ImageRGB reference(4, 1, glm::vec3(0.0f)), test(4, 1, glm::vec3(0.0f));
     test.at(0, 0) = glm::vec3(0.3f);
-    const double c = metrics::displayEncode(0.3f);
+    const double c = displayEncode(0.3f);
     MetricsConfig m;
     m.flip = false;
     m.mseThreshold = c * c;

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "core/image_io.h"
 #include "tests/tracer/scene_builder.h"
 #include "tests/tracer/synthetic_source.h"
 #include "tracer/strategies/subsample.h"
@@ -94,7 +95,7 @@ TEST(StrategyRender, SubsampleGradientRoundsFollowAHotSpotTheMapDoesNotSee) {
             for (int x = 0; x < w; ++x) {
                 float squared = 0.0f;
                 for (int c = 0; c < 3; ++c) {
-                    const float d = displayValue(image.at(x, y)[c], 1.0f) - displayValue(uniform.image.at(x, y)[c], 1.0f);
+                    const float d = displayEncode(image.at(x, y)[c], 1.0f) - displayEncode(uniform.image.at(x, y)[c], 1.0f);
                     squared += d * d;
                 }
                 worst = std::max(worst, 255.0f * std::sqrt(squared / 3.0f));

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/image_io.h"
 #include "tests/tracer/synthetic_source.h"
 #include "tracer/block_sums.h"
 #include "tracer/strategies/subsample.h"
@@ -250,7 +251,7 @@ float maxDisplayError(const ImageRGB& test, const SyntheticSource::Radiance& f, 
             const glm::vec3 exact = f(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
             float squared = 0.0f;
             for (int c = 0; c < 3; ++c) {
-                const float d = displayValue(test.at(x, y)[c], exposure) - displayValue(exact[c], exposure);
+                const float d = displayEncode(test.at(x, y)[c], exposure) - displayEncode(exact[c], exposure);
                 squared += d * d;
             }
             worst = std::max(worst, 255.0f * std::sqrt(squared / 3.0f));
@@ -271,7 +272,7 @@ TEST(SubsampleGradients, PredictedErrorIsZeroOnBilinearAndSeesACentredBump) {
     const Block b{0, 0, 8, 8};
     EXPECT_LT(predictedInterpolationError(img, b, 1.0f), 1e-4f);
     img.at(4, 4) += glm::vec3(0.2f);  // the centre, between four corners of which none sees it
-    const float expected = displayValue(img.at(4, 4).x, 1.0f) - displayValue(img.at(4, 4).x - 0.2f, 1.0f);
+    const float expected = displayEncode(img.at(4, 4).x, 1.0f) - displayEncode(img.at(4, 4).x - 0.2f, 1.0f);
     EXPECT_NEAR(predictedInterpolationError(img, b, 1.0f), 255.0f * expected, 1e-4f);  // code values
     // Halves: a block one pixel wide probes only the midpoints of its long sides.
     EXPECT_EQ(splitBlock({3, 0, 4, 8}).size(), 2u);

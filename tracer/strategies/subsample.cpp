@@ -65,11 +65,6 @@ SubsamplePlan planSubsampling(const BlockSums& sums, int spacing, double thresho
     return plan;
 }
 
-float displayValue(float linear, float exposure) {
-    const float v = linear * exposure;
-    return std::isfinite(v) ? srgbEncode(v) : 0.0f;  // srgbEncode clamps; a clamp would turn +inf white
-}
-
 namespace {
 glm::vec3 bilinear(const ImageRGB& image, const Block& b, int x, int y) {
     const float u = b.x1 > b.x0 ? static_cast<float>(x - b.x0) / static_cast<float>(b.x1 - b.x0) : 0.0f;
@@ -88,7 +83,7 @@ float predictedInterpolationError(const ImageRGB& image, const Block& block, flo
             const glm::vec3 predicted = bilinear(image, block, x, y), traced = image.at(x, y);
             float squared = 0.0f;
             for (int c = 0; c < 3; ++c) {
-                const float d = displayValue(predicted[c], exposure) - displayValue(traced[c], exposure);
+                const float d = displayEncode(predicted[c], exposure) - displayEncode(traced[c], exposure);
                 squared += d * d;
             }
             worst = std::max(worst, 255.0f * std::sqrt(squared / 3.0f));  // the block's own corners: 0

@@ -39,11 +39,8 @@ std::vector<Block> splitBlock(const Block& block);
 
 SubsamplePlan planSubsampling(const BlockSums& sums, int spacing, double threshold);
 
-// The value the error metrics compare for a linear channel: exposure, non-finite -> 0, clamp to
-// [0,1], the sRGB OETF (core's srgbEncode, as toneMap() and metrics::displayEncode()).
-float displayValue(float linear, float exposure);
 // The interpolation error predicted for the block: over the corners that splitBlock(block) adds,
-// the largest display-space difference between the traced value there and the bilinear
+// the largest display-space difference (core's displayEncode) between the traced value there and the bilinear
 // prediction from the block's corners, as the RMS over R, G, B (the display MSE metric's per-pixel
 // error, square-rooted), in 8-bit code values (1 = 1/255). The image must hold traced values at
 // all those points.
