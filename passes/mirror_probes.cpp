@@ -15,13 +15,6 @@
 namespace aamap::passes {
 namespace {
 
-struct ProbeVertex {
-    glm::vec3 position;
-    glm::vec3 normal;
-    glm::vec3 reflectance;
-    float firstLayer;
-};
-
 // (sc, tc, ma) of r on face f as rows of coefficients: glsl/shadow_cube.glsl cubeFaceCoords.
 struct FaceAxes {
     glm::vec3 sc, tc, ma;
@@ -50,36 +43,43 @@ glm::mat4 cubeFaceViewProjection(glm::vec3 centre, int face, float nearPlane) {
 MirrorProbes::MirrorProbes(VulkanContext& context, const Scene& scene, const MirrorGroups& groups)
     : context_(&context) {
     const TriangleMesh& mesh = scene.mesh;
+    const bool hasNormals = mesh.normals.size() == mesh.positions.size();
     for (const CurvedMirror& curved : groups.curved) {
+        // The group's own corners, three per triangle: all that coverage and the draw need.
         Probe probe;
         probe.name = curved.group;
-        probe.reflectance = curved.reflectance;
         glm::vec3 lo(INFINITY), hi(-INFINITY);
-        for (const std::uint32_t t : curved.triangles)
+        for (const std::uint32_t t : curved.triangles) {
+            const glm::uvec3 tri = mesh.triangles[t];
+            const glm::vec3 face =
+                glm::cross(mesh.positions[tri.y] - mesh.positions[tri.x], mesh.positions[tri.z] - mesh.positions[tri.x]);
+            const auto first = static_cast<std::uint32_t>(probe.corners.size());
+            probe.cornerTriangles.push_back({first, first + 1, first + 2});
+            probe.allTriangles.push_back(static_cast<std::uint32_t>(probe.allTriangles.size()));
             for (int k = 0; k < 3; ++k) {
-                lo = glm::min(lo, mesh.positions[mesh.triangles[t][k]]);
-                hi = glm::max(hi, mesh.positions[mesh.triangles[t][k]]);
+                const glm::vec3 p = mesh.positions[tri[k]];
+                glm::vec3 n = hasNormals ? mesh.normals[tri[k]] : face;
+                if (!(glm::dot(n, n) > 0.0f)) n = face;
+                probe.corners.push_back(p);
+                probe.vertices.push_back({p, n, curved.reflectance, 0.0f});
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
             }
+        }
         probe.centre = 0.5f * (lo + hi);
-        for (const std::uint32_t t : curved.triangles)
-            for (int k = 0; k < 3; ++k)
-                probe.radius = std::max(probe.radius, glm::length(mesh.positions[mesh.triangles[t][k]] - probe.centre));
+        for (const glm::vec3& p : probe.corners) probe.radius = std::max(probe.radius, glm::length(p - probe.centre));
         if (!(probe.radius > 0.0f) || !std::isfinite(probe.radius)) continue;  // nothing to see from
-        probe.triangles = curved.triangles;
         probes_.push_back(std::move(probe));
     }
-    if (probes_.empty()) return;
-    unsupported_ = reflectedViewsUnsupported(context, kMirrorProbesPass);
-    positions_ = mesh.positions;
-    if (mesh.normals.size() == mesh.positions.size()) normals_ = mesh.normals;
-    triangles_ = mesh.triangles;
+    if (!probes_.empty()) unsupported_ = reflectedViewsUnsupported(context, kMirrorProbesPass);
 }
 
 std::vector<MirrorProbes::Selected> MirrorProbes::select(const SnapshotView& view, glm::uvec2 snapshotPixels) const {
     const glm::mat4 viewProj = view.reversedViewProjection();  // x, y and w as the plain projection's
     std::vector<Selected> selected;
     for (const Probe& p : probes_) {
-        const double pixels = projectedPixels(positions_, triangles_, p.triangles, viewProj, view.nearPlane, snapshotPixels);
+        const double pixels =
+            projectedPixels(p.corners, p.cornerTriangles, p.allTriangles, viewProj, view.nearPlane, snapshotPixels);
         if (pixels >= MirrorPass::kMinReflectedPixels) selected.push_back({&p, pixels});
     }
     std::stable_sort(selected.begin(), selected.end(),
@@ -97,12 +97,12 @@ void MirrorProbes::buildCompositePipeline() {
     vk::GraphicsDesc desc;
     desc.vertexSpirv = spirv::mirror_probe_vert;
     desc.fragmentSpirv = spirv::mirror_probe_frag;
-    desc.vertexInput.stride = sizeof(ProbeVertex);
+    desc.vertexInput.stride = sizeof(Vertex);
     desc.vertexInput.attributes = {
-        {MIRROR_PROBE_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ProbeVertex, position)},
-        {MIRROR_PROBE_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ProbeVertex, normal)},
-        {MIRROR_PROBE_LOCATION_REFLECTANCE, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(ProbeVertex, reflectance)},
-        {MIRROR_PROBE_LOCATION_LAYER, 0, VK_FORMAT_R32_SFLOAT, offsetof(ProbeVertex, firstLayer)},
+        {MIRROR_PROBE_LOCATION_POSITION, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+        {MIRROR_PROBE_LOCATION_NORMAL, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+        {MIRROR_PROBE_LOCATION_REFLECTANCE, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, reflectance)},
+        {MIRROR_PROBE_LOCATION_LAYER, 0, VK_FORMAT_R32_SFLOAT, offsetof(Vertex, firstLayer)},
     };
     desc.colorFormats = {vk::toVkFormat(GBufferPass::kColourFormat)};
     desc.premultipliedBlend = true;  // alpha 0: added to what the G-buffer shaded
@@ -128,7 +128,7 @@ void MirrorProbes::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, G
                                    probes_.size(), MirrorPass::kMinReflectedPixels));
 
     std::vector<ReflectedView> views;
-    std::vector<ProbeVertex> vertices;
+    std::vector<Vertex> vertices;
     std::string names;
     for (std::size_t i = 0; i < selected.size(); ++i) {
         const Probe& p = *selected[i].probe;
@@ -139,19 +139,14 @@ void MirrorProbes::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, G
             v.clipPlane = glm::vec4(0.0f, 0.0f, 0.0f, -1.0f);  // 0 >= -1 everywhere: nothing clipped
             views.push_back(v);
         }
-        for (const std::uint32_t t : p.triangles) {
-            const glm::uvec3 tri = triangles_[t];
-            const glm::vec3 face = glm::cross(positions_[tri.y] - positions_[tri.x], positions_[tri.z] - positions_[tri.x]);
-            for (int k = 0; k < 3; ++k) {
-                glm::vec3 n = normals_.empty() ? face : normals_[tri[k]];
-                if (!(glm::dot(n, n) > 0.0f)) n = face;
-                vertices.push_back({positions_[tri[k]], n, p.reflectance, static_cast<float>(6 * i)});
-            }
+        for (Vertex v : p.vertices) {
+            v.firstLayer = static_cast<float>(6 * i);
+            vertices.push_back(v);
         }
         if (i < 4) names += fmt::format("{}'{}' ({:.0f} px)", i ? ", " : "", p.name, selected[i].pixels);
     }
     vertexCount_ = static_cast<std::uint32_t>(vertices.size());
-    vertices_ = vk::uploadBuffer(*context_, std::as_bytes(std::span<const ProbeVertex>(vertices)),
+    vertices_ = vk::uploadBuffer(*context_, std::as_bytes(std::span<const Vertex>(vertices)),
                                  VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     explain(fmt::format("{} curved mirror group(s) reflected through {}x{} cube probes: {}", selected.size(), kFaceSize,
                         kFaceSize, names));

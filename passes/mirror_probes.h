@@ -60,10 +60,18 @@ public:
              glm::uvec2 snapshotPixels, const GBufferShadows& shadows, std::string* why = nullptr);
 
 private:
+    struct Vertex {  // of the composite's draw (mirror_probe.vert)
+        glm::vec3 position;
+        glm::vec3 normal;
+        glm::vec3 reflectance;
+        float firstLayer;  // 6 x the probe's index in the view's selection, set per view
+    };
     struct Probe {
         std::string name;
-        std::vector<std::uint32_t> triangles;  // the curved ones, indices into the mesh
-        glm::vec3 reflectance{1.0f};
+        std::vector<Vertex> vertices;             // the curved triangles, three corners each
+        std::vector<glm::vec3> corners;           // their positions, for projectedPixels
+        std::vector<glm::uvec3> cornerTriangles;  // (3i, 3i + 1, 3i + 2)
+        std::vector<std::uint32_t> allTriangles;  // 0 .. n - 1
         glm::vec3 centre{0.0f};
         float radius = 0.0f;  // of the bounding sphere about centre: the probe's near plane
     };
@@ -77,8 +85,6 @@ private:
     VulkanContext* context_;
     std::string unsupported_;
     std::vector<Probe> probes_;
-    std::vector<glm::vec3> positions_, normals_;  // the mesh's (normals per vertex, or empty)
-    std::vector<glm::uvec3> triangles_;
     vk::Pipeline compositePipeline_;
     vk::Buffer vertices_;  // rebuilt per view: the selected probes' triangles
     std::uint32_t vertexCount_ = 0;
