@@ -140,6 +140,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.shading.rouletteDepth = hv.integer("roulette_depth");
     c.shading.maxSpecularDepth = hv.integer("max_specular_depth");
     c.shading.lightSelection = hv.choice("light_selection");
+    c.shading.lightSampling = hv.choice("light_sampling");
     c.shading.textureFilter = hv.choice("texture_filter");
     MapReader cache(ctx, shading.node("cache"), "shading.cache", sectionKeyNames(shadingCacheParams()));
     const ParamValues cv = readSection(ctx, cache, shadingCacheParams());
@@ -237,7 +238,8 @@ Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = ""
     const std::string mode = modeOverride.empty() ? s.mode : modeOverride;
     Json j = {{"area_light_samples", s.areaLightSamples}, {"mode", mode},
             {"max_depth", s.maxDepth}, {"russian_roulette", s.russianRoulette}, {"roulette_depth", s.rouletteDepth},
-            {"max_specular_depth", s.maxSpecularDepth}, {"light_selection", s.lightSelection}};
+            {"max_specular_depth", s.maxSpecularDepth}, {"light_selection", s.lightSelection},
+            {"light_sampling", s.lightSampling}};
     if (s.textureFilter != "anisotropic") j["texture_filter"] = s.textureFilter;  // else configs keep their hash
     // The cache's settings only when they differ from the defaults: other configs keep their keys.
     if (!(s.cache == ShadingConfig::Cache{}) && (!forKey || mode == "cache"))
@@ -291,7 +293,7 @@ std::string fnv1a64Hex(const std::string& text) {
 
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-7";  // bump when the image for the same settings and files changes (tracer or loader)
+    j["format"] = "aamap-render-8";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);

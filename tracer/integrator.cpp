@@ -247,18 +247,20 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
     ShadowBatch8 batch;
     for (std::size_t li = 0; li < lights_.areas.size(); ++li) {
         const AreaLightSampler& light = lights_.areas[li];
-        float sum = 0.0f;  // sum of cos cos' / d^2 over the visible samples, in sample order
+        LightView view = viewOf(light, hit.position);
+        const bool bySolidAngle = view.solidAngle > 0.0f;
+        float sum = 0.0f;  // sum of cos cos' / d^2 (by solid angle: cos) over the visible samples, in sample order
         float sumGlossy = 0.0f;
         for (int first = 0; first < count; first += ShadowBatch8::kWidth) {
             const int lanes = std::min(ShadowBatch8::kWidth, count - first);
             for (int i = 0; i < lanes; ++i) {
                 const int j = first + i;
                 const std::uint64_t dim = dims::areaLight(depth, static_cast<int>(li), j);
-                const LightPoint q = light.sample(sampler.jittered2D(dim, j % m, j / m, invM));
+                const LightPoint q = light.sample(view, hit.position, sampler.jittered2D(dim, j % m, j / m, invM));
                 batch.setSample(i, q.position, q.normal);
             }
             batch.padFrom(lanes);
-            batch.prepare(lanes, hit.position, origin, hit.geometric, hit.shading, light.vertexScale());
+            batch.prepare(lanes, hit.position, origin, hit.geometric, hit.shading, light.vertexScale(), bySolidAngle);
             sum += batch.trace(scene_, lanes, rays);
             if (mat.glossy)
                 for (int i = 0; i < lanes; ++i)
@@ -267,8 +269,10 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
                         sumGlossy += batch.weight[i] * bsdf::phongLobe(mat, hit.wo, hit.shading, l);
                     }
         }
-        irradiance += light.radiance() * (sum * light.area() * invCount);
-        if (mat.glossy) glossy += light.radiance() * (sumGlossy * light.area() * invCount);
+        // 1 / pdf, less the per-sample factors already in the weights.
+        const float scale = (bySolidAngle ? view.solidAngle : light.area()) * invCount;
+        irradiance += light.radiance() * (sum * scale);
+        if (mat.glossy) glossy += light.radiance() * (sumGlossy * scale);
     }
     glm::vec3 L = hit.albedo * bsdf::kInvPi * irradiance;
     if (mat.glossy) L += mat.ks * mat.phongNorm * glossy;
@@ -284,10 +288,11 @@ glm::vec3 Integrator::directManyLights(const SurfaceHit& hit, const Sampler& sam
     const int m = lightGrid_;
     const float invM = 1.0f / static_cast<float>(m);
     glm::vec3 sum(0.0f);
+    LastLightView last;
     for (int j = 0; j < m * m; ++j) {
         glm::vec2 u = sampler.jittered2D(dims::path(depth, dims::PathSlot::ManyLights, j), j % m, j / m, invM);
         const std::size_t l = lights_.select(u.x);
-        sum += lightSample(hit, origin, l, u, lights_.selectPdf[l], rays);
+        sum += lightSample(hit, origin, l, u, lights_.selectPdf[l], last, rays);
     }
     return sum * (invM * invM);
 }
@@ -324,6 +329,7 @@ glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& s
     const float invCount = 1.0f / static_cast<float>(count);
     const float shiftY = sampler.get1D(dims::path(depth, dims::PathSlot::ManyLights, kShiftSample));
     glm::vec3 sum(0.0f);
+    LastLightView last;
     for (int j = 0; j < count; ++j) {
         const glm::vec2 r = sampler.get2D(dims::path(depth, dims::PathSlot::ManyLights, j));
         float y = (static_cast<float>((j % m) * m + j / m) + r.y) * invCount + shiftY;
@@ -333,19 +339,19 @@ glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& s
         const std::size_t l = selectOnCdf(cdf, n, u.x);
         const float pick = (cdf[l] - (l == 0 ? 0.0f : cdf[l - 1]));
         if (!(pick > 0.0f)) continue;  // unreachable: zero-width intervals are never selected
-        sum += lightSample(hit, origin, l, u, pick, rays);
+        sum += lightSample(hit, origin, l, u, pick, last, rays);
     }
     return sum * invCount;
 }
 
 glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin, std::size_t l, glm::vec2 u,
-                                  float pick, RayCounts& rays) const {
+                                  float pick, LastLightView& last, RayCounts& rays) const {
     // One shadow sample of light l (u: the point on an area light), divided by its selection
     // probability `pick`.
     const ShadingMaterial& mat = *hit.material;
     const std::size_t nPoints = lights_.points.size();
     glm::vec3 target, Le;
-    float geometry = 0.0f, tfar = 1.0f;  // cos' / d^2 / pdf_area (point: lobe / d^2)
+    float geometry = 0.0f, tfar = 1.0f;  // 1 / pdf in solid angle (point: lobe / d^2)
     if (l < nPoints) {
         const PointLightSource& p = lights_.points[l];
         target = p.position;
@@ -357,7 +363,9 @@ glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin
         geometry = lobe / d2;
     } else {
         const AreaLightSampler& a = lights_.areas[l - nPoints];
-        const LightPoint q = a.sample(u);
+        if (last.light != l) last = {l, viewOf(a, hit.position)};
+        LightView& view = last.view;
+        const LightPoint q = a.sample(view, hit.position, u);
         target = q.position;
         Le = a.radiance();
         const glm::vec3 w = target - hit.position;
@@ -366,7 +374,7 @@ glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin
         const float d = std::sqrt(d2);
         const float cosLight = -glm::dot(q.normal, w) / d;
         if (cosLight <= 0.0f) return glm::vec3(0.0f);
-        geometry = cosLight * a.area() / d2;
+        geometry = a.inversePdf(view, cosLight, d2);
         tfar = 1.0f - rayOffset(target, a.vertexScale()) / d;
     }
     const glm::vec3 l3 = glm::normalize(target - hit.position);

@@ -151,9 +151,15 @@ private:
     glm::vec3 directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
     // Many lights, LightSelection::Contribution: samples distributed over a per-hit CDF.
     glm::vec3 directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
+    // The view of the last area light sampled from one hit: per-hit selection takes runs of
+    // samples from one light, which then share its solid angles and sampling setup.
+    struct LastLightView {
+        std::size_t light = ~std::size_t{0};
+        LightView view;
+    };
     // One shadow sample of light l for the many-light paths, divided by its selection probability.
     glm::vec3 lightSample(const SurfaceHit& hit, const glm::vec3& origin, std::size_t l, glm::vec2 u, float pick,
-                          RayCounts& rays) const;
+                          LastLightView& last, RayCounts& rays) const;
     // The lights at infinity (directional lights one shadow ray each, the environment m x m light
     // and m x m BSDF samples with MIS; a constant environment BSDF samples only), for Direct/Cache.
     glm::vec3 directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
@@ -181,6 +187,10 @@ private:
     // True if nothing blocks the ray from origin along unit `dir` to infinity. One shadow ray.
     bool unoccludedToward(const glm::vec3& origin, const glm::vec3& dir, RayCounts& rays) const;
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar, RayCounts& rays) const;
+    // How area light `a` is sampled from receiver point p under ShadingSettings::lightSampling.
+    LightView viewOf(const AreaLightSampler& a, const glm::vec3& p) const {
+        return a.view(p, shading_.lightSampling == LightSampling::SolidAngle);
+    }
     void fillHit(const RTCRayHit& rh, const glm::vec3& dir, RayCone cone, SurfaceHit& hit) const;
     // The cone of a camera ray: width 0 at the eye; no spread when textures are not filtered.
     RayCone cameraCone(float spread) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -9,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "tracer/embree_scene.h"
+#include "tracer/spherical_triangle.h"
 
 namespace aamap {
 
@@ -64,6 +66,93 @@ AreaLightSampler::AreaLightSampler(const AreaLight& light, const EmbreeScene& ge
     if (light.area > 0.0f && std::abs(light.area - area_) > 1e-3f * area_)
         spdlog::warn("area light '{}': declared area {} but its triangles cover {}; using the latter", light.name,
                      light.area, area_);
+}
+
+namespace {
+// Distance from p to the triangle v0, v0 + e1, v0 + e2 with unit normal n: to its plane where
+// p projects inside it, else to the nearest edge.
+float distanceToTriangle(const glm::vec3& p, const glm::vec3& v0, const glm::vec3& e1, const glm::vec3& e2,
+                         const glm::vec3& n) {
+    const glm::vec3 w = p - v0;
+    const float height = glm::dot(w, n);
+    // Barycentrics of the projection (u along e1, v along e2).
+    const float d11 = glm::dot(e1, e1), d12 = glm::dot(e1, e2), d22 = glm::dot(e2, e2);
+    const float w1 = glm::dot(w, e1), w2 = glm::dot(w, e2);
+    const float det = d11 * d22 - d12 * d12;
+    if (det > 0.0f) {
+        const float u = (d22 * w1 - d12 * w2) / det, v = (d11 * w2 - d12 * w1) / det;
+        if (u >= 0.0f && v >= 0.0f && u + v <= 1.0f) return std::abs(height);
+    }
+    const auto toSegment = [&](const glm::vec3& a, const glm::vec3& e) {
+        const float ee = glm::dot(e, e);
+        const float t = ee > 0.0f ? std::clamp(glm::dot(p - a, e) / ee, 0.0f, 1.0f) : 0.0f;
+        return glm::length(p - (a + t * e));
+    };
+    return std::min({toSegment(v0, e1), toSegment(v0, e2), toSegment(v0 + e1, e2 - e1)});
+}
+}  // namespace
+
+LightView AreaLightSampler::view(const glm::vec3& p, bool bySolidAngle) const {
+    LightView v;
+    const std::size_t n = tris_.size();
+    if (!bySolidAngle || n > static_cast<std::size_t>(LightView::kMaxTriangles)) return v;
+    // Area sampling's solid-angle density, cos' / d^2 = h / d^3 (h: p's height over the plane),
+    // spans (farthest / nearest point)^3 over a triangle. Where that stays within
+    // kMaxDensityRatio, stratified area samples are close to uniform in solid angle already.
+    float nearest = std::numeric_limits<float>::infinity(), farthest = 0.0f;
+    for (const Tri& t : tris_) {
+        if (!(glm::dot(t.normal, t.v0 - p) < 0.0f)) continue;  // faces away
+        nearest = std::min(nearest, distanceToTriangle(p, t.v0, t.e1, t.e2, t.normal));
+        for (const glm::vec3& corner : {t.v0, t.v0 + t.e1, t.v0 + t.e2})
+            farthest = std::max(farthest, glm::length(corner - p));
+    }
+    const float ratio = farthest / nearest;
+    if (!(ratio * ratio * ratio > LightView::kMaxDensityRatio)) return v;  // also: nothing faces p
+    // Each triangle's solid angle, 0 for those that face away (a one-sided emitter sends
+    // nothing to p from there, so they get no samples).
+    float total = 0.0f;
+    std::size_t lastUsed = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Tri& t = tris_[i];
+        const glm::vec3 a = t.v0 - p;
+        const float omega = glm::dot(t.normal, a) < 0.0f ? triangleSolidAngle(a, a + t.e1, a + t.e2) : 0.0f;
+        if (omega > 0.0f) lastUsed = i;
+        total += omega;
+        v.cdf[i] = total;
+    }
+    if (!(total >= LightView::kMinSolidAngle) || !std::isfinite(total)) return v;
+    // Pin the CDF's end at the last triangle facing p, so rounding cannot select one behind it.
+    const float inv = 1.0f / total;
+    for (std::size_t i = 0; i < n; ++i) v.cdf[i] = i >= lastUsed ? 1.0f : v.cdf[i] * inv;
+    v.solidAngle = total;
+    return v;
+}
+
+LightPoint AreaLightSampler::sampleBySolidAngle(LightView& v, const glm::vec3& p, glm::vec2 u) const {
+    // The triangle whose CDF interval holds u.x (faced-away ones have empty intervals), u.x
+    // stretched back to [0,1) within it.
+    const std::size_t n = tris_.size();
+    std::size_t i = 0;
+    for (std::size_t k = 0; k + 1 < n; ++k) i += u.x >= v.cdf[k] ? 1 : 0;
+    const float low = i == 0 ? 0.0f : v.cdf[i - 1];
+    const float width = v.cdf[i] - low;
+    u.x = width > 0.0f ? std::min(std::max((u.x - low) / width, 0.0f), 0x1.fffffep-1f) : 0.0f;
+    const Tri& t = tris_[i];
+    const glm::vec3 a = t.v0 - p;
+    const LightPoint failed{p, glm::vec3(0.0f)};
+    const std::uint32_t bit = 1u << i;
+    if (!(v.ready & bit)) {
+        v.ready |= bit;
+        if (!v.spherical[i].setup(a, a + t.e1, a + t.e2)) v.degenerate |= bit;
+    }
+    if (v.degenerate & bit) return failed;
+    const glm::vec3 dir = v.spherical[i].sample(u);
+    // Where the direction meets the triangle's plane.
+    const float along = glm::dot(t.normal, dir);
+    if (!(along < 0.0f)) return failed;
+    const float distance = glm::dot(t.normal, a) / along;
+    if (!(distance > 0.0f) || !std::isfinite(distance)) return failed;
+    return {p + distance * dir, t.normal};
 }
 
 LightSet buildLights(const Scene& scene, const EmbreeScene& geometry) {

@@ -1,8 +1,10 @@
 #pragma once
 // Light sources as the integrator samples them. An area light is a set of emissive triangles with
-// one radiance; a 2D sample in [0,1)^2 picks a triangle by area (CDF over the triangles) and
-// reuses the rescaled remainder to place a uniform point on it, so a stratified 2D pattern stays
-// stratified over the whole light.
+// one radiance; a 2D sample in [0,1)^2 picks a triangle (CDF over the triangles) and reuses the
+// rescaled remainder to place a point on it, so a stratified 2D pattern stays stratified over the
+// whole light. The point is placed by solid angle as the receiver sees the light (uniform over
+// the spherical triangles, tracer/spherical_triangle.h) or uniformly by area; LightView holds
+// which, per receiver (docs/tracer.md, "Light sampling").
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +17,7 @@
 #include "scene/lights.h"
 #include "scene/scene.h"
 #include "tracer/environment.h"
+#include "tracer/spherical_triangle.h"
 
 namespace aamap {
 
@@ -22,7 +25,30 @@ class EmbreeScene;
 
 struct LightPoint {
     glm::vec3 position;
-    glm::vec3 normal;  // unit, the emitting side
+    glm::vec3 normal;  // unit, the emitting side; zero for a failed sample, which cos' = 0 rejects
+};
+
+// An area light as one receiver point sees it: how its samples are placed from there.
+struct LightView {
+    // Lights with at most this many triangles can be sampled by solid angle (one solid angle per
+    // triangle per receiver); larger meshes are sampled by area.
+    static constexpr int kMaxTriangles = 8;
+    // Below this many steradians a light is sampled by area: the angle sums of the spherical
+    // sampling lose float precision (pbrt-v4 switches at 3e-4 sr too).
+    static constexpr float kMinSolidAngle = 3e-4f;
+    // A light is sampled by solid angle only where area sampling's density in solid angle varies
+    // over it by more than this factor: the near field, where 1/d^2 peaks. Farther out the
+    // density is smooth, stratification removes most of its variance, and solid-angle samples
+    // would cost more than they save (docs/tracer.md, "Light sampling").
+    static constexpr float kMaxDensityRatio = 4.0f;
+    // > 0: sampled by solid angle, the sum over the triangles facing the receiver (and so the
+    // inverse of every sample's pdf); 0: sampled by area.
+    float solidAngle = 0.0f;
+    float cdf[kMaxTriangles];  // by solid angle: CDF over the light's triangles (cdf[n - 1] == 1)
+    // Each triangle's sampling setup, made on its first sample (bit i of `ready`).
+    SphericalTriangle spherical[kMaxTriangles];
+    std::uint32_t ready = 0;
+    std::uint32_t degenerate = 0;  // bit i: triangle i's setup failed
 };
 
 class AreaLightSampler {
@@ -41,6 +67,21 @@ public:
     float boundRadius() const { return boundRadius_; }
     const glm::vec3& normalAxis() const { return normalAxis_; }
     float normalCone() const { return normalCone_; }
+
+    // How the light is sampled from receiver point p: by solid angle if `bySolidAngle` and the
+    // light qualifies (few triangles, at least LightView::kMinSolidAngle), else by area.
+    LightView view(const glm::vec3& p, bool bySolidAngle) const;
+    // A point on the light as `v` (the view from receiver p) says to place it; u in [0,1)^2.
+    LightPoint sample(LightView& v, const glm::vec3& p, glm::vec2 u) const {
+        return v.solidAngle > 0.0f ? sampleBySolidAngle(v, p, u) : sample(u);
+    }
+    // 1 / pdf (solid angle) of a sample at distance^2 d2 whose light normal makes cos' with the
+    // direction back to the receiver: what a light sample's radiance is weighted by.
+    float inversePdf(const LightView& v, float cosLight, float d2) const {
+        return v.solidAngle > 0.0f ? v.solidAngle : area_ * cosLight / d2;
+    }
+    // Uniform by solid angle over the triangles facing p (v.solidAngle > 0).
+    LightPoint sampleBySolidAngle(LightView& v, const glm::vec3& p, glm::vec2 u) const;
 
     // A point distributed uniformly by area over the light; u in [0,1)^2. Inline: it runs once
     // per light sample.

@@ -73,7 +73,8 @@ glm::vec3 Integrator::nextEventFinite(const SurfaceHit& hit, const Sampler& samp
         return e.f * p.intensity * (lobe * cosSurface / (d2 * pick));
     }
     const AreaLightSampler& a = lights_.areas[l - nPoints];
-    const LightPoint q = a.sample(u);
+    LightView view = viewOf(a, hit.position);
+    const LightPoint q = a.sample(view, hit.position, u);
     const glm::vec3 w = q.position - hit.position;
     const float d2 = glm::dot(w, w);
     if (!(d2 > 0.0f)) return glm::vec3(0.0f);
@@ -85,7 +86,7 @@ glm::vec3 Integrator::nextEventFinite(const SurfaceHit& hit, const Sampler& samp
     const float tfar = 1.0f - rayOffset(q.position, a.vertexScale()) / d;
     if (!(tfar > 0.0f) || !unoccluded(origin, q.position, tfar, rays)) return glm::vec3(0.0f);
     const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, wi, cosSurface, diffusePick);
-    const float pdfLight = pick * d2 / (cosLight * a.area());  // solid angle
+    const float pdfLight = pick / a.inversePdf(view, cosLight, d2);  // solid angle
     return e.f * a.radiance() * (cosSurface * powerHeuristic(pdfLight, e.pdf) / pdfLight);
 }
 
@@ -94,6 +95,7 @@ glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler,
     SurfaceHit hit = first;
     bool specularBefore = true;  // the camera "sampled" the primary direction: no MIS on it
     float pdfBefore = 0.0f;      // solid-angle pdf of the BSDF sample that led here
+    glm::vec3 before(0.0f);      // the vertex that BSDF sample left from (where light sampling views the light)
     const std::size_t nPoints = lights_.points.size();
     for (int depth = 0;; ++depth) {
         const ShadingMaterial& m = *hit.material;
@@ -101,11 +103,12 @@ glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler,
             float w = 1.0f;
             const std::int32_t area = lights_.areaOfTriangle.empty() ? -1 : lights_.areaOfTriangle[hit.primitive];
             if (!specularBefore && area >= 0) {
-                // What light sampling would have paid for this point: P(light) / A * d^2 / cos'.
+                // What light sampling from the vertex before would have paid for this point:
+                // P(light) times its solid-angle pdf there.
                 const AreaLightSampler& a = lights_.areas[static_cast<std::size_t>(area)];
                 const float cosLight = glm::dot(hit.geometric, hit.wo);
-                const float pdfLight = lights_.selectPdf[nPoints + static_cast<std::size_t>(area)] *
-                                       hit.distance * hit.distance / (cosLight * a.area());
+                const float pdfLight = lights_.selectPdf[nPoints + static_cast<std::size_t>(area)] /
+                                       a.inversePdf(viewOf(a, before), cosLight, hit.distance * hit.distance);
                 w = powerHeuristic(pdfBefore, pdfLight);
             }
             L += beta * m.ke * w;
@@ -165,6 +168,7 @@ glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler,
             beta *= 1.0f / survive;
         }
         const glm::vec3 origin = hit.originFor(dir);
+        before = hit.position;
         // The cone goes on with its angle after any bounce (pbrt-v4's camera-based approximation
         // likewise ignores a diffuse bounce's widening): texture noise there is indirect light.
         if (!intersect(origin, dir, hit, rays.other, hit.cone)) {

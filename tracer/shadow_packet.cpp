@@ -8,7 +8,7 @@
 namespace aamap {
 
 void ShadowBatch8::prepare(int count, const glm::vec3& p, const glm::vec3& o, const glm::vec3& g,
-                           const glm::vec3& s, float lightVertexScale) {
+                           const glm::vec3& s, float lightVertexScale, bool bySolidAngle) {
     const float vertexFloor = kVertexScaleShare * lightVertexScale;
     alignas(32) float tfar[kWidth];
     alignas(32) float dx[kWidth], dy[kWidth], dz[kWidth];
@@ -22,7 +22,7 @@ void ShadowBatch8::prepare(int count, const glm::vec3& p, const glm::vec3& o, co
         const float cosGeom = g.x * lx + g.y * ly + g.z * lz;  // side test: no ray into the surface
         const float cosSurface = s.x * lx + s.y * ly + s.z * lz;
         const float cosLight = -(nx[i] * lx + ny[i] * ly + nz[i] * lz);
-        weight[i] = cosSurface * cosLight / d2;
+        weight[i] = bySolidAngle ? cosSurface : cosSurface * cosLight / d2;
         // The segment from the offset origin to the sample, ending the light's own offset short
         // of it. The direction stays unnormalised (t = 1 at the sample), and 1/|q - p| stands in
         // for 1/|q - o|: they differ by the offset, which only scales a tolerance.

@@ -18,7 +18,7 @@ struct ShadowBatch8 {
 
     alignas(32) float qx[kWidth], qy[kWidth], qz[kWidth];  // light sample positions
     alignas(32) float nx[kWidth], ny[kWidth], nz[kWidth];  // light normals at the samples
-    alignas(32) float weight[kWidth];                      // cos cos' / d^2 where valid
+    alignas(32) float weight[kWidth];                      // cos cos' / d^2 (by solid angle: cos) where valid
     alignas(32) int valid[kWidth];                         // -1: trace this lane
     RTCRay8 packet;                                        // carries its own 32-byte alignment
 
@@ -40,9 +40,11 @@ struct ShadowBatch8 {
     // For lanes [0, count): computes the weights and the shadow segments from `origin` (the
     // offset hit point) to each sample, stopping short of the light by the scale-aware offset;
     // `position`, `geometric`, `shading` describe the hit. Lanes that face away are invalid.
-    // `lightVertexScale` is the light's Triangle::vertexScale (ray_offset.h).
+    // `lightVertexScale` is the light's Triangle::vertexScale (ray_offset.h). bySolidAngle: the
+    // samples were placed by solid angle, so a lane weighs cos alone (the caller multiplies by
+    // the solid angle, not by the area).
     void prepare(int count, const glm::vec3& position, const glm::vec3& origin, const glm::vec3& geometric,
-                 const glm::vec3& shading, float lightVertexScale);
+                 const glm::vec3& shading, float lightVertexScale, bool bySolidAngle);
 
     // Traces the valid lanes and returns the sum of the weights of the unoccluded ones, in lane
     // order. Adds the rays traced to rays.shadow.

@@ -24,6 +24,11 @@ const char* toString(ShadingMode mode);
 // per-hit CDF over each light's estimated unoccluded contribution there (docs/tracer.md).
 enum class LightSelection { Power, Contribution };
 
+// Where an area light's samples go (ShadingSettings::lightSampling). SolidAngle: uniform over the
+// solid angle the light subtends at the receiver, for lights of few triangles that subtend enough
+// of it (else by area); Area: uniform over the light's area. docs/tracer.md, "Light sampling".
+enum class LightSampling { SolidAngle, Area };
+
 // How a textured albedo is looked up (ShadingSettings::textureFilter).
 enum class TextureFilter { Anisotropic, None };
 
@@ -42,6 +47,7 @@ struct ShadingSettings {
     IrradianceCacheSettings cache;
     int cacheGridStep = 4;
     LightSelection lightSelection = LightSelection::Contribution;  // many lights only (see above)
+    LightSampling lightSampling = LightSampling::SolidAngle;
     // Textured albedo: filtered over each ray's footprint (a ray cone, docs/tracer.md "Texture
     // filtering"), or the plain bilinear texel at the hit point (None).
     TextureFilter textureFilter = TextureFilter::Anisotropic;

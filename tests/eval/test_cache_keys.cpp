@@ -97,6 +97,7 @@ std::vector<KeyInput> inputs() {
     set("ShadingRouletteDepth", "shading.roulette_depth=3");
     set("ShadingMaxSpecularDepth", "shading.max_specular_depth=1");
     set("ShadingLightSelection", "shading.light_selection=power");
+    set("ShadingLightSampling", "shading.light_sampling=area");
     set("ImageWidth", "image.width=65");
     set("ImageHeight", "image.height=47");
     set("ImageExposure", "image.exposure=1.5");

@@ -52,6 +52,7 @@ const std::map<std::string, Field>& fields() {
         {"shading.roulette_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.rouletteDepth); }},
         {"shading.max_specular_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxSpecularDepth); }},
         {"shading.light_selection", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSelection); }},
+        {"shading.light_sampling", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSampling); }},
         {"shading.texture_filter", [](const ExperimentConfig& c) { return ParamValue(c.shading.textureFilter); }},
         {"shading.cache.bounces", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.bounces); }},
         {"shading.cache.divisions", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.divisions); }},

@@ -259,6 +259,9 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
     t["shading.light_selection"] = {{}, {"shading.light_selection=power"}, Renders::All, false,
                                     becomes([](const ExperimentConfig& c, int) { return shade(c, 0).lightSelection; },
                                             LightSelection::Power)};
+    t["shading.light_sampling"] = {{}, {"shading.light_sampling=area"}, Renders::All, false,
+                                   becomes([](const ExperimentConfig& c, int) { return shade(c, 0).lightSampling; },
+                                           LightSampling::Area)};
     t["shading.texture_filter"] = {{}, {"shading.texture_filter=anisotropic"}, Renders::All, false,
                                    becomes([](const ExperimentConfig& c, int) { return shade(c, 0).textureFilter; },
                                            TextureFilter::Anisotropic)};

@@ -68,8 +68,10 @@ TEST(PathMode, RouletteDepthIsTheFirstSegmentRouletteMayEnd) {
 // A plane under an area light and a point light sees nothing else, so it has no indirect light:
 // Path mode (NEE + MIS, BSDF samples that hit the light) must agree with Direct mode. Compared
 // per pixel (same pixel, same point): the mean difference within 4 standard errors of the
-// per-pixel differences. Lambert, and Lambert + Phong (the glossy sampling/eval pair).
-void pathMatchesDirect(float ks, float ns) {
+// per-pixel differences. Lambert, and Lambert + Phong (the glossy sampling/eval pair); the area
+// light sampled by solid angle or by area in each mode, so the MIS pdfs of both are checked
+// against the other estimator.
+void pathMatchesDirect(float ks, float ns, LightSampling pathSampling, LightSampling directSampling) {
     testing::SceneBuilder b;
     Material plane;
     plane.name = "plane";
@@ -82,8 +84,10 @@ void pathMatchesDirect(float ks, float ns) {
     const View view = lookAt({0, 1.8f, 2.5f}, {0, 0, 0}, 50);
     ShadingSettings direct;
     direct.areaLightSamples = 256;  // its own noise is far below Path's
+    direct.lightSampling = directSampling;
     ShadingSettings path;
     path.mode = ShadingMode::Path;
+    path.lightSampling = pathSampling;
     // The same primary rays in both (same strata and seed): only shading differs.
     const int size = 32, strata = 6;
     const TraceResult d = renderScene(b.scene(), view, direct, size, strata);
@@ -102,8 +106,15 @@ void pathMatchesDirect(float ks, float ns) {
     }
 }
 
-TEST(PathMode, AgreesWithDirectWithoutIndirectLightLambert) { pathMatchesDirect(0.0f, 0.0f); }
-TEST(PathMode, AgreesWithDirectWithoutIndirectLightGlossy) { pathMatchesDirect(0.4f, 30.0f); }
+TEST(PathMode, AgreesWithDirectWithoutIndirectLightLambert) {
+    pathMatchesDirect(0.0f, 0.0f, LightSampling::SolidAngle, LightSampling::Area);
+}
+TEST(PathMode, AgreesWithDirectWithoutIndirectLightGlossy) {
+    pathMatchesDirect(0.4f, 30.0f, LightSampling::SolidAngle, LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectWithoutIndirectLightByArea) {
+    pathMatchesDirect(0.4f, 30.0f, LightSampling::Area, LightSampling::SolidAngle);
+}
 
 // Many lights (more than LightSet::kFewLights) switch Direct mode to power-CDF selection: by
 // superposition its image must match the sum of one-light renders (the exact estimator).
