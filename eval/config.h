@@ -68,7 +68,7 @@ struct ShadingConfig {
     int rouletteDepth = 5;        // path: roulette from this segment on
     int maxSpecularDepth = 8;     // direct/cache: mirror and glass bounces
     std::string lightSelection = "contribution";  // contribution | power: which light a shadow ray goes to
-    std::string lightSampling = "solid_angle";    // solid_angle | area: where an area light's samples go
+    std::string lightSampling = "auto";           // auto | solid_angle | area: where an area light's samples go
     std::string textureFilter = "anisotropic";    // anisotropic | none: textures filtered over ray footprints
     // cache: the irradiance cache (docs/irradiance-cache.md); Radiance's -ab -ad -as -aa -ar.
     struct Cache {

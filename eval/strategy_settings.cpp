@@ -27,7 +27,9 @@ ShadingSettings toShadingSettings(const ExperimentConfig& c, const RenderConfig&
     s.rouletteDepth = c.shading.rouletteDepth;
     s.maxSpecularDepth = c.shading.maxSpecularDepth;
     s.lightSelection = c.shading.lightSelection == "power" ? LightSelection::Power : LightSelection::Contribution;
-    s.lightSampling = c.shading.lightSampling == "area" ? LightSampling::Area : LightSampling::SolidAngle;
+    s.lightSampling = c.shading.lightSampling == "area"          ? LightSampling::Area
+                      : c.shading.lightSampling == "solid_angle" ? LightSampling::SolidAngle
+                                                                 : LightSampling::Auto;
     s.textureFilter = c.shading.textureFilter == "none" ? TextureFilter::None : TextureFilter::Anisotropic;
     const ShadingConfig::Cache& ic = c.shading.cache;
     s.cache.bounces = ic.bounces;

@@ -40,7 +40,9 @@ Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, cons
       indirect_(indirect),
       scene_(geometry.handle()),
       // m = round(sqrt(N)) in [1, 1024]: m x m samples, within the sampler's dimension layout.
-      lightGrid_(std::clamp(static_cast<int>(std::lround(std::sqrt(std::max(1, shading.areaLightSamples)))), 1, 1024)) {
+      lightGrid_(std::clamp(static_cast<int>(std::lround(std::sqrt(std::max(1, shading.areaLightSamples)))), 1, 1024)),
+      bySolidAngle_(shading.lightSampling == LightSampling::SolidAngle ||
+                    (shading.lightSampling == LightSampling::Auto && shading.mode != ShadingMode::Path)) {
     shading_.maxDepth = std::max(shading_.maxDepth, 1);
     shading_.maxSpecularDepth = std::max(shading_.maxSpecularDepth, 0);
     if (shading_.mode == ShadingMode::Cache && !indirect_)

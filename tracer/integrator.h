@@ -188,9 +188,7 @@ private:
     bool unoccludedToward(const glm::vec3& origin, const glm::vec3& dir, RayCounts& rays) const;
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar, RayCounts& rays) const;
     // How area light `a` is sampled from receiver point p under ShadingSettings::lightSampling.
-    LightView viewOf(const AreaLightSampler& a, const glm::vec3& p) const {
-        return a.view(p, shading_.lightSampling == LightSampling::SolidAngle);
-    }
+    LightView viewOf(const AreaLightSampler& a, const glm::vec3& p) const { return a.view(p, bySolidAngle_); }
     void fillHit(const RTCRayHit& rh, const glm::vec3& dir, RayCone cone, SurfaceHit& hit) const;
     // The cone of a camera ray: width 0 at the eye; no spread when textures are not filtered.
     RayCone cameraCone(float spread) const {
@@ -203,6 +201,7 @@ private:
     const IndirectDiffuseSource* indirect_;
     RTCScene scene_;
     int lightGrid_;
+    bool bySolidAngle_;  // ShadingSettings::lightSampling resolved for the mode
 };
 
 }  // namespace aamap

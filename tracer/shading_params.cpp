@@ -11,9 +11,9 @@ const std::vector<ParamSpec>& shadingParams() {
         intParam("roulette_depth", 1, 1024, 5, "path: roulette from this segment on"),
         intParam("max_specular_depth", 0, 1024, 8, "direct/cache: mirror and glass bounces"),
         choiceParam("light_selection", {"contribution", "power"}, "which light a shadow ray goes to"),
-        choiceParam("light_sampling", {"solid_angle", "area"},
-                    "an area light's samples uniform over the solid angle it subtends (lights of up to 8 "
-                    "triangles), or over its area"),
+        choiceParam("light_sampling", {"auto", "solid_angle", "area"},
+                    "an area light's samples uniform over the solid angle it subtends (near lights of up to 8 "
+                    "triangles) or over its area; auto: by solid angle in direct and cache modes, by area in path"),
         choiceParam("texture_filter", {"anisotropic", "none"},
                     "textures filtered over each ray's footprint, or the bilinear texel at the hit"),
     };

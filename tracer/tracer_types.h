@@ -25,9 +25,11 @@ const char* toString(ShadingMode mode);
 enum class LightSelection { Power, Contribution };
 
 // Where an area light's samples go (ShadingSettings::lightSampling). SolidAngle: uniform over the
-// solid angle the light subtends at the receiver, for lights of few triangles that subtend enough
-// of it (else by area); Area: uniform over the light's area. docs/tracer.md, "Light sampling".
-enum class LightSampling { SolidAngle, Area };
+// solid angle the light subtends at the receiver, for lights of few triangles in whose near field
+// the receiver is (else by area); Area: uniform over the light's area; Auto: SolidAngle in Direct
+// and Cache modes, whose many samples per hit make the light the noise, Area in Path mode, where
+// one light sample per vertex is a small part of a path's noise. docs/tracer.md, "Light sampling".
+enum class LightSampling { Auto, SolidAngle, Area };
 
 // How a textured albedo is looked up (ShadingSettings::textureFilter).
 enum class TextureFilter { Anisotropic, None };
@@ -47,7 +49,7 @@ struct ShadingSettings {
     IrradianceCacheSettings cache;
     int cacheGridStep = 4;
     LightSelection lightSelection = LightSelection::Contribution;  // many lights only (see above)
-    LightSampling lightSampling = LightSampling::SolidAngle;
+    LightSampling lightSampling = LightSampling::Auto;
     // Textured albedo: filtered over each ray's footprint (a ray cone, docs/tracer.md "Texture
     // filtering"), or the plain bilinear texel at the hit point (None).
     TextureFilter textureFilter = TextureFilter::Anisotropic;

@@ -5,7 +5,9 @@ Both render the same Mitsuba scene file (aamap reads Mitsuba XML) at the same re
 per pixel and maximum path depth, in interleaved rounds (Mitsuba, aamap, Mitsuba, aamap, ...) so
 that the machine's drift hits both alike. Mitsuba runs its LLVM variant (llvm_ad_rgb) with its
 kernels compiled once before the timed rounds; aamap runs bench_tracer in path mode with one light
-sample per hit, as Mitsuba's path integrator takes one emitter sample per bounce.
+sample per hit, as Mitsuba's path integrator takes one emitter sample per bounce, and samples the
+lights by area as Mitsuba does for meshes (aamap's default in path mode; --light-sampling solid_angle
+times the other choice).
 
 Setup (not part of the test suite):
     apt-get install -y libllvm19             # Dr.Jit's LLVM backend
@@ -99,6 +101,9 @@ def main():
     ap.add_argument("--depth", type=int, default=5, help="longest path in segments, both renderers")
     ap.add_argument("--filter", default="box", choices=["box", "tent", "gaussian"],
                     help="pixel filter of both (Mitsuba's tent is aamap's tent)")
+    ap.add_argument("--light-sampling", default="area", choices=["area", "solid_angle"],
+                    help="aamap's shading.light_sampling; Mitsuba samples mesh emitters by area, so 'area' "
+                         "compares the same estimator")
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--bench", default=os.path.join(repo, "build", "release", "bench", "tracer", "bench_tracer"))
     ap.add_argument("--json", help="write the rounds and the summary here")
@@ -139,7 +144,8 @@ def main():
         def render_aamap():
             out = subprocess.run([args.bench, "--scene", args.scene, "--size", str(args.size), "--strata",
                                   str(strata), "--mode", "path", "--max-depth", str(args.depth), "--light-samples",
-                                  "1", "--filter", args.filter, "--repeat", "1", "--out", aamap_exr],
+                                  "1", "--filter", args.filter, "--light-sampling", args.light_sampling, "--repeat", "1",
+                                  "--out", aamap_exr],
                                  check=True, capture_output=True, text=True).stdout
             m = re.search(r"best time ([0-9.]+) s", out)
             if m is None:

@@ -36,7 +36,7 @@ def ladder(text):
     return values
 
 
-def aamap_config(scene, size, depth, rfilter, uniform, variance, thresholds, min_samples, reference):
+def aamap_config(scene, size, depth, rfilter, uniform, variance, thresholds, min_samples, reference, light_sampling):
     """The experiment: path mode with one light sample per hit (as Mitsuba's one emitter sample per
     bounce), Russian roulette from depth 5 on as Mitsuba's default rr_depth."""
     renders = [f'  - {{name: "uniform{{rpp}}", series: Uniform, strategy: uniform, rpp: {json.dumps(uniform)}}}']
@@ -47,7 +47,7 @@ def aamap_config(scene, size, depth, rfilter, uniform, variance, thresholds, min
     return "\n".join([
         f"scene: {json.dumps(os.path.abspath(scene))}",
         f"image: {{width: {size}, height: {size}, filter: {rfilter}}}",
-        f"shading: {{mode: path, max_depth: {depth}, area_light_samples: 1}}",
+        f"shading: {{mode: path, max_depth: {depth}, area_light_samples: 1, light_sampling: {light_sampling}}}",
         "renders:", *renders,
         f"reference: {reference}",
         "metrics: {map_quality: false}",
@@ -72,6 +72,8 @@ def main():
     ap.add_argument("--variance-min-samples", type=int, default=16)
     ap.add_argument("--reference-spp", type=int, default=1024)
     ap.add_argument("--target", type=float, default=1.0, help="%% pixels above FLIP 0.1")
+    ap.add_argument("--light-sampling", default="auto", choices=["auto", "solid_angle", "area"],
+                    help="aamap's shading.light_sampling")
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--aamap", default=os.path.join(repo, "build", "release", "aamap"))
     ap.add_argument("--json", help="write every setting's times and errors here")
@@ -117,7 +119,7 @@ def main():
             with open(config, "w") as f:
                 f.write(aamap_config(args.scene, args.size, args.depth, args.filter, args.uniform_rpp,
                                      args.variance_rpp, [float(t) for t in args.variance_threshold.split(",") if t],
-                                     args.variance_min_samples, reference_yaml))
+                                     args.variance_min_samples, reference_yaml, args.light_sampling))
             out = os.path.join(tmp, f"aamap_{r}")
             subprocess.run([args.aamap, "run", config, "-o", out, "--no-plots"], check=True, capture_output=True)
             with open(os.path.join(out, "results.json")) as f:

@@ -3,7 +3,7 @@
 //                [--size 512] [--fit-view] [--strata 6] [--threads 0]
 //                [--light-samples 16] [--repeat 3] [--mode direct|path|cache] [--max-depth 5]
 //                [--ab 1] [--ad 512] [--as 128] [--aa 0.2] [--ar 64] [--cache-grid-step 4] [--out FILE.exr]
-//                [--filter box|tent|gaussian] [--light-sampling solid_angle|area]
+//                [--filter box|tent|gaussian] [--light-sampling auto|solid_angle|area]
 // Reports the best of --repeat runs: the machine is shared and noisy, the minimum is the
 // least disturbed figure. Cache mode also reports the pre-pass (best of the runs) apart.
 #include <algorithm>
@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Tracer throughput benchmark (uniform n x n sampling)"};
     std::string sceneSpec = "builtin:cornell";
     int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3, maxDepth = 5;
-    std::string mode = "direct", filter = "box", lightSampling = "solid_angle";
+    std::string mode = "direct", filter = "box", lightSampling = "auto";
     aamap::IrradianceCacheSettings cache;
     int gridStep = 4;
     std::string viewFile, lightFile, outFile;
@@ -50,9 +50,9 @@ int main(int argc, char** argv) {
     app.add_option("--mode", mode, "shading: direct, path or cache")
         ->capture_default_str()
         ->check(CLI::IsMember({"direct", "path", "cache"}));
-    app.add_option("--light-sampling", lightSampling, "area lights: solid_angle or area (shading.light_sampling)")
+    app.add_option("--light-sampling", lightSampling, "area lights: auto, solid_angle or area (shading.light_sampling)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"solid_angle", "area"}));
+        ->check(CLI::IsMember({"auto", "solid_angle", "area"}));
     app.add_option("--ab", cache.bounces, "cache mode: diffuse bounces")->capture_default_str()->check(CLI::Range(0, 8));
     app.add_option("--ad", cache.divisions, "cache mode: hemisphere divisions")->capture_default_str()->check(CLI::Range(1, 65536));
     app.add_option("--as", cache.supersamples, "cache mode: supersamples")->capture_default_str()->check(CLI::Range(0, 65536));
@@ -107,7 +107,9 @@ int main(int argc, char** argv) {
     settings.shading.mode = mode == "path"    ? aamap::ShadingMode::Path
                             : mode == "cache" ? aamap::ShadingMode::Cache
                                               : aamap::ShadingMode::Direct;
-    settings.shading.lightSampling = lightSampling == "area" ? aamap::LightSampling::Area : aamap::LightSampling::SolidAngle;
+    settings.shading.lightSampling = lightSampling == "area"          ? aamap::LightSampling::Area
+                                     : lightSampling == "solid_angle" ? aamap::LightSampling::SolidAngle
+                                                                      : aamap::LightSampling::Auto;
     settings.shading.cache = cache;
     settings.shading.cacheGridStep = gridStep;
     settings.shading.maxDepth = maxDepth;

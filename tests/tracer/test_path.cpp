@@ -106,6 +106,9 @@ void pathMatchesDirect(float ks, float ns, LightSampling pathSampling, LightSamp
     }
 }
 
+TEST(PathMode, AgreesWithDirectWithoutIndirectLightAuto) {
+    pathMatchesDirect(0.0f, 0.0f, LightSampling::Auto, LightSampling::Auto);
+}
 TEST(PathMode, AgreesWithDirectWithoutIndirectLightLambert) {
     pathMatchesDirect(0.0f, 0.0f, LightSampling::SolidAngle, LightSampling::Area);
 }

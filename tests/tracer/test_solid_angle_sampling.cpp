@@ -111,7 +111,7 @@ double estimateIrradiance(const AreaLightSampler& light, bool bySolidAngle, int 
     const float invM = 1.0f / static_cast<float>(m);
     double sum = 0.0;
     for (int j = 0; j < m * m; ++j) {
-        const LightPoint q = light.sample(view, p, sampler.jittered2D(1, j % m, j / m, invM));
+        const LightPoint q = light.sample(view, p, sampler.jittered2D(1 + static_cast<std::uint64_t>(j), j % m, j / m, invM));
         const glm::vec3 w = q.position - p;
         const float d2 = glm::dot(w, w);
         const glm::vec3 l = w / std::sqrt(d2);
