@@ -128,6 +128,28 @@ LightView AreaLightSampler::view(const glm::vec3& p, bool bySolidAngle) const {
     return v;
 }
 
+float AreaLightSampler::irradianceEstimate(const glm::vec3& x, const glm::vec3& n) const {
+    if (tris_.size() > static_cast<std::size_t>(LightView::kMaxTriangles)) return -1.0f;
+    // E / L = -1/2 sum over the edges (v_i, v_i+1) of their angle times n . unit(v_i x v_i+1),
+    // vertices relative to x, in the winding that faces x.
+    float sum = 0.0f;
+    for (const Tri& t : tris_) {
+        const glm::vec3 a = t.v0 - x;
+        if (!(glm::dot(t.normal, a) < 0.0f)) continue;
+        const glm::vec3 v[3] = {glm::normalize(a), glm::normalize(a + t.e1), glm::normalize(a + t.e2)};
+        for (int i = 0; i < 3; ++i) {
+            const glm::vec3& p = v[i];
+            const glm::vec3& q = v[(i + 1) % 3];
+            const glm::vec3 g = glm::cross(p, q);
+            const float lg = glm::length(g);
+            if (!(lg > 0.0f)) continue;
+            sum += std::atan2(lg, glm::dot(p, q)) * glm::dot(n, g) / lg;
+        }
+    }
+    const float e = -0.5f * sum;
+    return std::isfinite(e) ? std::max(e, 0.0f) : 0.0f;
+}
+
 LightPoint AreaLightSampler::sampleBySolidAngle(LightView& v, const glm::vec3& p, glm::vec2 u) const {
     // The triangle whose CDF interval holds u.x (faced-away ones have empty intervals), u.x
     // stretched back to [0,1) within it.
@@ -258,8 +280,16 @@ float LightSet::contribution(std::size_t l, const glm::vec3& x, const glm::vec3&
     const float cosReceiver = cosWithin(glm::dot(n, dir), spread);
     const float cosLight = cosWithin(-glm::dot(a.normalAxis(), dir), spread + a.normalCone());
     // Far field: L A cos cos' / d^2 with the bounded cosines; near field: the cap.
-    const float e = std::min(cap, lum * a.area() * cosReceiver * cosLight / d2);
-    return std::isfinite(e) ? e : cap;
+    float e = std::min(cap, lum * a.area() * cosReceiver * cosLight / d2);
+    if (!std::isfinite(e)) e = cap;
+    // Within two bounding radii the bound is loose (often the cap): estimate from the light's
+    // solid angle instead, floored at a tenth of the bound so that no light that may reach x
+    // loses all its samples.
+    if (e > 0.0f && d < 2.0f * a.boundRadius()) {
+        const float estimate = a.irradianceEstimate(x, n);
+        if (estimate >= 0.0f) e = std::max(std::min(lum * estimate, e), 0.1f * e);
+    }
+    return e;
 }
 
 }  // namespace aamap

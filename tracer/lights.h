@@ -80,6 +80,11 @@ public:
     float inversePdf(const LightView& v, float cosLight, float d2) const {
         return v.solidAngle > 0.0f ? v.solidAngle : area_ * cosLight / d2;
     }
+    // Unoccluded irradiance at x (unit normal n) per unit radiance, by Lambert's polygon formula
+    // over the triangles facing x: exact where the light lies above x's horizon, an
+    // underestimate where it crosses it. -1 for a light of more than LightView::kMaxTriangles
+    // triangles.
+    float irradianceEstimate(const glm::vec3& x, const glm::vec3& n) const;
     // Uniform by solid angle over the triangles facing p (v.solidAngle > 0).
     LightPoint sampleBySolidAngle(LightView& v, const glm::vec3& p, glm::vec2 u) const;
 

@@ -168,6 +168,17 @@ TEST(SolidAngleLightSampling, FarFromALightAreaSamplingIsKept) {
     }
 }
 
+TEST(AreaLightSampler, IrradianceEstimateIsLambertsPolygonFormula) {
+    for (float h : {0.05f, 0.3f, 1.0f, 10.0f}) {
+        SquareLight square(h);
+        EXPECT_NEAR(square.light.irradianceEstimate(glm::vec3(0.0f), {0, 1, 0}), squareIrradiance(h),
+                    1e-4 * squareIrradiance(h)) << h;
+    }
+    SquareLight square(0.5f);
+    EXPECT_EQ(square.light.irradianceEstimate(glm::vec3(0.0f), {0, -1, 0}), 0.0f) << "light below the horizon";
+    EXPECT_EQ(square.light.irradianceEstimate(glm::vec3(0, 1, 0), {0, 1, 0}), 0.0f) << "behind the light";
+}
+
 TEST(SolidAngleLightSampling, ALightFacingAwaySendsNothing) {
     SquareLight square(-0.05f);  // below the receiver, still facing down
     EXPECT_EQ(square.light.view(glm::vec3(0.0f), true).solidAngle, 0.0f);
