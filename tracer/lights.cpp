@@ -282,9 +282,9 @@ float LightSet::contribution(std::size_t l, const glm::vec3& x, const glm::vec3&
     // Far field: L A cos cos' / d^2 with the bounded cosines; near field: the cap.
     float e = std::min(cap, lum * a.area() * cosReceiver * cosLight / d2);
     if (!std::isfinite(e)) e = cap;
-    // Within two bounding radii the bound is loose (often the cap): estimate from the light's
-    // solid angle instead, floored at a tenth of the bound so that no light that may reach x
-    // loses all its samples.
+    // Within two bounding radii the bound is loose (often the cap): take Lambert's polygon
+    // formula instead (exact for the part above x's horizon), floored at a tenth of the bound so
+    // that no light that may reach x loses all its samples.
     if (e > 0.0f && d < 2.0f * a.boundRadius()) {
         const float estimate = a.irradianceEstimate(x, n);
         if (estimate >= 0.0f) e = std::max(std::min(lum * estimate, e), 0.1f * e);

@@ -69,7 +69,8 @@ public:
     float normalCone() const { return normalCone_; }
 
     // How the light is sampled from receiver point p: by solid angle if `bySolidAngle` and the
-    // light qualifies (few triangles, at least LightView::kMinSolidAngle), else by area.
+    // light qualifies there (few triangles, p in its near field, at least kMinSolidAngle; see
+    // LightView), else by area.
     LightView view(const glm::vec3& p, bool bySolidAngle) const;
     // A point on the light as `v` (the view from receiver p) says to place it; u in [0,1)^2.
     LightPoint sample(LightView& v, const glm::vec3& p, glm::vec2 u) const {
