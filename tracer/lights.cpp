@@ -117,6 +117,7 @@ LightView AreaLightSampler::view(const glm::vec3& p, bool bySolidAngle) const {
         const glm::vec3 a = t.v0 - p;
         const float omega = glm::dot(t.normal, a) < 0.0f ? triangleSolidAngle(a, a + t.e1, a + t.e2) : 0.0f;
         if (omega > 0.0f) lastUsed = i;
+        v.omega[i] = omega;
         total += omega;
         v.cdf[i] = total;
     }
@@ -165,7 +166,7 @@ LightPoint AreaLightSampler::sampleBySolidAngle(LightView& v, const glm::vec3& p
     const std::uint32_t bit = 1u << i;
     if (!(v.ready & bit)) {
         v.ready |= bit;
-        if (!v.spherical[i].setup(a, a + t.e1, a + t.e2)) v.degenerate |= bit;
+        if (!v.spherical[i].setup(a, a + t.e1, a + t.e2, v.omega[i])) v.degenerate |= bit;
     }
     if (v.degenerate & bit) return failed;
     const glm::vec3 dir = v.spherical[i].sample(u);

@@ -44,7 +44,8 @@ struct LightView {
     // > 0: sampled by solid angle, the sum over the triangles facing the receiver (and so the
     // inverse of every sample's pdf); 0: sampled by area.
     float solidAngle = 0.0f;
-    float cdf[kMaxTriangles];  // by solid angle: CDF over the light's triangles (cdf[n - 1] == 1)
+    float cdf[kMaxTriangles];    // by solid angle: CDF over the light's triangles (cdf[n - 1] == 1)
+    float omega[kMaxTriangles];  // by solid angle: each triangle's, 0 for those facing away
     // Each triangle's sampling setup, made on its first sample (bit i of `ready`).
     SphericalTriangle spherical[kMaxTriangles];
     std::uint32_t ready = 0;

@@ -25,48 +25,52 @@ inline float triangleSolidAngle(const glm::vec3& a, const glm::vec3& b, const gl
 }
 
 // A spherical triangle set up for sampling: what depends on the receiver and the triangle alone,
-// computed once so that each sample costs one sincos, two square roots and a normalisation.
-// Directions are uniform over the triangle (Arvo 1995, "Stratified sampling of spherical
-// triangles"); the map is continuous in u, so a stratified pattern stays stratified.
+// computed once (square roots and no trigonometry) so that each sample costs one sincos, two
+// square roots and a normalisation. Directions are uniform over the triangle (Arvo 1995,
+// "Stratified sampling of spherical triangles"); the map is continuous in u, so a stratified
+// pattern stays stratified.
 class SphericalTriangle {
 public:
     static constexpr float kMinArea = 1e-6f;  // sr
-    // From the triangle's vertices relative to the receiver (not unit). False for a degenerate
-    // one: zero area, or vertices in one plane with the receiver.
-    bool setup(const glm::vec3& va, const glm::vec3& vb, const glm::vec3& vc) {
+    // From the triangle's vertices relative to the receiver (not unit) and its solid angle
+    // (triangleSolidAngle of the same vertices: the sampler and the pdf then share one area).
+    // False for a degenerate one: below kMinArea, or vertices in one plane with the receiver.
+    bool setup(const glm::vec3& va, const glm::vec3& vb, const glm::vec3& vc, float solidAngle) {
+        area_ = solidAngle;
+        if (!(area_ > kMinArea) || !std::isfinite(area_)) return false;
         a_ = glm::normalize(va);
         b_ = glm::normalize(vb);
         const glm::vec3 c = glm::normalize(vc);
-        // The vertex angles from the great circles' plane normals.
-        glm::vec3 nAB = glm::cross(a_, b_), nAC = glm::cross(a_, c), nBC = glm::cross(b_, c);
-        const float lAB = glm::length(nAB), lAC = glm::length(nAC), lBC = glm::length(nBC);
-        if (!(lAB > 0.0f) || !(lAC > 0.0f) || !(lBC > 0.0f)) return false;
+        // The angle alpha at a, between the great circles a-b and a-c, from their planes'
+        // normals: its cosine is their dot product, its sine the length of their cross product.
+        glm::vec3 nAB = glm::cross(a_, b_), nAC = glm::cross(a_, c);
+        const float lAB = glm::length(nAB), lAC = glm::length(nAC);
+        if (!(lAB > 0.0f) || !(lAC > 0.0f)) return false;
         nAB *= 1.0f / lAB;
         nAC *= 1.0f / lAC;
-        nBC *= 1.0f / lBC;
-        alpha_ = angleBetween(nAB, nAC);
-        const float beta = angleBetween(-nAB, nBC);
-        const float gamma = angleBetween(nAC, nBC);
-        area_ = alpha_ + beta + gamma - 3.14159265358979f;
-        sinAlpha_ = std::sin(alpha_);
-        cosAlpha_ = std::cos(alpha_);
+        cosAlpha_ = std::clamp(glm::dot(nAB, nAC), -1.0f, 1.0f);
+        sinAlpha_ = std::min(glm::length(glm::cross(nAB, nAC)), 1.0f);
         cosAB_ = glm::dot(a_, b_);
         // The unit tangent at a towards c: the arc a..c is cos(s) a + sin(s) towardC_.
         const glm::vec3 t = c - glm::dot(c, a_) * a_;
         const float lt = glm::length(t);
-        // The angle sum carries ~1e-7 sr of rounding: below kMinArea the triangle is degenerate.
-        if (!(area_ > kMinArea) || !(lt > 0.0f) || !std::isfinite(area_)) return false;
+        if (!(lt > 0.0f) || !(sinAlpha_ > 0.0f)) return false;
         towardC_ = t * (1.0f / lt);
         return true;
     }
-    float area() const { return area_; }  // by the angle sum (triangleSolidAngle is the accurate one)
+    bool setup(const glm::vec3& va, const glm::vec3& vb, const glm::vec3& vc) {
+        return setup(va, vb, vc, triangleSolidAngle(va, vb, vc));
+    }
+    float area() const { return area_; }
 
     // A direction uniform over the triangle, unit up to rounding (callers that need it exactly
     // unit normalise it); u in [0,1)^2.
     glm::vec3 sample(glm::vec2 u) const {
         // The point c' on arc ac that cuts off the sub-triangle a b c' of area u.x * area.
+        // s, t = sin, cos of (subArea - alpha), by the angle-difference identities.
         const float subArea = u.x * area_;
-        const float s = std::sin(subArea - alpha_), t = std::cos(subArea - alpha_);
+        const float sinSub = std::sin(subArea), cosSub = std::cos(subArea);
+        const float s = sinSub * cosAlpha_ - cosSub * sinAlpha_, t = cosSub * cosAlpha_ + sinSub * sinAlpha_;
         const float p = t - cosAlpha_;
         const float q = s + sinAlpha_ * cosAB_;
         const float den = (q * s + p * t) * sinAlpha_;
@@ -85,16 +89,9 @@ public:
     }
 
 private:
-    // The angle between unit vectors from half the chord between them: acos of their dot product
-    // loses half its digits near 0 and pi, where thin triangles have their angles.
-    static float angleBetween(const glm::vec3& u, const glm::vec3& v) {
-        if (glm::dot(u, v) < 0.0f) return 3.14159265358979f - 2.0f * std::asin(std::min(1.0f, 0.5f * glm::length(u + v)));
-        return 2.0f * std::asin(std::min(1.0f, 0.5f * glm::length(v - u)));
-    }
-
     // Left uninitialised until setup(): a LightView holds several, most never used.
     glm::vec3 a_, b_, towardC_;
-    float alpha_, cosAlpha_, sinAlpha_, cosAB_, area_;
+    float cosAlpha_, sinAlpha_, cosAB_, area_;
 };
 
 }  // namespace aamap

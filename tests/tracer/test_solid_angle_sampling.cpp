@@ -51,7 +51,6 @@ TEST(SphericalTriangle, SamplesAreUniformInSolidAngle) {
     SphericalTriangle s;
     ASSERT_TRUE(s.setup(v0, v1, v2));
     const double total = triangleSolidAngle(v0, v1, v2);
-    EXPECT_NEAR(s.area(), total, 1e-4 * total);
     const glm::vec3 m01 = 0.5f * (v0 + v1), m12 = 0.5f * (v1 + v2), m02 = 0.5f * (v0 + v2);
     const double quarters[4] = {triangleSolidAngle(v0, m01, m02), triangleSolidAngle(m01, v1, m12),
                                 triangleSolidAngle(m02, m12, v2), triangleSolidAngle(m01, m12, m02)};
