@@ -121,7 +121,7 @@ LightView AreaLightSampler::view(const glm::vec3& p, bool bySolidAngle) const {
         total += omega;
         v.cdf[i] = total;
     }
-    if (!(total >= LightView::kMinSolidAngle) || !std::isfinite(total)) return v;
+    if (!(total >= LightView::kMinSolidAngle && total <= LightView::kMaxSolidAngle)) return v;
     // Pin the CDF's end at the last triangle facing p, so rounding cannot select one behind it.
     const float inv = 1.0f / total;
     for (std::size_t i = 0; i < n; ++i) v.cdf[i] = i >= lastUsed ? 1.0f : v.cdf[i] * inv;

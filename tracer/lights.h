@@ -36,6 +36,10 @@ struct LightView {
     // Below this many steradians a light is sampled by area: the angle sums of the spherical
     // sampling lose float precision (pbrt-v4 switches at 3e-4 sr too).
     static constexpr float kMinSolidAngle = 3e-4f;
+    // Above this many steradians (the receiver all but touching the light, its triangles close
+    // to hemispheres) the solid angles themselves lose float precision: by area again, as
+    // pbrt-v4 does from the same 6.22 sr.
+    static constexpr float kMaxSolidAngle = 6.22f;
     // A light is sampled by solid angle only where area sampling's density in solid angle varies
     // over it by more than this factor: the near field, where 1/d^2 peaks. Farther out the
     // density is smooth, stratification removes most of its variance, and solid-angle samples

@@ -151,6 +151,26 @@ TEST(SolidAngleLightSampling, NearALargeLightItIsExactAndQuieterThanArea) {
     EXPECT_LT(bySolidAngle.variance * 10, byArea.variance);
 }
 
+TEST(SolidAngleLightSampling, UnbiasedCloseToTheLightAndByAreaWhereItAlmostTouches) {
+    // Down to 0.6 % of the light's size the spherical triangles approach hemispheres and the
+    // directions graze the plane; the estimate stays unbiased, tending to pi L.
+    for (float h : {0.03f, 0.01f, 0.006f}) {
+        SquareLight square(h);
+        const LightView view = square.light.view(glm::vec3(0.0f), true);
+        EXPECT_GT(view.solidAngle, 0.0f) << h;
+        EXPECT_NEAR(view.solidAngle, 4 * std::asin(1.0 / (1.0 + 4.0 * h * h)), 1e-4) << h;
+        const Estimate e = estimateOverSeeds(square.light, true, 8, 32);
+        EXPECT_NEAR(e.mean, squareIrradiance(h), 4 * e.standardError + 1e-3 * squareIrradiance(h)) << h;
+    }
+    // Closer, the float solid angles themselves err (at 1e-5 the two triangles' sum exceeds
+    // 2 pi): sampled by area, with finite estimates.
+    for (float h : {1e-3f, 1e-5f}) {
+        SquareLight square(h);
+        EXPECT_EQ(square.light.view(glm::vec3(0.0f), true).solidAngle, 0.0f) << h;
+        EXPECT_TRUE(std::isfinite(estimateIrradiance(square.light, true, 8, 3))) << h;
+    }
+}
+
 TEST(SolidAngleLightSampling, FarFromALightAreaSamplingIsKept) {
     SquareLight square(1.0f);
     // Height 1: cos' / d^2 spans only (farthest / nearest)^3 = 1.5^1.5 = 1.84 over the square.
