@@ -291,11 +291,17 @@ glm::vec3 Integrator::directManyLights(const SurfaceHit& hit, const Sampler& sam
     const float invM = 1.0f / static_cast<float>(m);
     glm::vec3 sum(0.0f);
     LastLightView last;
+    PendingShadow pending[8];
+    int queued = 0;
     for (int j = 0; j < m * m; ++j) {
         glm::vec2 u = sampler.jittered2D(dims::path(depth, dims::PathSlot::ManyLights, j), j % m, j / m, invM);
         const std::size_t l = lights_.select(u.x);
-        sum += lightSample(hit, origin, l, u, lights_.selectPdf[l], last, rays);
+        if (prepareLightSample(hit, l, u, lights_.selectPdf[l], last, pending[queued]) && ++queued == 8) {
+            sum += traceLightSamples(origin, pending, queued, rays);
+            queued = 0;
+        }
     }
+    if (queued > 0) sum += traceLightSamples(origin, pending, queued, rays);
     return sum * (invM * invM);
 }
 
@@ -332,6 +338,8 @@ glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& s
     const float shiftY = sampler.get1D(dims::path(depth, dims::PathSlot::ManyLights, kShiftSample));
     glm::vec3 sum(0.0f);
     LastLightView last;
+    PendingShadow pending[8];  // traced 8 at a time, in sample order
+    int queued = 0;
     for (int j = 0; j < count; ++j) {
         const glm::vec2 r = sampler.get2D(dims::path(depth, dims::PathSlot::ManyLights, j));
         float y = (static_cast<float>((j % m) * m + j / m) + r.y) * invCount + shiftY;
@@ -341,15 +349,18 @@ glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& s
         const std::size_t l = selectOnCdf(cdf, n, u.x);
         const float pick = (cdf[l] - (l == 0 ? 0.0f : cdf[l - 1]));
         if (!(pick > 0.0f)) continue;  // unreachable: zero-width intervals are never selected
-        sum += lightSample(hit, origin, l, u, pick, last, rays);
+        if (prepareLightSample(hit, l, u, pick, last, pending[queued]) && ++queued == 8) {
+            sum += traceLightSamples(origin, pending, queued, rays);
+            queued = 0;
+        }
     }
+    if (queued > 0) sum += traceLightSamples(origin, pending, queued, rays);
     return sum * invCount;
 }
 
-glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin, std::size_t l, glm::vec2 u,
-                                  float pick, LastLightView& last, RayCounts& rays) const {
-    // One shadow sample of light l (u: the point on an area light), divided by its selection
-    // probability `pick`.
+bool Integrator::prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::vec2 u, float pick,
+                                    LastLightView& last, PendingShadow& out) const {
+    // u: the point on an area light; pick: the light's selection probability.
     const ShadingMaterial& mat = *hit.material;
     const std::size_t nPoints = lights_.points.size();
     glm::vec3 target, Le;
@@ -361,7 +372,7 @@ glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin
         const glm::vec3 w = target - hit.position;
         const float d2 = glm::dot(w, w);
         const float lobe = p.angular(-glm::normalize(w));
-        if (!(d2 > 0.0f) || lobe <= 0.0f) return glm::vec3(0.0f);
+        if (!(d2 > 0.0f) || lobe <= 0.0f) return false;
         geometry = lobe / d2;
     } else {
         const AreaLightSampler& a = lights_.areas[l - nPoints];
@@ -372,21 +383,53 @@ glm::vec3 Integrator::lightSample(const SurfaceHit& hit, const glm::vec3& origin
         Le = a.radiance();
         const glm::vec3 w = target - hit.position;
         const float d2 = glm::dot(w, w);
-        if (!(d2 > 0.0f)) return glm::vec3(0.0f);
+        if (!(d2 > 0.0f)) return false;
         const float d = std::sqrt(d2);
         const float cosLight = -glm::dot(q.normal, w) / d;
-        if (cosLight <= 0.0f) return glm::vec3(0.0f);
+        if (cosLight <= 0.0f) return false;
         geometry = a.inversePdf(view, cosLight, d2);
         tfar = 1.0f - rayOffset(target, a.vertexScale()) / d;
     }
     const glm::vec3 l3 = glm::normalize(target - hit.position);
-    if (glm::dot(hit.geometric, l3) <= 0.0f) return glm::vec3(0.0f);
+    if (glm::dot(hit.geometric, l3) <= 0.0f) return false;
     const float cosSurface = glm::dot(hit.shading, l3);
-    if (cosSurface <= 0.0f || !(tfar > 0.0f)) return glm::vec3(0.0f);
-    if (!unoccluded(origin, target, tfar, rays)) return glm::vec3(0.0f);
+    if (cosSurface <= 0.0f || !(tfar > 0.0f)) return false;
     glm::vec3 f = hit.albedo * bsdf::kInvPi;
     if (mat.glossy) f += mat.ks * (mat.phongNorm * bsdf::phongLobe(mat, hit.wo, hit.shading, l3));
-    return f * Le * (geometry * cosSurface / pick);
+    out = {target, f * Le * (geometry * cosSurface / pick), tfar};
+    return true;
+}
+
+glm::vec3 Integrator::traceLightSamples(const glm::vec3& origin, const PendingShadow* samples, int count,
+                                        RayCounts& rays) const {
+    // The samples' shadow rays share the origin: one 8-wide packet traversal for up to 8 of them.
+    alignas(32) int valid[8];
+    RTCRay8 packet;
+    for (int i = 0; i < 8; ++i) {
+        const bool on = i < count;
+        const glm::vec3 d = on ? samples[i].target - origin : glm::vec3(0.0f, 0.0f, 1.0f);
+        valid[i] = on ? -1 : 0;
+        packet.org_x[i] = origin.x;
+        packet.org_y[i] = origin.y;
+        packet.org_z[i] = origin.z;
+        packet.dir_x[i] = d.x;
+        packet.dir_y[i] = d.y;
+        packet.dir_z[i] = d.z;
+        packet.tnear[i] = 0.0f;
+        packet.tfar[i] = on ? samples[i].tfar : 0.0f;
+        packet.time[i] = 0.0f;
+        packet.mask[i] = ~0u;
+        packet.id[i] = static_cast<unsigned>(i);
+        packet.flags[i] = 0;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded8(valid, scene_, &context, &packet);
+    rays.shadow += static_cast<std::uint64_t>(count);
+    glm::vec3 sum(0.0f);
+    for (int i = 0; i < count; ++i)
+        if (packet.tfar[i] >= 0.0f) sum += samples[i].contribution;  // Embree sets tfar to -inf on a hit
+    return sum;
 }
 
 bool Integrator::unoccluded(const glm::vec3& origin, const glm::vec3& target, float tfar, RayCounts& rays) const {

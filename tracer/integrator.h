@@ -3,8 +3,8 @@
 // (antialiasing) budget. Three modes (ShadingSettings::mode):
 // - Direct: emission, direct light from every light type (point lights one shadow ray each, area
 //   lights an m x m stratified pattern per hit traced as 8-wide packets; with many lights, m x m
-//   samples spread over a per-hit contribution CDF, or the global power CDF) and mirror/glass
-//   recursion;
+//   samples spread over a per-hit contribution CDF, or the global power CDF, their shadow rays
+//   traced 8 at a time too) and mirror/glass recursion;
 // - Cache: Direct plus indirect diffuse from an IndirectDiffuseSource (the irradiance cache);
 // - Path: unbiased path tracing with next-event estimation, MIS and Russian roulette
 //   (path_integrator.cpp).
@@ -157,9 +157,20 @@ private:
         std::size_t light = ~std::size_t{0};
         LightView view;
     };
-    // One shadow sample of light l for the many-light paths, divided by its selection probability.
-    glm::vec3 lightSample(const SurfaceHit& hit, const glm::vec3& origin, std::size_t l, glm::vec2 u, float pick,
-                          LastLightView& last, RayCounts& rays) const;
+    // One shadow sample of light l for the many-light paths, divided by its selection probability,
+    // before its shadow ray: what it adds if the segment origin -> target (t up to tfar) is clear.
+    struct PendingShadow {
+        glm::vec3 target;
+        glm::vec3 contribution;
+        float tfar;
+    };
+    // False if the sample adds nothing whatever the visibility (faces away, zero weight).
+    bool prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::vec2 u, float pick, LastLightView& last,
+                            PendingShadow& out) const;
+    // Traces the shadow rays of count <= 8 prepared samples from `origin` as one packet; the sum
+    // of the contributions of those that reach their light, in sample order.
+    glm::vec3 traceLightSamples(const glm::vec3& origin, const PendingShadow* samples, int count,
+                                RayCounts& rays) const;
     // The lights at infinity (directional lights one shadow ray each, the environment m x m light
     // and m x m BSDF samples with MIS; a constant environment BSDF samples only), for Direct/Cache.
     glm::vec3 directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
