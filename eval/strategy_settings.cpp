@@ -27,9 +27,7 @@ ShadingSettings toShadingSettings(const ExperimentConfig& c, const RenderConfig&
     s.rouletteDepth = c.shading.rouletteDepth;
     s.maxSpecularDepth = c.shading.maxSpecularDepth;
     s.lightSelection = c.shading.lightSelection == "power" ? LightSelection::Power : LightSelection::Contribution;
-    s.lightSampling = c.shading.lightSampling == "area"          ? LightSampling::Area
-                      : c.shading.lightSampling == "solid_angle" ? LightSampling::SolidAngle
-                                                                 : LightSampling::Auto;
+    parse(c.shading.lightSampling, s.lightSampling);  // the config reader checked the name
     s.textureFilter = c.shading.textureFilter == "none" ? TextureFilter::None : TextureFilter::Anisotropic;
     const ShadingConfig::Cache& ic = c.shading.cache;
     s.cache.bounces = ic.bounces;

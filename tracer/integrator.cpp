@@ -407,20 +407,9 @@ glm::vec3 Integrator::traceLightSamples(const glm::vec3& origin, const PendingSh
     RTCRay8 packet;
     for (int i = 0; i < 8; ++i) {
         const bool on = i < count;
-        const glm::vec3 d = on ? samples[i].target - origin : glm::vec3(0.0f, 0.0f, 1.0f);
         valid[i] = on ? -1 : 0;
-        packet.org_x[i] = origin.x;
-        packet.org_y[i] = origin.y;
-        packet.org_z[i] = origin.z;
-        packet.dir_x[i] = d.x;
-        packet.dir_y[i] = d.y;
-        packet.dir_z[i] = d.z;
-        packet.tnear[i] = 0.0f;
-        packet.tfar[i] = on ? samples[i].tfar : 0.0f;
-        packet.time[i] = 0.0f;
-        packet.mask[i] = ~0u;
-        packet.id[i] = static_cast<unsigned>(i);
-        packet.flags[i] = 0;
+        setShadowLane(packet, i, origin, on ? samples[i].target - origin : glm::vec3(0.0f, 0.0f, 1.0f),
+                      on ? samples[i].tfar : 0.0f);
     }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

@@ -152,14 +152,9 @@ float AreaLightSampler::irradianceEstimate(const glm::vec3& x, const glm::vec3& 
 }
 
 LightPoint AreaLightSampler::sampleBySolidAngle(LightView& v, const glm::vec3& p, glm::vec2 u) const {
-    // The triangle whose CDF interval holds u.x (faced-away ones have empty intervals), u.x
-    // stretched back to [0,1) within it.
-    const std::size_t n = tris_.size();
-    std::size_t i = 0;
-    for (std::size_t k = 0; k + 1 < n; ++k) i += u.x >= v.cdf[k] ? 1 : 0;
-    const float low = i == 0 ? 0.0f : v.cdf[i - 1];
-    const float width = v.cdf[i] - low;
-    u.x = width > 0.0f ? std::min(std::max((u.x - low) / width, 0.0f), 0x1.fffffep-1f) : 0.0f;
+    // The triangle whose CDF interval holds u.x (faced-away ones have empty intervals, never
+    // selected), u.x stretched back to [0,1) within it.
+    const std::size_t i = selectOnCdf(v.cdf, tris_.size(), u.x);
     const Tri& t = tris_[i];
     const glm::vec3 a = t.v0 - p;
     const LightPoint failed{p, glm::vec3(0.0f)};

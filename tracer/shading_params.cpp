@@ -1,5 +1,7 @@
 #include "tracer/shading_params.h"
 
+#include "tracer/tracer_types.h"
+
 namespace aamap {
 
 const std::vector<ParamSpec>& shadingParams() {
@@ -18,6 +20,14 @@ const std::vector<ParamSpec>& shadingParams() {
                     "textures filtered over each ray's footprint, or the bilinear texel at the hit"),
     };
     return params;
+}
+
+bool parse(const std::string& name, LightSampling& sampling) {
+    if (name == "auto") sampling = LightSampling::Auto;
+    else if (name == "solid_angle") sampling = LightSampling::SolidAngle;
+    else if (name == "area") sampling = LightSampling::Area;
+    else return false;
+    return true;
 }
 
 const std::vector<ParamSpec>& shadingCacheParams() {

@@ -35,18 +35,7 @@ void ShadowBatch8::prepare(int count, const glm::vec3& p, const glm::vec3& o, co
     }
     for (int i = 0; i < kWidth; ++i) {
         valid[i] = (i < count && ok[i]) ? -1 : 0;
-        packet.org_x[i] = o.x;
-        packet.org_y[i] = o.y;
-        packet.org_z[i] = o.z;
-        packet.dir_x[i] = dx[i];
-        packet.dir_y[i] = dy[i];
-        packet.dir_z[i] = dz[i];
-        packet.tnear[i] = 0.0f;
-        packet.tfar[i] = valid[i] ? tfar[i] : 0.0f;
-        packet.time[i] = 0.0f;
-        packet.mask[i] = ~0u;
-        packet.id[i] = static_cast<unsigned>(i);
-        packet.flags[i] = 0;
+        setShadowLane(packet, i, o, {dx[i], dy[i], dz[i]}, valid[i] ? tfar[i] : 0.0f);
     }
 }
 

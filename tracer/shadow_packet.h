@@ -13,6 +13,22 @@
 
 namespace aamap {
 
+// Lane i of an 8-wide shadow packet: the segment origin + t dir, t in [0, tfar].
+inline void setShadowLane(RTCRay8& packet, int i, const glm::vec3& origin, const glm::vec3& dir, float tfar) {
+    packet.org_x[i] = origin.x;
+    packet.org_y[i] = origin.y;
+    packet.org_z[i] = origin.z;
+    packet.dir_x[i] = dir.x;
+    packet.dir_y[i] = dir.y;
+    packet.dir_z[i] = dir.z;
+    packet.tnear[i] = 0.0f;
+    packet.tfar[i] = tfar;
+    packet.time[i] = 0.0f;
+    packet.mask[i] = ~0u;
+    packet.id[i] = static_cast<unsigned>(i);
+    packet.flags[i] = 0;
+}
+
 struct ShadowBatch8 {
     static constexpr int kWidth = 8;
 

@@ -30,6 +30,8 @@ enum class LightSelection { Power, Contribution };
 // and Cache modes, whose many samples per hit make the light the noise, Area in Path mode, where
 // one light sample per vertex is a small part of a path's noise. docs/tracer.md, "Light sampling".
 enum class LightSampling { Auto, SolidAngle, Area };
+// shading.light_sampling's names (auto, solid_angle, area); false for an unknown name.
+bool parse(const std::string& name, LightSampling& sampling);
 
 // How a textured albedo is looked up (ShadingSettings::textureFilter).
 enum class TextureFilter { Anisotropic, None };

@@ -107,9 +107,7 @@ int main(int argc, char** argv) {
     settings.shading.mode = mode == "path"    ? aamap::ShadingMode::Path
                             : mode == "cache" ? aamap::ShadingMode::Cache
                                               : aamap::ShadingMode::Direct;
-    settings.shading.lightSampling = lightSampling == "area"          ? aamap::LightSampling::Area
-                                     : lightSampling == "solid_angle" ? aamap::LightSampling::SolidAngle
-                                                                      : aamap::LightSampling::Auto;
+    aamap::parse(lightSampling, settings.shading.lightSampling);  // CLI11 checked the name
     settings.shading.cache = cache;
     settings.shading.cacheGridStep = gridStep;
     settings.shading.maxDepth = maxDepth;
