@@ -56,22 +56,22 @@ Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, cons
                   shading_.maxSpecularDepth);
 }
 
-void Integrator::fillHit(const RTCRayHit& rh, const glm::vec3& dir, RayCone cone, SurfaceHit& hit) const {
-    const Triangle& tri = geometry_.triangle(rh.hit.primID);
+void Integrator::fillHit(std::uint32_t primID, float u, float v, float tfar, const glm::vec3& dir, RayCone cone,
+                         SurfaceHit& hit) const {
+    const Triangle& tri = geometry_.triangle(primID);
     const ShadingMaterial& mat = geometry_.material(tri.material);
-    const float u = rh.hit.u, v = rh.hit.v;
     hit.front = glm::dot(tri.normal, dir) < 0.0f;
     // Rebuild the hit point from the triangle (error relative to its vertices, not to t * |dir|).
     hit.position = tri.v0 + u * tri.e1 + v * tri.e2;
     hit.geometric = hit.front ? tri.normal : -tri.normal;
-    hit.shading = geometry_.shadingNormal(rh.hit.primID, u, v);
+    hit.shading = geometry_.shadingNormal(primID, u, v);
     if (glm::dot(hit.shading, hit.geometric) < 0.0f) hit.shading = -hit.shading;  // normals may disagree with the winding
     hit.wo = -dir;
-    hit.cone = {cone.at(rh.ray.tfar), cone.spread};
-    hit.albedo = mat.diffuse ? geometry_.albedo(mat, rh.hit.primID, u, v, dir, hit.cone.width) : glm::vec3(0.0f);
+    hit.cone = {cone.at(tfar), cone.spread};
+    hit.albedo = mat.diffuse ? geometry_.albedo(mat, primID, u, v, dir, hit.cone.width) : glm::vec3(0.0f);
     hit.offset = rayOffset(hit.position, tri.vertexScale);
-    hit.distance = rh.ray.tfar;
-    hit.primitive = rh.hit.primID;
+    hit.distance = tfar;
+    hit.primitive = primID;
     hit.material = &mat;
 }
 
@@ -83,7 +83,7 @@ bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, Surfac
     rtcIntersect1(scene_, &context, &rh);
     ++counter;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    fillHit(rh, dir, cone, hit);
+    fillHit(rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, dir, cone, hit);
     return true;
 }
 
@@ -100,7 +100,7 @@ glm::vec3 Integrator::primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, 
     ++rays.primary;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return escaped(dir);
     SurfaceHit hit;
-    fillHit(rh, dir, cameraCone(spread), hit);
+    fillHit(rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, dir, cameraCone(spread), hit);
     if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
     return shadeDirect(hit, sampler, 0, 0, 1.0f, rays);
 }

@@ -18,6 +18,7 @@
 #include "tracer/embree_scene.h"
 #include "tracer/lights.h"
 #include "tracer/ray_offset.h"
+#include "tracer/ray_packet.h"
 #include "tracer/sampler.h"
 #include "tracer/tracer_types.h"
 
@@ -43,6 +44,12 @@ inline float powerHeuristic(float a, float b) {
     const float a2 = a * a, b2 = b * b;
     return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
+
+// The segment origin + t dir, t in [0, tfar], that a shadow ray tests.
+struct ShadowSegment {
+    glm::vec3 origin, dir;
+    float tfar;
+};
 
 // A ray's first hit, with what shading needs. Normals face the side the ray came from.
 struct SurfaceHit {
@@ -119,6 +126,13 @@ public:
     // (rh: its Embree result, e.g. one lane of a packet of coherent primary rays).
     glm::vec3 primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays,
                              float spread = 0.0f) const;
+    // Path mode (ShadingMode::Path only): primaryFromHit for the lanes [0, count) of a packet of
+    // primary rays already traced, each with its own sampler and spread, into out[0, count). Each
+    // lane's radiance is the one primaryFromHit gives it; the paths' shadow and bounce rays are
+    // traced as packets too.
+    static constexpr int kPathPacket = 8;
+    void primaryPaths(const RayPacket<kPathPacket>& primaries, int count, const Sampler* samplers,
+                      const float* spreads, glm::vec3* out, RayCounts& rays) const;
 
     // Building blocks (also for the irradiance cache). intersect: false on a miss; counts the ray
     // in rays.other. radianceDirect: what Direct mode sees along a secondary ray (emission + direct
@@ -180,13 +194,24 @@ private:
     glm::vec3 smoothBrdf(const SurfaceHit& hit, const glm::vec3& wi) const;
     // Path mode (path_integrator.cpp): the whole path from a primary hit.
     glm::vec3 tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const;
-    // One next-event sample for path mode, MIS-weighted against BSDF sampling.
-    glm::vec3 nextEvent(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                        RayCounts& rays) const;
-    // Its parts: one point or area light from the power CDF; every directional light and one
-    // environment-map sample (a constant environment is left to BSDF sampling).
-    glm::vec3 nextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                              RayCounts& rays) const;
+    // Path mode's steps (path_integrator.cpp). PathState: one path between two vertices;
+    // PathVertex: what scattering at a vertex asks the ray tracer for.
+    struct PathState;
+    struct PathVertex;
+    // Shades s.hit: adds its emission, prepares next-event estimation and samples the next
+    // direction (out says which rays to trace). Rays for lights at infinity are traced here.
+    void scatterPathVertex(PathState& s, const Sampler& sampler, PathVertex& out, RayCounts& rays) const;
+    // Adds the vertex's next-event estimate; visible: its shadow segment was clear.
+    void addNextEvent(PathState& s, const PathVertex& v, bool visible) const;
+    // Ends a path whose next ray left the scene: what the environment sends back along it.
+    void endPath(PathState& s, const PathVertex& v) const;
+    // One point or area light from the power CDF, MIS-weighted against BSDF sampling, before its
+    // shadow ray: false if it adds nothing whatever the visibility; else what it adds when the
+    // segment is clear.
+    bool prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                                glm::vec3& contribution, ShadowSegment& segment) const;
+    // Every directional light and one environment-map sample (a constant environment is left to
+    // BSDF sampling), their shadow rays traced here.
     glm::vec3 nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
                                 RayCounts& rays) const;
     // What a BSDF-sampled ray that left the scene brings back, MIS-weighted against the
@@ -200,7 +225,14 @@ private:
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar, RayCounts& rays) const;
     // How area light `a` is sampled from receiver point p under ShadingSettings::lightSampling.
     LightView viewOf(const AreaLightSampler& a, const glm::vec3& p) const { return a.view(p, bySolidAngle_); }
-    void fillHit(const RTCRayHit& rh, const glm::vec3& dir, RayCone cone, SurfaceHit& hit) const;
+    // The hit of a ray along unit `dir` on triangle primID at barycentrics (u, v), distance tfar.
+    void fillHit(std::uint32_t primID, float u, float v, float tfar, const glm::vec3& dir, RayCone cone,
+                 SurfaceHit& hit) const;
+    template <int W>
+    void fillHit(const RayPacket<W>& packet, int lane, RayCone cone, SurfaceHit& hit) const {
+        fillHit(packet.rays.hit.primID[lane], packet.rays.hit.u[lane], packet.rays.hit.v[lane],
+                packet.rays.ray.tfar[lane], packet.dir[lane], cone, hit);
+    }
     // The cone of a camera ray: width 0 at the eye; no spread when textures are not filtered.
     RayCone cameraCone(float spread) const {
         return {0.0f, shading_.textureFilter == TextureFilter::None ? 0.0f : spread};

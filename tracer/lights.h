@@ -193,6 +193,7 @@ struct LightSet {
     // so one stratified number serves both the choice and the point on the light.
     std::size_t select(float& u) const {
         const std::size_t n = selectCdf.size();
+        if (n == 1) return 0;  // u stays as it is: its interval is [0, 1)
         std::size_t i = static_cast<std::size_t>(std::upper_bound(selectCdf.begin(), selectCdf.end(), u) - selectCdf.begin());
         i = std::min(i, n - 1);
         const float low = i == 0 ? 0.0f : selectCdf[i - 1];

@@ -3,6 +3,11 @@
 // and one environment-map sample), MIS with the power heuristic between light and BSDF sampling,
 // Russian roulette by throughput. Rays that leave the scene bring back the environment. Depth counts path
 // segments as Mitsuba's max_depth does.
+//
+// A path advances vertex by vertex: scatterPathVertex shades one vertex and says which shadow
+// segment and which next ray it needs; the caller traces them. tracePath traces them one at a
+// time; primaryPaths advances up to 8 paths in lockstep and traces their shadow segments
+// and their next rays as 8-wide Embree packets (docs/tracer.md, "Path mode").
 #include <algorithm>
 #include <cmath>
 
@@ -10,15 +15,10 @@
 
 #include "tracer/bsdf.h"
 #include "tracer/integrator.h"
+#include "tracer/ray_packet.h"
+#include "tracer/shadow_packet.h"
 
 namespace aamap {
-
-glm::vec3 Integrator::nextEvent(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                                RayCounts& rays) const {
-    glm::vec3 L = nextEventFinite(hit, sampler, depth, diffusePick, rays);
-    if (!lights_.directionals.empty() || lights_.environment) L += nextEventInfinite(hit, sampler, depth, diffusePick, rays);
-    return L;
-}
 
 glm::vec3 Integrator::nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
                                         RayCounts& rays) const {
@@ -50,9 +50,10 @@ glm::vec3 Integrator::escapedPath(const glm::vec3& dir, bool specularBefore, flo
     return env.radiance(dir) * w;
 }
 
-glm::vec3 Integrator::nextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                                      RayCounts& rays) const {
-    if (lights_.selectCdf.empty()) return glm::vec3(0.0f);
+
+bool Integrator::prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                                        glm::vec3& contribution, ShadowSegment& segment) const {
+    if (lights_.selectCdf.empty()) return false;
     const ShadingMaterial& m = *hit.material;
     glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Light));
     const std::size_t l = lights_.select(u.x);
@@ -63,120 +64,259 @@ glm::vec3 Integrator::nextEventFinite(const SurfaceHit& hit, const Sampler& samp
         const PointLightSource& p = lights_.points[l];
         const glm::vec3 w = p.position - hit.position;
         const float d2 = glm::dot(w, w);
-        if (!(d2 > 0.0f)) return glm::vec3(0.0f);
+        if (!(d2 > 0.0f)) return false;
         const glm::vec3 wi = w * (1.0f / std::sqrt(d2));
         const float cosSurface = glm::dot(hit.shading, wi);
         const float lobe = p.angular(-wi);
-        if (glm::dot(hit.geometric, wi) <= 0.0f || cosSurface <= 0.0f || lobe <= 0.0f) return glm::vec3(0.0f);
-        if (!unoccluded(origin, p.position, 1.0f, rays)) return glm::vec3(0.0f);
+        if (glm::dot(hit.geometric, wi) <= 0.0f || cosSurface <= 0.0f || lobe <= 0.0f) return false;
+        segment = {origin, p.position - origin, 1.0f};  // a point: nothing to stop short of
         const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, wi, cosSurface, diffusePick);
-        return e.f * p.intensity * (lobe * cosSurface / (d2 * pick));
+        contribution = e.f * p.intensity * (lobe * cosSurface / (d2 * pick));
+        return true;
     }
     const AreaLightSampler& a = lights_.areas[l - nPoints];
     LightView view = viewOf(a, hit.position);
     const LightPoint q = a.sample(view, hit.position, u);
     const glm::vec3 w = q.position - hit.position;
     const float d2 = glm::dot(w, w);
-    if (!(d2 > 0.0f)) return glm::vec3(0.0f);
-    const float d = std::sqrt(d2);
-    const glm::vec3 wi = w * (1.0f / d);
+    if (!(d2 > 0.0f)) return false;
+    const float invD = 1.0f / std::sqrt(d2);
+    const glm::vec3 wi = w * invD;
     const float cosSurface = glm::dot(hit.shading, wi);
     const float cosLight = -glm::dot(q.normal, wi);
-    if (glm::dot(hit.geometric, wi) <= 0.0f || cosSurface <= 0.0f || cosLight <= 0.0f) return glm::vec3(0.0f);
-    const float tfar = 1.0f - rayOffset(q.position, a.vertexScale()) / d;
-    if (!(tfar > 0.0f) || !unoccluded(origin, q.position, tfar, rays)) return glm::vec3(0.0f);
+    if (glm::dot(hit.geometric, wi) <= 0.0f || cosSurface <= 0.0f || cosLight <= 0.0f) return false;
+    const float tfar = 1.0f - rayOffset(q.position, a.vertexScale()) * invD;
+    if (!(tfar > 0.0f)) return false;
+    segment = {origin, q.position - origin, tfar};
     const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, wi, cosSurface, diffusePick);
-    const float pdfLight = pick / a.inversePdf(view, cosLight, d2);  // solid angle
-    return e.f * a.radiance() * (cosSurface * powerHeuristic(pdfLight, e.pdf) / pdfLight);
+    // The power heuristic over the light's pdf, pdfLight = pick / inv (solid angle), in one
+    // division: w / pdfLight = pdfLight / (pdfLight^2 + pdfBsdf^2) = pick inv / (pick^2 + (pdfBsdf inv)^2).
+    const float inv = a.inversePdf(view, cosLight, d2);
+    const float bsdfInv = e.pdf * inv;
+    const float denominator = pick * pick + bsdfInv * bsdfInv;
+    if (!(denominator > 0.0f)) return false;
+    contribution = e.f * a.radiance() * (cosSurface * (pick * inv / denominator));
+    return true;
+}
+
+// A path between two of its vertices: what carries over from one bounce to the next.
+struct Integrator::PathState {
+    SurfaceHit hit;              // the vertex to scatter at
+    glm::vec3 L{0.0f};           // radiance gathered so far
+    glm::vec3 beta{1.0f};        // throughput up to `hit`
+    glm::vec3 before{0.0f};      // the vertex the last BSDF sample left from (where light sampling views the light)
+    float pdfBefore = 0.0f;      // solid-angle pdf of that BSDF sample
+    bool specularBefore = true;  // the camera "sampled" the primary direction: no MIS on it
+    int depth = 0;
+};
+
+// What scattering at one vertex asks of the ray tracer: a shadow segment for next-event
+// estimation and the ray the path goes on along. Either may be missing.
+// Only the flags are reset per vertex: the vectors are written before they are read.
+struct Integrator::PathVertex {
+    bool nextEvent;  // NEE was done: L += neeBeta * (finite where its segment is clear + infinite)
+    bool shadow;     // finite has a segment to test
+    bool infiniteLights;
+    bool next;       // the path goes on from nextOrigin along unit nextDir
+    glm::vec3 neeBeta, finite, infinite;
+    ShadowSegment segment;
+    glm::vec3 nextOrigin, nextDir;
+    void reset() { nextEvent = shadow = infiniteLights = next = false; }
+};
+
+void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVertex& out, RayCounts& rays) const {
+    const SurfaceHit& hit = s.hit;
+    const ShadingMaterial& m = *hit.material;
+    const int depth = s.depth;
+    if (m.emissive && hit.front) {
+        float w = 1.0f;
+        const std::int32_t area = lights_.areaOfTriangle.empty() ? -1 : lights_.areaOfTriangle[hit.primitive];
+        if (!s.specularBefore && area >= 0) {
+            // What light sampling from the vertex before would have paid for this point:
+            // P(light) times its solid-angle pdf there.
+            const AreaLightSampler& a = lights_.areas[static_cast<std::size_t>(area)];
+            const float cosLight = glm::dot(hit.geometric, hit.wo);
+            const float pdfLight = lights_.selectPdf[lights_.points.size() + static_cast<std::size_t>(area)] /
+                                   a.inversePdf(viewOf(a, s.before), cosLight, hit.distance * hit.distance);
+            w = powerHeuristic(s.pdfBefore, pdfLight);
+        }
+        s.L += s.beta * m.ke * w;
+    }
+    if (depth + 1 >= shading_.maxDepth) return;  // one more segment would exceed maxDepth
+
+    const float lobeU = sampler.get1D(dims::path(depth, dims::PathSlot::Lobe));
+    glm::vec3 dir;
+    if (m.kind == MaterialKind::Glass) {
+        // One branch, chosen with the Fresnel probability: weight ks either way.
+        const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
+        if (!(cosI > 0.0f)) return;
+        const float eta = hit.front ? m.ior : 1.0f / m.ior;
+        float cosT = 0.0f;
+        const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
+        if (lobeU < F) {
+            dir = bsdf::reflect(hit.wo, hit.shading);
+            if (glm::dot(dir, hit.geometric) <= 0.0f) return;
+        } else {
+            dir = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
+            if (glm::dot(dir, hit.geometric) >= 0.0f) return;
+        }
+        s.beta *= m.ks;
+        s.specularBefore = true;
+    } else {
+        // Mirror: the delta lobe with probability by reflectance, else its Lambert part.
+        float specularPick = 0.0f;
+        if (m.kind == MaterialKind::Mirror) {
+            const float sp = bsdf::luminance(m.ks), dl = m.diffuse ? bsdf::luminance(m.kd) : 0.0f;
+            specularPick = sp + dl > 0.0f ? sp / (sp + dl) : 1.0f;
+        }
+        if (lobeU < specularPick) {
+            dir = bsdf::reflect(hit.wo, hit.shading);
+            if (glm::dot(dir, hit.geometric) <= 0.0f) return;
+            s.beta *= m.ks * (1.0f / specularPick);
+            s.specularBefore = true;
+        } else {
+            const float diffusePick = m.kind == MaterialKind::Mirror ? 1.0f - specularPick
+                                      : m.glossy                      ? m.diffuseWeight
+                                                                      : 1.0f;
+            if (!m.diffuse && !m.glossy) return;  // black
+            // Next-event estimation, weighted by the throughput before this vertex's scattering.
+            out.nextEvent = true;
+            out.neeBeta = s.beta;
+            out.shadow = prepareNextEventFinite(hit, sampler, depth, diffusePick, out.finite, out.segment);
+            out.infiniteLights = !lights_.directionals.empty() || lights_.environment.has_value();
+            if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays);
+            const glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Bsdf));
+            if (!bsdf::sampleSmooth(m, hit.shading, hit.wo, lobeU, u, dir)) return;
+            const float cosI = glm::dot(hit.shading, dir);
+            if (cosI <= 0.0f || glm::dot(hit.geometric, dir) <= 0.0f) return;
+            const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, dir, cosI, diffusePick);
+            if (!(e.pdf > 0.0f)) return;
+            s.beta *= e.f * (cosI / e.pdf);
+            s.pdfBefore = e.pdf;
+            s.specularBefore = false;
+        }
+    }
+    if (shading_.russianRoulette && depth + 1 >= shading_.rouletteDepth) {
+        const float survive = std::min(bsdf::maxComponent(s.beta), 0.95f);
+        if (!(sampler.get1D(dims::path(depth, dims::PathSlot::Roulette)) < survive)) return;
+        s.beta *= 1.0f / survive;
+    }
+    out.next = true;
+    out.nextOrigin = hit.originFor(dir);
+    out.nextDir = dir;
+    s.before = hit.position;
+}
+
+void Integrator::addNextEvent(PathState& s, const PathVertex& v, bool visible) const {
+    glm::vec3 nee = visible ? v.finite : glm::vec3(0.0f);
+    if (v.infiniteLights) nee += v.infinite;
+    s.L += v.neeBeta * nee;
+}
+
+void Integrator::endPath(PathState& s, const PathVertex& v) const {
+    s.L += s.beta * escapedPath(v.nextDir, s.specularBefore, s.pdfBefore);
 }
 
 glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const {
-    glm::vec3 L(0.0f), beta(1.0f);
-    SurfaceHit hit = first;
-    bool specularBefore = true;  // the camera "sampled" the primary direction: no MIS on it
-    float pdfBefore = 0.0f;      // solid-angle pdf of the BSDF sample that led here
-    glm::vec3 before(0.0f);      // the vertex that BSDF sample left from (where light sampling views the light)
-    const std::size_t nPoints = lights_.points.size();
-    for (int depth = 0;; ++depth) {
-        const ShadingMaterial& m = *hit.material;
-        if (m.emissive && hit.front) {
-            float w = 1.0f;
-            const std::int32_t area = lights_.areaOfTriangle.empty() ? -1 : lights_.areaOfTriangle[hit.primitive];
-            if (!specularBefore && area >= 0) {
-                // What light sampling from the vertex before would have paid for this point:
-                // P(light) times its solid-angle pdf there.
-                const AreaLightSampler& a = lights_.areas[static_cast<std::size_t>(area)];
-                const float cosLight = glm::dot(hit.geometric, hit.wo);
-                const float pdfLight = lights_.selectPdf[nPoints + static_cast<std::size_t>(area)] /
-                                       a.inversePdf(viewOf(a, before), cosLight, hit.distance * hit.distance);
-                w = powerHeuristic(pdfBefore, pdfLight);
-            }
-            L += beta * m.ke * w;
-        }
-        if (depth + 1 >= shading_.maxDepth) break;  // one more segment would exceed maxDepth
-
-        const float lobeU = sampler.get1D(dims::path(depth, dims::PathSlot::Lobe));
-        glm::vec3 dir;
-        if (m.kind == MaterialKind::Glass) {
-            // One branch, chosen with the Fresnel probability: weight ks either way.
-            const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
-            if (!(cosI > 0.0f)) break;
-            const float eta = hit.front ? m.ior : 1.0f / m.ior;
-            float cosT = 0.0f;
-            const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
-            if (lobeU < F) {
-                dir = bsdf::reflect(hit.wo, hit.shading);
-                if (glm::dot(dir, hit.geometric) <= 0.0f) break;
-            } else {
-                dir = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
-                if (glm::dot(dir, hit.geometric) >= 0.0f) break;
-            }
-            beta *= m.ks;
-            specularBefore = true;
-        } else {
-            // Mirror: the delta lobe with probability by reflectance, else its Lambert part.
-            float specularPick = 0.0f;
-            if (m.kind == MaterialKind::Mirror) {
-                const float s = bsdf::luminance(m.ks), dl = m.diffuse ? bsdf::luminance(m.kd) : 0.0f;
-                specularPick = s + dl > 0.0f ? s / (s + dl) : 1.0f;
-            }
-            if (lobeU < specularPick) {
-                dir = bsdf::reflect(hit.wo, hit.shading);
-                if (glm::dot(dir, hit.geometric) <= 0.0f) break;
-                beta *= m.ks * (1.0f / specularPick);
-                specularBefore = true;
-            } else {
-                const float diffusePick = m.kind == MaterialKind::Mirror ? 1.0f - specularPick
-                                          : m.glossy                      ? m.diffuseWeight
-                                                                          : 1.0f;
-                if (!m.diffuse && !m.glossy) break;  // black
-                L += beta * nextEvent(hit, sampler, depth, diffusePick, rays);
-                const glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Bsdf));
-                if (!bsdf::sampleSmooth(m, hit.shading, hit.wo, lobeU, u, dir)) break;
-                const float cosI = glm::dot(hit.shading, dir);
-                if (cosI <= 0.0f || glm::dot(hit.geometric, dir) <= 0.0f) break;
-                const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, dir, cosI, diffusePick);
-                if (!(e.pdf > 0.0f)) break;
-                beta *= e.f * (cosI / e.pdf);
-                pdfBefore = e.pdf;
-                specularBefore = false;
-            }
-        }
-        if (shading_.russianRoulette && depth + 1 >= shading_.rouletteDepth) {
-            const float survive = std::min(bsdf::maxComponent(beta), 0.95f);
-            if (!(sampler.get1D(dims::path(depth, dims::PathSlot::Roulette)) < survive)) break;
-            beta *= 1.0f / survive;
-        }
-        const glm::vec3 origin = hit.originFor(dir);
-        before = hit.position;
-        // The cone goes on with its angle after any bounce (pbrt-v4's camera-based approximation
-        // likewise ignores a diffuse bounce's widening): texture noise there is indirect light.
-        if (!intersect(origin, dir, hit, rays.other, hit.cone)) {
-            L += beta * escapedPath(dir, specularBefore, pdfBefore);
+    PathState s;
+    s.hit = first;
+    for (;;) {
+        PathVertex v;
+        v.reset();
+        scatterPathVertex(s, sampler, v, rays);
+        if (v.nextEvent)
+            addNextEvent(s, v, v.shadow && !occluded(v.segment.origin, v.segment.dir, v.segment.tfar, rays));
+        if (!v.next) break;
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit rh = makeRayHit(v.nextOrigin, v.nextDir);
+        rtcIntersect1(scene_, &context, &rh);
+        ++rays.other;
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+            endPath(s, v);
             break;
         }
+        // The cone goes on with its angle after any bounce (pbrt-v4's camera-based approximation
+        // likewise ignores a diffuse bounce's widening): texture noise there is indirect light.
+        fillHit(rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, v.nextDir, s.hit.cone, s.hit);
+        ++s.depth;
     }
-    return L;
+    return s.L;
+}
+
+void Integrator::primaryPaths(const RayPacket<kPathPacket>& primaries, int count, const Sampler* samplers,
+                              const float* spreads, glm::vec3* out, RayCounts& rays) const {
+    constexpr int W = kPathPacket;
+    PathState s[W];
+    int lanes[W];  // the paths still going, in lane order
+    int active = 0;
+    for (int i = 0; i < count; ++i) {
+        ++rays.primary;
+        if (primaries.missed(i)) {
+            out[i] = escaped(primaries.dir[i]);
+            continue;
+        }
+        fillHit(primaries, i, cameraCone(spreads[i]), s[i].hit);
+        lanes[active++] = i;
+    }
+    // Lanes a packet does not trace keep finite data from their last use (Embree may load them).
+    RTCRay8 shadow;
+    RayPacket<W> next;
+    for (int i = 0; i < W; ++i) {
+        setShadowLane(shadow, i, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), 0.0f);
+        next.setIdle(i);
+    }
+    // Every path scatters, then their shadow segments go out as one packet and their next rays as
+    // another: each lane does exactly what tracePath does, in the same order.
+    PathVertex v[W];
+    while (active > 0) {
+        alignas(32) int shadowValid[W] = {};
+        int shadows = 0;
+        for (int a = 0; a < active; ++a) {
+            const int i = lanes[a];
+            v[i].reset();
+            scatterPathVertex(s[i], samplers[i], v[i], rays);
+            if (!v[i].shadow) continue;
+            shadowValid[i] = -1;
+            ++shadows;
+            setShadowLane(shadow, i, v[i].segment.origin, v[i].segment.dir, v[i].segment.tfar);
+        }
+        if (shadows > 0) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+            rtcOccluded8(shadowValid, scene_, &context, &shadow);
+            rays.shadow += static_cast<std::uint64_t>(shadows);
+        }
+        alignas(32) int nextValid[W] = {};
+        int going = 0;
+        for (int a = 0; a < active; ++a) {
+            const int i = lanes[a];
+            if (v[i].nextEvent) addNextEvent(s[i], v[i], shadowValid[i] != 0 && shadow.tfar[i] >= 0.0f);
+            if (!v[i].next) continue;
+            nextValid[i] = -1;
+            next.set(i, v[i].nextOrigin, v[i].nextDir);
+            lanes[going++] = i;
+        }
+        active = going;
+        if (active == 0) break;
+        next.trace(scene_, nextValid, false);
+        rays.other += static_cast<std::uint64_t>(active);
+        going = 0;
+        for (int a = 0; a < active; ++a) {
+            const int i = lanes[a];
+            if (next.missed(i)) {
+                endPath(s[i], v[i]);
+                continue;
+            }
+            fillHit(next, i, s[i].hit.cone, s[i].hit);  // the cone carries on as in tracePath
+            ++s[i].depth;
+            lanes[going++] = i;
+        }
+        active = going;
+    }
+    for (int i = 0; i < count; ++i)
+        if (!primaries.missed(i)) out[i] = s[i].L;
 }
 
 }  // namespace aamap

@@ -35,6 +35,7 @@ constexpr std::uint64_t areaLight(int depth, int light, int sample) {
 
 class Sampler {
 public:
+    Sampler() = default;  // unkeyed: for arrays whose entries are assigned before use
     // The key for (pixel, sample, seed) is hashed once; each draw then costs one mix.
     Sampler(std::uint64_t pixelIndex, std::uint32_t sampleIndex, std::uint64_t seed)
         : key_(mix64(mix64(mix64(seed + 0x9e3779b97f4a7c15ULL) ^ pixelIndex) ^ sampleIndex)) {}
@@ -73,7 +74,7 @@ public:
     }
 
 private:
-    std::uint64_t key_;
+    std::uint64_t key_ = 0;
 };
 
 }  // namespace aamap

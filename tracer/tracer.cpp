@@ -21,84 +21,12 @@
 #include "tracer/irradiance_source.h"
 #include "tracer/lights.h"
 #include "tracer/pixel_facts.h"
+#include "tracer/ray_packet.h"
 #include "tracer/sampler.h"
 #include "tracer/strategy.h"
 
 namespace aamap {
 namespace {
-
-// Up to W coherent primary rays (strata of one pixel) for one rtcIntersect4/8. On the stack:
-// nothing is allocated per ray. Unused lanes are masked off.
-template <int W>
-struct PacketTypes;
-template <>
-struct PacketTypes<4> {
-    using RayHit = RTCRayHit4;
-    static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect4(valid, s, c, r); }
-};
-template <>
-struct PacketTypes<8> {
-    using RayHit = RTCRayHit8;
-    static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect8(valid, s, c, r); }
-};
-
-template <int W>
-struct PrimaryPacket {
-    static constexpr int kWidth = W;
-    typename PacketTypes<W>::RayHit rays;  // carries its own alignment
-    glm::vec3 dir[kWidth];
-
-    void set(int lane, const glm::vec3& origin, const glm::vec3& d) {
-        const RTCRayHit single = makeRayHit(origin, d);  // the same ray rtcIntersect1 would get
-        rays.ray.org_x[lane] = single.ray.org_x;
-        rays.ray.org_y[lane] = single.ray.org_y;
-        rays.ray.org_z[lane] = single.ray.org_z;
-        rays.ray.dir_x[lane] = single.ray.dir_x;
-        rays.ray.dir_y[lane] = single.ray.dir_y;
-        rays.ray.dir_z[lane] = single.ray.dir_z;
-        rays.ray.tnear[lane] = single.ray.tnear;
-        rays.ray.tfar[lane] = single.ray.tfar;
-        rays.ray.time[lane] = single.ray.time;
-        rays.ray.mask[lane] = single.ray.mask;
-        rays.ray.id[lane] = static_cast<unsigned>(lane);
-        rays.ray.flags[lane] = 0;
-        rays.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
-        rays.hit.instID[0][lane] = RTC_INVALID_GEOMETRY_ID;
-        dir[lane] = d;
-    }
-
-    void trace(RTCScene scene, int count) {
-        alignas(32) int valid[kWidth];
-        for (int lane = 0; lane < kWidth; ++lane) valid[lane] = lane < count ? -1 : 0;
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-        PacketTypes<W>::intersect(valid, scene, &context, &rays);
-    }
-
-    // Lane `lane` as the single-ray result the integrator takes.
-    RTCRayHit hit(int lane) const {
-        RTCRayHit rh{};
-        rh.ray.org_x = rays.ray.org_x[lane];
-        rh.ray.org_y = rays.ray.org_y[lane];
-        rh.ray.org_z = rays.ray.org_z[lane];
-        rh.ray.dir_x = rays.ray.dir_x[lane];
-        rh.ray.dir_y = rays.ray.dir_y[lane];
-        rh.ray.dir_z = rays.ray.dir_z[lane];
-        rh.ray.tnear = rays.ray.tnear[lane];
-        rh.ray.tfar = rays.ray.tfar[lane];
-        rh.ray.mask = rays.ray.mask[lane];
-        rh.hit.Ng_x = rays.hit.Ng_x[lane];
-        rh.hit.Ng_y = rays.hit.Ng_y[lane];
-        rh.hit.Ng_z = rays.hit.Ng_z[lane];
-        rh.hit.u = rays.hit.u[lane];
-        rh.hit.v = rays.hit.v[lane];
-        rh.hit.primID = rays.hit.primID[lane];
-        rh.hit.geomID = rays.hit.geomID[lane];
-        rh.hit.instID[0] = rays.hit.instID[0][lane];
-        return rh;
-    }
-};
 
 // Counted per thread, summed once at the end: no shared atomics on the ray path.
 struct ThreadCounters {
@@ -144,7 +72,8 @@ public:
     // k x k primary rays of the pixel are coherent (one origin, directions within a pixel): they
     // are traced as Embree packets (8 wide, 4 wide for the last 2-4, singly for a last one), then
     // shaded one by one in sample order, so the sum (and the image) is the same as tracing them
-    // singly.
+    // singly. Path mode shades a packet's lanes as paths in lockstep (Integrator::primaryPaths),
+    // its last 2-4 in an 8-wide packet too.
     glm::vec3 pixel(int x, int y, int k) const override {
         ThreadCounters& counters = counters_.local();
         glm::dvec3 sum(0.0);
@@ -163,7 +92,7 @@ public:
             if (left == 1) {
                 accumulate(radiance(x, y, first % k, first / k, k, counters, nullptr));
                 ++first;
-            } else if (left <= 4) {
+            } else if (left <= 4 && integrator_.settings().mode != ShadingMode::Path) {
                 first += tracePacket<4>(x, y, k, first, left, counters, accumulate);
             } else {
                 first += tracePacket<8>(x, y, k, first, std::min(left, 8), counters, accumulate);
@@ -182,15 +111,30 @@ public:
     }
 
 private:
-    // Samples [first, first + count) of pixel (x, y) as one packet; returns count.
+    // Samples [first, first + count) of pixel (x, y) as one packet of primary rays; returns
+    // count. Path mode goes on with the lanes' paths in lockstep (their rays traced as packets).
     template <int W, class Accumulate>
     int tracePacket(int x, int y, int k, int first, int count, ThreadCounters& counters, Accumulate& accumulate) const {
-        PrimaryPacket<W> packet;
+        RayPacket<W> packet;
         for (int lane = 0; lane < count; ++lane) {
             const int s = first + lane;
             packet.set(lane, camera_.origin, direction(x, y, s % k, s / k, k));
         }
-        packet.trace(geometry_.handle(), count);
+        packet.traceFirst(geometry_.handle(), count, true);
+        if constexpr (W == Integrator::kPathPacket) {
+            if (integrator_.settings().mode == ShadingMode::Path) {
+                Sampler samplers[W];
+                float spreads[W];
+                glm::vec3 L[W];
+                for (int lane = 0; lane < count; ++lane) {
+                    samplers[lane] = Sampler(pixelIndex(x, y), static_cast<std::uint32_t>(first + lane), seed_);
+                    spreads[lane] = spread(packet.dir[lane], k);
+                }
+                integrator_.primaryPaths(packet, count, samplers, spreads, L, counters.rays);
+                for (int lane = 0; lane < count; ++lane) accumulate(L[lane]);
+                return count;
+            }
+        }
         for (int lane = 0; lane < count; ++lane) {
             const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(first + lane), seed_);
             accumulate(integrator_.primaryFromHit(packet.hit(lane), packet.dir[lane], sampler, counters.rays,
