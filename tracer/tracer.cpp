@@ -89,16 +89,42 @@ public:
         const int n = k * k;
         for (int first = 0; first < n;) {
             const int left = n - first;
+            const auto index = [first](int lane) { return first + lane; };
             if (left == 1) {
                 accumulate(radiance(x, y, first % k, first / k, k, counters, nullptr));
                 ++first;
             } else if (left <= 4 && integrator_.settings().mode != ShadingMode::Path) {
-                first += tracePacket<4>(x, y, k, first, left, counters, accumulate);
+                first += tracePacket<4>(x, y, k, index, left, counters, accumulate);
             } else {
-                first += tracePacket<8>(x, y, k, first, std::min(left, 8), counters, accumulate);
+                first += tracePacket<8>(x, y, k, index, std::min(left, 8), counters, accumulate);
             }
         }
         return kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
+    }
+
+    // The same packets for a batch of strata of one pixel (the variance strategy's rounds).
+    void samples(int x, int y, const int* strata, int count, int k, PrimarySample* out) const override {
+        ThreadCounters& counters = counters_.local();
+        int done = 0;
+        const auto store = [&](const glm::vec3& L) {
+            PrimarySample& s = out[done++];
+            s = PrimarySample{};
+            s.finite = isFinite(L);
+            if (s.finite) s.radiance = L;
+            else ++counters.nonFinite;
+        };
+        for (int first = 0; first < count;) {
+            const int left = count - first;
+            const auto index = [strata, first](int lane) { return strata[first + lane]; };
+            if (left == 1) {
+                store(radiance(x, y, strata[first] % k, strata[first] / k, k, counters, nullptr));
+                ++first;
+            } else if (left <= 4 && integrator_.settings().mode != ShadingMode::Path) {
+                first += tracePacket<4>(x, y, k, index, left, counters, store);
+            } else {
+                first += tracePacket<8>(x, y, k, index, std::min(left, 8), counters, store);
+            }
+        }
     }
 
     void addCounts(TraceResult& result) const {
@@ -111,13 +137,15 @@ public:
     }
 
 private:
-    // Samples [first, first + count) of pixel (x, y) as one packet of primary rays; returns
-    // count. Path mode goes on with the lanes' paths in lockstep (their rays traced as packets).
-    template <int W, class Accumulate>
-    int tracePacket(int x, int y, int k, int first, int count, ThreadCounters& counters, Accumulate& accumulate) const {
+    // Samples index(0), ..., index(count - 1) of pixel (x, y) as one packet of primary rays,
+    // handed to `accumulate` in that order; returns count. Path mode goes on with the lanes'
+    // paths in lockstep (their rays traced as packets).
+    template <int W, class Index, class Accumulate>
+    int tracePacket(int x, int y, int k, const Index& index, int count, ThreadCounters& counters,
+                    Accumulate& accumulate) const {
         RayPacket<W> packet;
         for (int lane = 0; lane < count; ++lane) {
-            const int s = first + lane;
+            const int s = index(lane);
             packet.set(lane, camera_.origin, direction(x, y, s % k, s / k, k));
         }
         packet.traceFirst(geometry_.handle(), count, true);
@@ -127,7 +155,7 @@ private:
                 float spreads[W];
                 glm::vec3 L[W];
                 for (int lane = 0; lane < count; ++lane) {
-                    samplers[lane] = Sampler(pixelIndex(x, y), static_cast<std::uint32_t>(first + lane), seed_);
+                    samplers[lane] = Sampler(pixelIndex(x, y), static_cast<std::uint32_t>(index(lane)), seed_);
                     spreads[lane] = spread(packet.dir[lane], k);
                 }
                 integrator_.primaryPaths(packet, count, samplers, spreads, L, counters.rays);
@@ -136,7 +164,7 @@ private:
             }
         }
         for (int lane = 0; lane < count; ++lane) {
-            const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(first + lane), seed_);
+            const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(index(lane)), seed_);
             accumulate(integrator_.primaryFromHit(packet.hit(lane), packet.dir[lane], sampler, counters.rays,
                                                   spread(packet.dir[lane], k)));
         }

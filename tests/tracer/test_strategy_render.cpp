@@ -123,6 +123,31 @@ TEST(StrategyRender, SubsampleGradientRoundsFollowAHotSpotTheMapDoesNotSee) {
 
 class StrategyCornell : public testing::CornellTracerTest {};
 
+// The variance strategy takes its samples in batches (SampleSource::samples, which the tracer
+// traces as packets and, in path mode, as paths in lockstep) in its own stratum order; with a
+// threshold of 0 it takes every stratum, so each pixel is uniform's mean over the same samples
+// summed in another order, with the same rays.
+TEST_F(StrategyCornell, VarianceBatchesGiveUniformsSamples) {
+    const int w = 20, h = 14, n = 5;
+    for (ShadingMode mode : {ShadingMode::Direct, ShadingMode::Path}) {
+        SCOPED_TRACE(toString(mode));
+        TraceSettings settings = settingsFor(w, h, 2);
+        settings.shading.mode = mode;
+        StrategySettings all = strategy("variance", n);
+        all.params.set("noise_threshold", 0.0);
+        all.params.set("min_samples", 8);  // batches of 8, 4, 4, 4, 4 and 1: full and part packets, one ray
+        all.params.set("sample_step", 4);
+        const TraceResult v = tracer_->render(view(), settings, all);
+        const TraceResult u = tracer_->render(view(), settings, strategy("uniform", n));
+        EXPECT_EQ(v.rays.total(), u.rays.total());
+        EXPECT_TRUE(v.primaryRays == u.primaryRays);
+        for (std::size_t i = 0; i < u.image.size(); ++i) {
+            const glm::vec3 a = v.image.pixels()[i], b = u.image.pixels()[i];
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-6f * std::max(1.0f, b[c])) << "pixel " << i;
+        }
+    }
+}
+
 TEST_F(StrategyCornell, EveryStrategyIsThreadCountIndependentAndCountsHonestly) {
     const int w = 26, h = 18, n = 3;  // n > 2: shape-id probes its 2 x 2 first samples
     const ImageGrey map = mixedMap(w, h);

@@ -21,6 +21,10 @@ glm::vec3 SampleSource::pixel(int x, int y, int k) const {
     return kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
 }
 
+void SampleSource::samples(int x, int y, const int* strata, int count, int k, PrimarySample* out) const {
+    for (int i = 0; i < count; ++i) out[i] = sample(x, y, strata[i] % k, strata[i] / k, k, false);
+}
+
 Scheduler::Scheduler(int width, int height, Progress progress)
     : width_(width),
       height_(height),

@@ -37,6 +37,10 @@ public:
     // Mean over all k x k strata, non-finite samples dropped (black if none is finite). Sources
     // override it for speed; the result must equal this default's.
     virtual glm::vec3 pixel(int x, int y, int k) const;
+    // out[i] = sample(x, y, strata[i] % k, strata[i] / k, k, false) for i < count, in that
+    // order: a batch of strata of one pixel. Sources override it for speed (the tracer traces the
+    // batch as packets); the result must equal this default's.
+    virtual void samples(int x, int y, const int* strata, int count, int k, PrimarySample* out) const;
 };
 
 // Runs the phases of a strategy. Progress (tilesDone, tilesTotal) is reported per tile of the

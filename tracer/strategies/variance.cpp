@@ -98,16 +98,22 @@ public:
     }
 
 private:
+    // The next `count` samples of the pixel in order_, in batches the source can trace together.
     void take(const SampleSource& source, int x, int y, PixelState& p, int count) const {
-        for (int c = 0; c < count; ++c, ++p.taken) {
-            const int q = order_[static_cast<std::size_t>(p.taken)];
-            const PrimarySample s = source.sample(x, y, q % n_, q / n_, n_, false);
-            if (!s.finite) continue;
-            p.all += glm::dvec3(s.radiance);
-            ++p.kept;
-            if (p.taken % 2 == 1) {
-                p.half += glm::dvec3(s.radiance);
-                ++p.keptHalf;
+        constexpr int kBatch = 64;
+        PrimarySample batch[kBatch];
+        for (int from = 0; from < count; from += kBatch) {
+            const int n = std::min(kBatch, count - from);
+            source.samples(x, y, order_.data() + p.taken, n, n_, batch);
+            for (int c = 0; c < n; ++c, ++p.taken) {
+                const PrimarySample& s = batch[c];
+                if (!s.finite) continue;
+                p.all += glm::dvec3(s.radiance);
+                ++p.kept;
+                if (p.taken % 2 == 1) {
+                    p.half += glm::dvec3(s.radiance);
+                    ++p.keptHalf;
+                }
             }
         }
     }
