@@ -57,6 +57,14 @@ PixelFilter::PixelFilter(const PixelFilterSettings& settings)
             cdf_[static_cast<std::size_t>(i)] = cdf1D(x);
             pdf_[static_cast<std::size_t>(i)] = evaluate1D(x) / gaussianTotal_;
         }
+        // Per step, 4 a of the quadratic that offset() solves (a: the filter's slope across the
+        // step, halved), so that a lookup divides only once.
+        const double h = 2.0 * radius_ / kSteps;
+        fourA_.resize(kSteps);
+        for (int i = 0; i < kSteps; ++i) {
+            const auto k = static_cast<std::size_t>(i);
+            fourA_[k] = 4.0 * (0.5 * (pdf_[k + 1] - pdf_[k]) / h);
+        }
         guide_.resize(kGuide + 1);
         for (int j = 0; j <= kGuide; ++j) guide_[static_cast<std::size_t>(j)] = stepHolding(static_cast<double>(j) / kGuide, 0, kSteps - 1);
     }
@@ -118,8 +126,7 @@ float PixelFilter::offset(float uf) const {
             const double h = 2.0 * r / kSteps;
             const double du = u - cdf_[static_cast<std::size_t>(i)];
             const double b = pdf_[static_cast<std::size_t>(i)];
-            const double a = 0.5 * (pdf_[static_cast<std::size_t>(i) + 1] - b) / h;
-            const double disc = std::max(0.0, b * b + 4.0 * a * du);
+            const double disc = std::max(0.0, b * b + fourA_[static_cast<std::size_t>(i)] * du);
             const double denom = b + std::sqrt(disc);
             const double d = denom > 0.0 ? 2.0 * du / denom : 0.0;
             return static_cast<float>(std::clamp(-r + h * i + std::clamp(d, 0.0, h), -r, r));

@@ -62,7 +62,7 @@ private:
     // square root per sample instead of a solve, within 1e-7 of the exact CDF
     // (tests/tracer/test_pixel_filter.cpp).
     static constexpr int kSteps = 1024;
-    std::vector<double> cdf_, pdf_;
+    std::vector<double> cdf_, pdf_, fourA_;
     // guide_[j]: the step holding u = j / kGuide, so that a lookup searches the few steps between
     // two guides instead of the whole table (a full binary search mispredicts at every level).
     static constexpr int kGuide = 1024;
