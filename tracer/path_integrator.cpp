@@ -227,18 +227,12 @@ glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler,
         if (v.nextEvent)
             addNextEvent(s, v, v.shadow && !occluded(v.segment.origin, v.segment.dir, v.segment.tfar, rays));
         if (!v.next) break;
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        RTCRayHit rh = makeRayHit(v.nextOrigin, v.nextDir);
-        rtcIntersect1(scene_, &context, &rh);
-        ++rays.other;
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        // The cone goes on with its angle after any bounce (pbrt-v4's camera-based approximation
+        // likewise ignores a diffuse bounce's widening): texture noise there is indirect light.
+        if (!intersect(v.nextOrigin, v.nextDir, s.hit, rays.other, s.hit.cone)) {
             endPath(s, v);
             break;
         }
-        // The cone goes on with its angle after any bounce (pbrt-v4's camera-based approximation
-        // likewise ignores a diffuse bounce's widening): texture noise there is indirect light.
-        fillHit(rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, v.nextDir, s.hit.cone, s.hit);
         ++s.depth;
     }
     return s.L;

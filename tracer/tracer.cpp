@@ -86,19 +86,7 @@ public:
             sum += glm::dvec3(L);
             ++kept;
         };
-        const int n = k * k;
-        for (int first = 0; first < n;) {
-            const int left = n - first;
-            const auto index = [first](int lane) { return first + lane; };
-            if (left == 1) {
-                accumulate(radiance(x, y, first % k, first / k, k, counters, nullptr));
-                ++first;
-            } else if (left <= 4 && integrator_.settings().mode != ShadingMode::Path) {
-                first += tracePacket<4>(x, y, k, index, left, counters, accumulate);
-            } else {
-                first += tracePacket<8>(x, y, k, index, std::min(left, 8), counters, accumulate);
-            }
-        }
+        tracePackets(x, y, k, k * k, [](int i) { return i; }, counters, accumulate);
         return kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
     }
 
@@ -113,18 +101,7 @@ public:
             if (s.finite) s.radiance = L;
             else ++counters.nonFinite;
         };
-        for (int first = 0; first < count;) {
-            const int left = count - first;
-            const auto index = [strata, first](int lane) { return strata[first + lane]; };
-            if (left == 1) {
-                store(radiance(x, y, strata[first] % k, strata[first] / k, k, counters, nullptr));
-                ++first;
-            } else if (left <= 4 && integrator_.settings().mode != ShadingMode::Path) {
-                first += tracePacket<4>(x, y, k, index, left, counters, store);
-            } else {
-                first += tracePacket<8>(x, y, k, index, std::min(left, 8), counters, store);
-            }
-        }
+        tracePackets(x, y, k, count, [strata](int i) { return strata[i]; }, counters, store);
     }
 
     void addCounts(TraceResult& result) const {
@@ -137,6 +114,26 @@ public:
     }
 
 private:
+    // Samples index(0), ..., index(count - 1) of pixel (x, y), handed to `accumulate` in that
+    // order: 8-wide packets, 4 wide for a last 2-4 (8 wide in path mode), a single ray for a last one.
+    template <class Index, class Accumulate>
+    void tracePackets(int x, int y, int k, int count, const Index& index, ThreadCounters& counters,
+                      Accumulate& accumulate) const {
+        for (int first = 0; first < count;) {
+            const int left = count - first;
+            const auto from = [&index, first](int lane) { return index(first + lane); };
+            if (left == 1) {
+                const int s = index(first);
+                accumulate(radiance(x, y, s % k, s / k, k, counters, nullptr));
+                ++first;
+            } else if (left <= 4 && integrator_.settings().mode != ShadingMode::Path) {
+                first += tracePacket<4>(x, y, k, from, left, counters, accumulate);
+            } else {
+                first += tracePacket<8>(x, y, k, from, std::min(left, 8), counters, accumulate);
+            }
+        }
+    }
+
     // Samples index(0), ..., index(count - 1) of pixel (x, y) as one packet of primary rays,
     // handed to `accumulate` in that order; returns count. Path mode goes on with the lanes'
     // paths in lockstep (their rays traced as packets).
