@@ -115,6 +115,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.image.filter = iv.choice("filter");
     c.image.filterRadius = iv.real("filter_radius");
     c.image.filterStddev = iv.real("filter_stddev");
+    c.image.filterMode = iv.choice("filter_mode");
     if (image.has("filter_stddev") && c.image.filter != "gaussian")
         ctx.fail(image.node("filter_stddev"), "image.filter_stddev",
                  fmt::format("image.filter_stddev: only the gaussian filter has a stddev (image.filter is '{}')",
@@ -252,6 +253,7 @@ Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = ""
 Json filterJson(const ImageConfig& image) {
     Json j = {{"type", image.filter}, {"radius", image.filterRadius}};
     if (image.filter == "gaussian") j["stddev"] = image.filterStddev;
+    j["mode"] = image.filterMode;
     return j;
 }
 
@@ -333,6 +335,7 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
         j["image"]["filter"] = c.image.filter;
         j["image"]["filter_radius"] = c.image.filterRadius;
         if (c.image.filter == "gaussian") j["image"]["filter_stddev"] = c.image.filterStddev;
+        j["image"]["filter_mode"] = c.image.filterMode;
     }
     j["seed"] = c.seed;
     j["threads"] = c.threads;

@@ -34,6 +34,7 @@ struct ImageConfig {
     std::string filter = "box";  // box | tent | gaussian
     double filterRadius = 0.0;   // pixels; 0: the filter's own (box 0.5, tent 1, gaussian 4 stddev)
     double filterStddev = 0.5;   // gaussian only
+    std::string filterMode = "convolution";  // convolution | importance
     bool defaultFilter() const { return filter == "box" && (filterRadius == 0.0 || filterRadius == 0.5); }
 };
 

@@ -25,6 +25,9 @@ const std::vector<ParamSpec>& imageParams() {
         choiceParam("filter", {"box", "tent", "gaussian"}, "pixel reconstruction filter"),
         realParam("filter_radius", 0.0, 8.0, 0.0, "half-width in pixels; 0: the filter's own"),
         realParamAbove("filter_stddev", 0.0, 4.0, 0.5, "gaussian only: the standard deviation in pixels"),
+        choiceParam("filter_mode", {"convolution", "importance"},
+                    "convolution: box pixels, then the image convolved with the filter (neighbours share "
+                    "samples: less noise); importance: film positions drawn from the filter"),
     };
     return params;
 }

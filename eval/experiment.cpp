@@ -334,6 +334,8 @@ TraceSettings traceSettingsFor(const ExperimentConfig& config, const RenderConfi
         throw std::invalid_argument(fmt::format("unknown pixel filter '{}'", config.image.filter));
     ts.filter.radius = static_cast<float>(config.image.filterRadius);
     ts.filter.stddev = static_cast<float>(config.image.filterStddev);
+    if (!parse(config.image.filterMode, ts.filter.mode))
+        throw std::invalid_argument(fmt::format("unknown pixel filter mode '{}'", config.image.filterMode));
     return ts;
 }
 

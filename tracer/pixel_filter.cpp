@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <glm/vec3.hpp>
 
 namespace aamap {
 namespace {
@@ -31,6 +32,23 @@ const char* toString(PixelFilterType type) {
         case PixelFilterType::Gaussian: return "gaussian";
     }
     return "?";
+}
+
+const char* toString(PixelFilterMode mode) {
+    switch (mode) {
+        case PixelFilterMode::Importance: return "importance";
+        case PixelFilterMode::Convolution: return "convolution";
+    }
+    return "?";
+}
+
+bool parse(const std::string& name, PixelFilterMode& mode) {
+    for (PixelFilterMode m : {PixelFilterMode::Importance, PixelFilterMode::Convolution})
+        if (name == toString(m)) {
+            mode = m;
+            return true;
+        }
+    return false;
 }
 
 bool parse(const std::string& name, PixelFilterType& type) {
@@ -68,6 +86,35 @@ PixelFilter::PixelFilter(const PixelFilterSettings& settings)
         guide_.resize(kGuide + 1);
         for (int j = 0; j <= kGuide; ++j) guide_[static_cast<std::size_t>(j)] = stepHolding(static_cast<double>(j) / kGuide, 0, kSteps - 1);
     }
+    // Pixel d's cell [d - 1/2, d + 1/2] meets [-r, r] for |d| < r + 1/2.
+    const int reach = std::max(0, static_cast<int>(std::ceil(static_cast<double>(radius_) - 0.5)));
+    kernel_.resize(static_cast<std::size_t>(2 * reach + 1));
+    for (int d = -reach; d <= reach; ++d)
+        kernel_[static_cast<std::size_t>(d + reach)] = cdf1D(d + 0.5) - cdf1D(d - 0.5);
+}
+
+ImageRGB PixelFilter::convolve(const ImageRGB& image) const {
+    const int W = image.width(), H = image.height(), R = reach();
+    if (R == 0 || image.empty()) return image;
+    // One axis: out(i) = sum over the taps inside [0, n) of K[d] in(i + d), over their weight.
+    auto pass = [&](const ImageRGB& in, bool alongX) {
+        ImageRGB out(W, H);
+        const int n = alongX ? W : H;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const int i = alongX ? x : y;
+                glm::dvec3 sum(0.0);
+                double weight = 0.0;
+                for (int d = std::max(-R, -i); d <= std::min(R, n - 1 - i); ++d) {
+                    const double k = kernel_[static_cast<std::size_t>(d + R)];
+                    sum += k * glm::dvec3(alongX ? in.at(x + d, y) : in.at(x, y + d));
+                    weight += k;
+                }
+                out.at(x, y) = glm::vec3(weight > 0.0 ? sum / weight : glm::dvec3(0.0));
+            }
+        return out;
+    };
+    return pass(pass(image, true), false);
 }
 
 int PixelFilter::stepHolding(double u, int lo, int hi) const {

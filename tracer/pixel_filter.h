@@ -1,13 +1,20 @@
 #pragma once
-// Pixel reconstruction filters by filter importance sampling (as pbrt-v4 does): each primary ray's
-// film position is drawn from the filter itself, so every sample weighs 1 and a pixel stays the
-// plain mean of its samples, for every strategy. Separable filters: each axis maps its stratified
-// number through the inverse of the 1D filter's cumulative distribution, which is monotone, so
-// k x k strata of [0,1)^2 stay k x k cells of equal filter weight. Formulas: docs/tracer.md.
+// Pixel reconstruction filters, applied in one of two ways (docs/tracer.md, "Pixel filters"):
+// - convolution (the default): the strategy renders box pixels, and the finished image is
+//   convolved with the filter integrated over each pixel cell. Neighbouring pixels then share
+//   their samples, as a splatting film does, which importance sampling cannot: less noise for
+//   the same rays.
+// - importance (as pbrt-v4 does): each primary ray's film position is drawn from the filter
+//   itself, so every sample weighs 1 and a pixel stays the plain mean of its samples. Separable
+//   filters: each axis maps its stratified number through the inverse of the 1D filter's
+//   cumulative distribution, which is monotone, so k x k strata of [0,1)^2 stay k x k cells of
+//   equal filter weight.
 #include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
+
+#include "core/image.h"
 
 namespace aamap {
 
@@ -19,10 +26,18 @@ enum class PixelFilterType {
 const char* toString(PixelFilterType type);
 bool parse(const std::string& name, PixelFilterType& type);  // false for an unknown name
 
+enum class PixelFilterMode {
+    Convolution,  // box pixels rendered, then the image convolved with the pixel-integrated filter
+    Importance,   // film positions drawn from the filter; each pixel the mean of its own samples
+};
+const char* toString(PixelFilterMode mode);
+bool parse(const std::string& name, PixelFilterMode& mode);  // false for an unknown name
+
 struct PixelFilterSettings {
     PixelFilterType type = PixelFilterType::Box;
     float radius = 0.0f;  // in pixels; 0 chooses the filter's own: box 0.5, tent 1, gaussian 4 sigma
     float stddev = 0.5f;  // gaussian only: sigma in pixels (Mitsuba's default)
+    PixelFilterMode mode = PixelFilterMode::Convolution;
     bool operator==(const PixelFilterSettings&) const = default;
 };
 
@@ -50,6 +65,15 @@ public:
     // F^-1(u): the offset from the pixel centre whose cumulative weight is u, in [-r, r].
     float offset(float u) const;
 
+    // The filter's weight over each pixel cell, per axis: element reach() + d is the weight of
+    // the pixel d away, F(d + 1/2) - F(d - 1/2). Symmetric; sums to 1.
+    const std::vector<double>& pixelKernel() const { return kernel_; }
+    int reach() const { return static_cast<int>(kernel_.size() / 2); }
+    // The image convolved with pixelKernel() along both axes. At the border the weights of the
+    // pixels inside are renormalised (per axis, which is exact for the separable kernel over the
+    // rectangle of pixels inside), so a constant image stays that constant.
+    ImageRGB convolve(const ImageRGB& image) const;
+
 private:
     double gaussianIntegral(double x) const;  // from -r to x, not normalised
 
@@ -69,6 +93,7 @@ private:
     std::vector<int> guide_;
     int stepHolding(double u, int lo, int hi) const;  // the last i in [lo, hi] with cdf_[i] <= u
     double gaussianTotal_ = 1.0;
+    std::vector<double> kernel_;  // pixelKernel()
 };
 
 }  // namespace aamap

@@ -248,12 +248,15 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     if (settings.threads < 0) throw std::invalid_argument(fmt::format("threads must be >= 0, got {}", settings.threads));
     const auto strategy = makeStrategy(strategySettings, W, H);
     const PixelFilter filter(settings.filter);  // checks its settings before any work
+    // Convolution mode: the strategy renders box pixels, and the filter applies to the image.
+    const bool convolve = settings.filter.mode == PixelFilterMode::Convolution;
+    const PixelFilter filmFilter = convolve ? PixelFilter{} : filter;
     const PinholeCamera camera = PinholeCamera::fromView(view);
     // Cache mode: builds the irradiance cache (its pre-pass) and the Integrator that reads it.
     RenderShading shading =
         makeRenderShading(impl_->geometry, impl_->lights, settings.shading, camera, W, H, settings.threads);
     const Integrator& integrator = *shading.integrator;
-    const EmbreeSource source(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filter);
+    const EmbreeSource source(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filmFilter);
 
     StrategyImages images(W, H);
     Scheduler scheduler(W, H, settings.onTileDone);
@@ -271,7 +274,7 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
         const auto probeStart = std::chrono::steady_clock::now();
         spdlog::info("irradiance cache: probe render (the points no record covers)");
         shading.source->setProbe(true);
-        const EmbreeSource probe(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filter);
+        const EmbreeSource probe(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filmFilter);
         StrategyImages scratch(W, H);
         arena.execute([&] { strategy->render(probe, Scheduler(W, H), scratch); });
         shading.source->setProbe(false);
@@ -283,7 +286,9 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     arena.execute([&] { strategy->render(source, scheduler, images); });
 
     TraceResult result;
-    result.image = std::move(images.image);
+    // Weights are the kernel's alone, not the neighbours' sample counts: a count-weighted splat
+    // would let an edge pixel of many rays outweigh its one-ray neighbours.
+    result.image = convolve ? filter.convolve(images.image) : std::move(images.image);
     result.primaryRays = std::move(images.primaryRays);
     result.traced = std::move(images.traced);
     result.strategy = strategy->describe();

@@ -101,6 +101,8 @@ def main():
     ap.add_argument("--depth", type=int, default=5, help="longest path in segments, both renderers")
     ap.add_argument("--filter", default="box", choices=["box", "tent", "gaussian"],
                     help="pixel filter of both (Mitsuba's tent is aamap's tent)")
+    ap.add_argument("--filter-mode", default="convolution", choices=["convolution", "importance"],
+                    help="how aamap applies it (image.filter_mode; Mitsuba splats its samples)")
     ap.add_argument("--light-sampling", default="area", choices=["area", "solid_angle"],
                     help="aamap's shading.light_sampling; Mitsuba samples mesh emitters by area, so 'area' "
                          "compares the same estimator")
@@ -144,7 +146,8 @@ def main():
         def render_aamap():
             out = subprocess.run([args.bench, "--scene", args.scene, "--size", str(args.size), "--strata",
                                   str(strata), "--mode", "path", "--max-depth", str(args.depth), "--light-samples",
-                                  "1", "--filter", args.filter, "--light-sampling", args.light_sampling, "--repeat", "1",
+                                  "1", "--filter", args.filter, "--filter-mode", args.filter_mode,
+                                  "--light-sampling", args.light_sampling, "--repeat", "1",
                                   "--out", aamap_exr],
                                  check=True, capture_output=True, text=True).stdout
             m = re.search(r"best time ([0-9.]+) s", out)
@@ -183,7 +186,7 @@ def main():
 
     ratios = [r["ratio"] for r in rounds]
     summary = {"scene": os.path.abspath(args.scene), "size": args.size, "spp": args.spp, "depth": args.depth,
-               "filter": args.filter, "mitsuba": mi.__version__, "mitsuba_first_render_s": cold,
+               "filter": args.filter, "filter_mode": args.filter_mode, "mitsuba": mi.__version__, "mitsuba_first_render_s": cold,
                "mean_radiance": {"mitsuba": mean_m, "aamap": mean_a},
                "median_throughput_ratio": statistics.median(ratios), "min_ratio": min(ratios),
                "max_ratio": max(ratios), "rounds": rounds}

@@ -13,7 +13,7 @@ render again. Prints each setting's median time, its spread and its error, and t
 of each renderer at or below --target % pixels in error.
 
 Setup as bench/peers/mitsuba_throughput.py (libllvm19, pip mitsuba==3.6.4 in .venv), then
-    .venv/bin/python bench/peers/mitsuba_time_to_error.py [--size 256] [--filter gaussian]
+    .venv/bin/python bench/peers/mitsuba_time_to_error.py [--size 256] [--filter gaussian] [--filter-mode convolution]
 """
 import argparse
 import json
@@ -36,7 +36,7 @@ def ladder(text):
     return values
 
 
-def aamap_config(scene, size, depth, rfilter, uniform, variance, thresholds, min_samples, reference, light_sampling):
+def aamap_config(scene, size, depth, rfilter, filter_mode, uniform, variance, thresholds, min_samples, reference, light_sampling):
     """The experiment: path mode with one light sample per hit (as Mitsuba's one emitter sample per
     bounce), Russian roulette from depth 5 on as Mitsuba's default rr_depth."""
     renders = [f'  - {{name: "uniform{{rpp}}", series: Uniform, strategy: uniform, rpp: {json.dumps(uniform)}}}']
@@ -46,7 +46,7 @@ def aamap_config(scene, size, depth, rfilter, uniform, variance, thresholds, min
                        f'min_samples: {min_samples}, sample_step: 8}}')
     return "\n".join([
         f"scene: {json.dumps(os.path.abspath(scene))}",
-        f"image: {{width: {size}, height: {size}, filter: {rfilter}}}",
+        f"image: {{width: {size}, height: {size}, filter: {rfilter}, filter_mode: {filter_mode}}}",
         f"shading: {{mode: path, max_depth: {depth}, area_light_samples: 1, light_sampling: {light_sampling}}}",
         "renders:", *renders,
         f"reference: {reference}",
@@ -63,6 +63,8 @@ def main():
     ap.add_argument("--depth", type=int, default=5, help="longest path in segments, both renderers")
     ap.add_argument("--filter", default="gaussian", choices=["box", "tent", "gaussian"],
                     help="pixel filter of both (gaussian: Mitsuba's default)")
+    ap.add_argument("--filter-mode", default="convolution", choices=["convolution", "importance"],
+                    help="how aamap applies it (image.filter_mode; Mitsuba splats its samples)")
     ap.add_argument("--mitsuba-spp", type=ladder, default=ladder("16,36,64,100,144"))
     ap.add_argument("--uniform-rpp", type=ladder, default=ladder("16,36,64,100,144"))
     ap.add_argument("--variance-rpp", type=ladder, default=ladder("64,144"),
@@ -117,7 +119,7 @@ def main():
                               else f"{{type: file, path: {json.dumps(aamap_ref)}}}")
             config = os.path.join(tmp, f"aamap_{r}.yaml")
             with open(config, "w") as f:
-                f.write(aamap_config(args.scene, args.size, args.depth, args.filter, args.uniform_rpp,
+                f.write(aamap_config(args.scene, args.size, args.depth, args.filter, args.filter_mode, args.uniform_rpp,
                                      args.variance_rpp, [float(t) for t in args.variance_threshold.split(",") if t],
                                      args.variance_min_samples, reference_yaml, args.light_sampling))
             out = os.path.join(tmp, f"aamap_{r}")
@@ -163,7 +165,7 @@ def main():
         tmp_json = args.json + ".tmp"
         with open(tmp_json, "w") as f:
             json.dump({"scene": os.path.abspath(args.scene), "size": args.size, "depth": args.depth,
-                       "filter": args.filter, "reference_spp": args.reference_spp, "target": args.target,
+                       "filter": args.filter, "filter_mode": args.filter_mode, "reference_spp": args.reference_spp, "target": args.target,
                        "mitsuba": mi.__version__, "rows": rows}, f, indent=2)
         os.replace(tmp_json, args.json)
 

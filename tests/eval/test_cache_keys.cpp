@@ -104,6 +104,7 @@ std::vector<KeyInput> inputs() {
     set("ImageFilter", "image.filter=tent");
     set("ImageFilterRadius", "image.filter_radius=1");
     v.push_back({"ImageFilterStddev", gaussianConfig().c_str(), {"image.filter_stddev=0.3"}, {}});
+    v.push_back({"ImageFilterMode", gaussianConfig().c_str(), {"image.filter_mode=importance"}, {}});
     set("LightPosition", "lights.0.position=[0, 1.8, 0]");
     set("LightRadiance", "lights.0.radiance=[5, 5, 4]");
     set("LightSize", "lights.0.size=[0.4, 0.3]");

@@ -122,6 +122,8 @@ TEST(ConfigErrors, OutOfRange) {
     expectAt(parseError(kMinimal + "image: {filter: gaussian, filter_stddev: 0}\n"), 4, 42, "out of range (0");
     expectAt(parseError(kMinimal + "image: {filter: tent, filter_stddev: 0.3}\n"), 4, 38,
              "image.filter_stddev: only the gaussian filter has a stddev (image.filter is 'tent')");
+    expectAt(parseError(kMinimal + "image: {filter: tent, filter_mode: splat}\n"), 4, 36,
+             "image.filter_mode: unknown value 'splat' (supported: convolution, importance)");
 }
 
 TEST(ConfigErrors, RppMustBeAPerfectSquare) {

@@ -37,6 +37,7 @@ const std::map<std::string, Field>& fields() {
         {"image.filter", [](const ExperimentConfig& c) { return ParamValue(c.image.filter); }},
         {"image.filter_radius", [](const ExperimentConfig& c) { return ParamValue(c.image.filterRadius); }},
         {"image.filter_stddev", [](const ExperimentConfig& c) { return ParamValue(c.image.filterStddev); }},
+        {"image.filter_mode", [](const ExperimentConfig& c) { return ParamValue(c.image.filterMode); }},
         {"snapshot.scale", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.scale); }},
         {"snapshot.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.areaLightSamples); }},
         {"snapshot.environment_lights", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.environmentLights); }},

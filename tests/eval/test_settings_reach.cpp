@@ -217,6 +217,9 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                 becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).radius; }, 1.5f)};
     t["image.filter_stddev"] = {{"image.filter=gaussian"}, {"image.filter_stddev=0.3"}, Renders::All, false,
                                 becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).stddev; }, 0.3f)};
+    t["image.filter_mode"] = {{"image.filter=gaussian"}, {"image.filter_mode=importance"}, Renders::All, false,
+                              becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).mode; },
+                                      PixelFilterMode::Importance)};
     // The seed drives every traced sample. The GPU Snapshot has no random numbers, so its key
     // leaves the seed out (the CPU fallback's snapshot is then the one of the first seed run).
     t["seed"] = {{}, {"seed=99"}, Renders::All, false, becomes([](const ExperimentConfig& c, int) {

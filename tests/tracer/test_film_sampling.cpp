@@ -140,15 +140,16 @@ TEST(FilmSampling, SupersampleSubPixelsTileThePixelOneRayPerCell) {
     for (const StratifyingStrategy& s : supersampleStrategies()) expectOneRayPerCell(s);
 }
 
-// With a pixel filter the k x k rays of a pixel land one in each of k x k cells of equal filter
+// With a pixel filter drawn by importance the k x k rays of a pixel land one in each of k x k cells of equal filter
 // weight: cell (i, j) spans the offsets [F^-1(i/k), F^-1((i+1)/k)] x [F^-1(j/k), F^-1((j+1)/k)]
 // from the pixel centre, beyond the pixel itself. One-pixel renders with one cell lit at a time
 // (in a probe image of many pixels each pixel's rays would also reach its neighbours' cells).
 TEST(FilmSampling, PixelFiltersPutOneRayInEachCellOfEqualFilterWeight) {
     const ImageGrey one(1, 1, 1.0f);
-    for (const PixelFilterSettings& fs : {PixelFilterSettings{PixelFilterType::Tent, 0.0f, 0.5f},
-                                          PixelFilterSettings{PixelFilterType::Gaussian, 0.0f, 0.5f},
-                                          PixelFilterSettings{PixelFilterType::Box, 1.0f, 0.5f}}) {
+    constexpr PixelFilterMode kDrawn = PixelFilterMode::Importance;
+    for (const PixelFilterSettings& fs : {PixelFilterSettings{PixelFilterType::Tent, 0.0f, 0.5f, kDrawn},
+                                          PixelFilterSettings{PixelFilterType::Gaussian, 0.0f, 0.5f, kDrawn},
+                                          PixelFilterSettings{PixelFilterType::Box, 1.0f, 0.5f, kDrawn}}) {
         const PixelFilter filter(fs);
         const auto edge = [&](int i, int k) {
             return static_cast<double>(0.5f + filter.offset(static_cast<float>(i) / static_cast<float>(k)));
@@ -171,6 +172,30 @@ TEST(FilmSampling, PixelFiltersPutOneRayInEachCellOfEqualFilterWeight) {
                     }
                 }
         }
+    }
+}
+
+// Convolution mode renders exactly the box-pixel image of the same seed, then convolves it: the
+// render equals PixelFilter::convolve of the default render, for strategies with one and with
+// many rays per pixel. The emitter's edges cut pixels, so the box image is not constant.
+TEST(FilmSampling, ConvolutionModeIsTheBoxRenderConvolved) {
+    testing::SceneBuilder b;
+    addFilmRectangle(b, 0.23, 0.31, 0.71, 0.58);
+    const Tracer tracer(b.scene());
+    const ImageGrey ones(12, 10, 1.0f);
+    TraceSettings box;
+    box.width = 12;
+    box.height = 10;
+    box.seed = 5;
+    TraceSettings convolved = box;
+    convolved.filter = {PixelFilterType::Gaussian, 0.0f, 0.5f, PixelFilterMode::Convolution};
+    const PixelFilter filter(convolved.filter);
+    for (const StratifyingStrategy& s : stratifyingStrategies(3, &ones)) {
+        const TraceResult plain = tracer.render(frontView(), box, s.settings);
+        const TraceResult filtered = tracer.render(frontView(), convolved, s.settings);
+        EXPECT_EQ(filtered.image, filter.convolve(plain.image)) << s.name;
+        EXPECT_EQ(filtered.primaryRays, plain.primaryRays) << s.name;
+        EXPECT_NE(filtered.image, plain.image) << s.name;
     }
 }
 
