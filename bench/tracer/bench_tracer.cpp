@@ -3,7 +3,8 @@
 //                [--size 512] [--fit-view] [--strata 6] [--threads 0]
 //                [--light-samples 16] [--repeat 3] [--mode direct|path|cache] [--max-depth 5]
 //                [--ab 1] [--ad 512] [--as 128] [--aa 0.2] [--ar 64] [--cache-grid-step 4] [--out FILE.exr]
-//                [--filter box|tent|gaussian] [--light-sampling auto|solid_angle|area]
+//                [--filter box|tent|gaussian] [--filter-mode convolution|importance]
+//                [--light-sampling auto|solid_angle|area]
 // Reports the best of --repeat runs: the machine is shared and noisy, the minimum is the
 // least disturbed figure. Cache mode also reports the pre-pass (best of the runs) apart.
 #include <algorithm>
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
     std::string sceneSpec = "builtin:cornell";
     int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3, maxDepth = 5;
     std::string mode = "direct", filter = "box", lightSampling = "auto";
+    std::string filterMode = aamap::toString(aamap::PixelFilterSettings{}.mode);
     aamap::IrradianceCacheSettings cache;
     int gridStep = 4;
     std::string viewFile, lightFile, outFile;
@@ -65,6 +67,9 @@ int main(int argc, char** argv) {
     app.add_option("--filter", filter, "pixel filter, default radius (tracer/pixel_filter.h)")
         ->capture_default_str()
         ->check(CLI::IsMember({"box", "tent", "gaussian"}));
+    app.add_option("--filter-mode", filterMode, "how the pixel filter applies (image.filter_mode)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"convolution", "importance"}));
     CLI11_PARSE(app, argc, argv);
 
     aamap::Scene scene;
@@ -112,6 +117,7 @@ int main(int argc, char** argv) {
     settings.shading.cacheGridStep = gridStep;
     settings.shading.maxDepth = maxDepth;
     aamap::parse(filter, settings.filter.type);
+    aamap::parse(filterMode, settings.filter.mode);
     aamap::StrategySettings strategy;
     strategy.strata = strata;
 
@@ -131,7 +137,8 @@ int main(int argc, char** argv) {
         bestPrepass = std::min(bestPrepass, result.cache.prepassSeconds);
     }
     const auto& rays = result.rays;
-    fmt::print("{}x{} uniform n={} ({} spp), {} filter, mode {}, {}\n", width, height, strata, strata * strata, filter, mode,
+    fmt::print("{}x{} uniform n={} ({} spp), {} filter ({}), mode {}, {}\n", width, height, strata, strata * strata, filter,
+               filterMode, mode,
                mode == "path"    ? fmt::format("max depth {}", maxDepth)
                : mode == "cache" ? fmt::format("{} light samples/hit, -ab {} -ad {} -as {} -aa {} -ar {}", lightSamples,
                                                cache.bounces, cache.divisions, cache.supersamples, cache.accuracy,
