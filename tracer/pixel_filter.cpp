@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -21,6 +22,17 @@ float resolvedRadius(const PixelFilterSettings& s) {
         case PixelFilterType::Gaussian: return 4.0f * s.stddev;
     }
     return 0.5f;
+}
+
+// The value among `all` whose toString() is `name`; false (and `value` unchanged) for none.
+template <class Enum>
+bool parseByName(const std::string& name, std::initializer_list<Enum> all, Enum& value) {
+    for (Enum e : all)
+        if (name == toString(e)) {
+            value = e;
+            return true;
+        }
+    return false;
 }
 
 }  // namespace
@@ -43,21 +55,11 @@ const char* toString(PixelFilterMode mode) {
 }
 
 bool parse(const std::string& name, PixelFilterMode& mode) {
-    for (PixelFilterMode m : {PixelFilterMode::Importance, PixelFilterMode::Convolution})
-        if (name == toString(m)) {
-            mode = m;
-            return true;
-        }
-    return false;
+    return parseByName(name, {PixelFilterMode::Convolution, PixelFilterMode::Importance}, mode);
 }
 
 bool parse(const std::string& name, PixelFilterType& type) {
-    for (PixelFilterType t : {PixelFilterType::Box, PixelFilterType::Tent, PixelFilterType::Gaussian})
-        if (name == toString(t)) {
-            type = t;
-            return true;
-        }
-    return false;
+    return parseByName(name, {PixelFilterType::Box, PixelFilterType::Tent, PixelFilterType::Gaussian}, type);
 }
 
 PixelFilter::PixelFilter(const PixelFilterSettings& settings)

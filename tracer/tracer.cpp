@@ -250,7 +250,8 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     const PixelFilter filter(settings.filter);  // checks its settings before any work
     // Convolution mode: the strategy renders box pixels, and the filter applies to the image.
     const bool convolve = settings.filter.mode == PixelFilterMode::Convolution;
-    const PixelFilter filmFilter = convolve ? PixelFilter{} : filter;
+    const PixelFilter pixelBox;
+    const PixelFilter& filmFilter = convolve ? pixelBox : filter;
     const PinholeCamera camera = PinholeCamera::fromView(view);
     // Cache mode: builds the irradiance cache (its pre-pass) and the Integrator that reads it.
     RenderShading shading =

@@ -186,7 +186,8 @@ def main():
 
     ratios = [r["ratio"] for r in rounds]
     summary = {"scene": os.path.abspath(args.scene), "size": args.size, "spp": args.spp, "depth": args.depth,
-               "filter": args.filter, "filter_mode": args.filter_mode, "mitsuba": mi.__version__, "mitsuba_first_render_s": cold,
+               "filter": args.filter, "filter_mode": args.filter_mode, "mitsuba": mi.__version__,
+               "mitsuba_first_render_s": cold,
                "mean_radiance": {"mitsuba": mean_m, "aamap": mean_a},
                "median_throughput_ratio": statistics.median(ratios), "min_ratio": min(ratios),
                "max_ratio": max(ratios), "rounds": rounds}

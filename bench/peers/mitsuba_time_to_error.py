@@ -13,7 +13,8 @@ render again. Prints each setting's median time, its spread and its error, and t
 of each renderer at or below --target % pixels in error.
 
 Setup as bench/peers/mitsuba_throughput.py (libllvm19, pip mitsuba==3.6.4 in .venv), then
-    .venv/bin/python bench/peers/mitsuba_time_to_error.py [--size 256] [--filter gaussian] [--filter-mode convolution]
+    .venv/bin/python bench/peers/mitsuba_time_to_error.py [--size 256] [--filter gaussian]
+        [--filter-mode convolution]
 """
 import argparse
 import json
@@ -36,7 +37,8 @@ def ladder(text):
     return values
 
 
-def aamap_config(scene, size, depth, rfilter, filter_mode, uniform, variance, thresholds, min_samples, reference, light_sampling):
+def aamap_config(scene, size, depth, rfilter, filter_mode, uniform, variance, thresholds, min_samples, reference,
+                 light_sampling):
     """The experiment: path mode with one light sample per hit (as Mitsuba's one emitter sample per
     bounce), Russian roulette from depth 5 on as Mitsuba's default rr_depth."""
     renders = [f'  - {{name: "uniform{{rpp}}", series: Uniform, strategy: uniform, rpp: {json.dumps(uniform)}}}']
@@ -119,8 +121,8 @@ def main():
                               else f"{{type: file, path: {json.dumps(aamap_ref)}}}")
             config = os.path.join(tmp, f"aamap_{r}.yaml")
             with open(config, "w") as f:
-                f.write(aamap_config(args.scene, args.size, args.depth, args.filter, args.filter_mode, args.uniform_rpp,
-                                     args.variance_rpp, [float(t) for t in args.variance_threshold.split(",") if t],
+                f.write(aamap_config(args.scene, args.size, args.depth, args.filter, args.filter_mode,
+                                     args.uniform_rpp, args.variance_rpp, [float(t) for t in args.variance_threshold.split(",") if t],
                                      args.variance_min_samples, reference_yaml, args.light_sampling))
             out = os.path.join(tmp, f"aamap_{r}")
             subprocess.run([args.aamap, "run", config, "-o", out, "--no-plots"], check=True, capture_output=True)
@@ -165,7 +167,8 @@ def main():
         tmp_json = args.json + ".tmp"
         with open(tmp_json, "w") as f:
             json.dump({"scene": os.path.abspath(args.scene), "size": args.size, "depth": args.depth,
-                       "filter": args.filter, "filter_mode": args.filter_mode, "reference_spp": args.reference_spp, "target": args.target,
+                       "filter": args.filter, "filter_mode": args.filter_mode,
+                       "reference_spp": args.reference_spp, "target": args.target,
                        "mitsuba": mi.__version__, "rows": rows}, f, indent=2)
         os.replace(tmp_json, args.json)
 

@@ -140,8 +140,8 @@ TEST(FilmSampling, SupersampleSubPixelsTileThePixelOneRayPerCell) {
     for (const StratifyingStrategy& s : supersampleStrategies()) expectOneRayPerCell(s);
 }
 
-// With a pixel filter drawn by importance the k x k rays of a pixel land one in each of k x k cells of equal filter
-// weight: cell (i, j) spans the offsets [F^-1(i/k), F^-1((i+1)/k)] x [F^-1(j/k), F^-1((j+1)/k)]
+// With a pixel filter applied by importance sampling the k x k rays of a pixel land one in each
+// of k x k cells of equal filter weight: cell (i, j) spans the offsets [F^-1(i/k), F^-1((i+1)/k)] x [F^-1(j/k), F^-1((j+1)/k)]
 // from the pixel centre, beyond the pixel itself. One-pixel renders with one cell lit at a time
 // (in a probe image of many pixels each pixel's rays would also reach its neighbours' cells).
 TEST(FilmSampling, PixelFiltersPutOneRayInEachCellOfEqualFilterWeight) {

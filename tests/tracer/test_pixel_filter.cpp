@@ -4,7 +4,7 @@
 // tests/tracer/test_film_sampling.cpp.
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -117,15 +117,19 @@ TEST(PixelFilter, PixelKernelIsTheFiltersMassPerPixelCell) {
     EXPECT_EQ(PixelFilter().pixelKernel(), std::vector<double>{1.0});
 }
 
+// Independent noise, uniform in [0, 1) (variance 1/12), the same in every channel.
+ImageRGB uniformNoise(int width, int height, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    ImageRGB noise(width, height);
+    for (glm::vec3& p : noise.pixels()) p = glm::vec3(u(rng));
+    return noise;
+}
+
 // A constant image stays constant everywhere, the border included (renormalised weights); the
 // pixel box leaves every image as it is.
 TEST(PixelFilter, ConvolutionKeepsConstantsAndTheBoxIsTheIdentity) {
-    ImageRGB noise(9, 7);
-    std::uint32_t state = 12345u;
-    for (glm::vec3& p : noise.pixels()) {
-        state = state * 1664525u + 1013904223u;
-        p = glm::vec3(static_cast<float>(state >> 8) / 16777216.0f, 0.5f, 2.0f);
-    }
+    const ImageRGB noise = uniformNoise(9, 7, 12345u);
     EXPECT_EQ(PixelFilter().convolve(noise), noise);
     for (const PixelFilterSettings& s : filters()) {
         const PixelFilter f(s);
@@ -143,12 +147,7 @@ TEST(PixelFilter, ConvolutionKeepsConstantsAndTheBoxIsTheIdentity) {
 // samples with neighbours buys. Measured on 256^2 pixels of uniform noise (v = 1/12).
 TEST(PixelFilter, ConvolutionScalesIndependentNoiseBySumOfSquaredWeights) {
     const int n = 256;
-    ImageRGB noise(n, n);
-    std::uint64_t state = 0x9e3779b97f4a7c15ull;
-    for (glm::vec3& p : noise.pixels()) {
-        state ^= state << 13, state ^= state >> 7, state ^= state << 17;
-        p = glm::vec3(static_cast<float>(state >> 40) / 16777216.0f);
-    }
+    const ImageRGB noise = uniformNoise(n, n, 7u);
     for (const PixelFilterSettings& s : filters()) {
         const PixelFilter f(s);
         double k2 = 0.0;
