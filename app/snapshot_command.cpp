@@ -95,7 +95,7 @@ std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
 }  // namespace
 
 CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
-    CLI::App* cmd = app.add_subcommand("snapshot", "Run only the Snapshot: snapshot.png, laplacian.png, aamap.png/.exr; "
+    CLI::App* cmd = app.add_subcommand("snapshot", "Run only the Snapshot: snapshot.png/.exr, laplacian.png, aamap.png/.exr; "
                                                    "--explain / --dot show the compiled render graph");
     cmd->add_option("SCENE", o.scene, "Scene: builtin:<name>, or an .obj/.gltf/.glb/.xml (Mitsuba) file")->required();
     CLI::Option* view =
@@ -165,6 +165,7 @@ int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::str
     const std::filesystem::path out(o.outDir);
     std::filesystem::create_directories(out);
     writePng(out / "snapshot.png", toneMap(r.snapshot, o.exposure));
+    writeExr(out / "snapshot.exr", r.snapshot);  // linear radiance, for measuring the map's input
     writePng(out / "laplacian.png", quantise(r.laplacian));
     writeExr(out / "aamap.exr", r.aamap);
     writePng(out / "aamap.png", quantise(r.aamap));

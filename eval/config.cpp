@@ -128,6 +128,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.snapshot.environmentLights = sv.integer("environment_lights");
     c.snapshot.softShadows = sv.boolean("soft_shadows");
     c.snapshot.blurRadius = sv.integer("blur_radius");
+    c.snapshot.flatRange = sv.real("flat_range");
     c.snapshot.noiseFloor = sv.real("noise_floor");
     c.snapshot.gain = sv.real("gain");
     c.snapshot.map = sv.choice("map");
@@ -228,6 +229,8 @@ Json snapshotJson(const ExperimentConfig& c) {
               {"gain", c.snapshot.gain}};
     if (c.snapshot.map != "luminance") j["map"] = c.snapshot.map;  // keeps the keys of luminance runs
     if (c.snapshot.environmentLights != 1) j["environment_lights"] = c.snapshot.environmentLights;  // likewise
+    // 0 is the chain without the flat gate, whose keys do not name it; every other value changes the map.
+    if (c.snapshot.flatRange != 0.0) j["flat_range"] = c.snapshot.flatRange;
     if (!c.snapshot.softShadows) j["soft_shadows"] = false;  // likewise
     return j;
 }

@@ -50,6 +50,7 @@ struct SnapshotConfig {
     double scale = 1.5;
     int areaLightSamples = 5;
     int blurRadius = 1;
+    double flatRange = 1.0 / 255.0;  // the Laplacian's flat gate (glsl/shared/aamap_filter.h)
     double noiseFloor = 0.02;
     double gain = 1.0;
     std::string map = "luminance";  // luminance | geometric | combined (passes/geometric_aamap.h)

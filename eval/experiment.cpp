@@ -113,6 +113,7 @@ SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
     s.shadows.softShadows = c.snapshot.softShadows;
     s.filter.exposure = static_cast<float>(c.image.exposure);  // edges as the viewer will see them
     s.filter.blurRadius = c.snapshot.blurRadius;
+    s.filter.flatRange = static_cast<float>(c.snapshot.flatRange);
     s.filter.noiseFloor = static_cast<float>(c.snapshot.noiseFloor);
     s.filter.gain = static_cast<float>(c.snapshot.gain);
     passes::parse(c.snapshot.map, s.map);  // validated by the config reader

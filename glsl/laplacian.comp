@@ -1,6 +1,8 @@
 #version 460
 // Step 2 of aamap_filter.h: e = |sum over the 24 off-centre taps of (g(p+o) - g(p))|, taps in
-// row-major order, edges clamped. `precise` keeps the CPU's accumulation order bit for bit.
+// row-major order, edges clamped, and 0 where the 3x3 window's range is below pc.flatRange (the
+// flat gate; min, max and one subtraction are exact, so the CPU decides alike).
+// `precise` keeps the CPU's accumulation order bit for bit.
 // Each invocation computes AAMAP_FILTER_ROWS pixels of one column (a strip), keeping the strip's
 // (ROWS + 4) x 5 window in registers: 10 image loads per pixel at 4 rows instead of 25, and no
 // shared memory (whose barriers cost more than the loads on lavapipe). Same values, same order.
@@ -12,6 +14,7 @@ layout(binding = FILTER_BINDING_OUTPUT, r32f) uniform writeonly image2D edges;
 const int R = AAMAP_LAPLACIAN_RADIUS;
 const int ROWS = AAMAP_FILTER_ROWS;
 const int SIDE = 2 * R + 1;
+const int G = AAMAP_FLAT_GATE_RADIUS;
 
 void main() {
     const int x = int(gl_GlobalInvocationID.x);
@@ -32,6 +35,13 @@ void main() {
                 sum += window[k + R + dy][R + dx] - centre;
             }
         }
-        imageStore(edges, ivec2(x, y0 + k), vec4(abs(sum)));
+        float lo = centre, hi = centre;
+        for (int dy = -G; dy <= G; ++dy) {
+            for (int dx = -G; dx <= G; ++dx) {
+                lo = min(lo, window[k + R + dy][R + dx]);
+                hi = max(hi, window[k + R + dy][R + dx]);
+            }
+        }
+        imageStore(edges, ivec2(x, y0 + k), vec4(pc.flatRange <= 0.0 || hi - lo >= pc.flatRange ? abs(sum) : 0.0));
     }
 }

@@ -514,6 +514,35 @@ ImageGrey laplacianMagnitude(const ImageGrey& grey, Mode mode) {
     return out;
 }
 
+void flatGate(const ImageGrey& grey, ImageGrey& edges, float flatRange, Mode mode) {
+    if (grey.width() != edges.width() || grey.height() != edges.height())
+        throw std::invalid_argument("flatGate: grey and edges differ in size");
+    if (!(flatRange > 0.0f)) return;
+    static_assert(AAMAP_FLAT_GATE_RADIUS == 1, "the flat gate is written for the 3x3 window");
+    const int w = grey.width(), h = grey.height();
+    const float* g = grey.data();
+    // Per row: the column-wise min and max over rows y-1..y+1, then over three columns. Min and
+    // max are exact in any order, so this decides as the shader's window does.
+    forRows(h, mode, [&](int y0, int y1) {
+        std::vector<float> lo(static_cast<std::size_t>(w)), hi(static_cast<std::size_t>(w));
+        for (int y = y0; y < y1; ++y) {
+            const float* above = g + static_cast<std::size_t>(clampIndex(y - 1, h)) * w;
+            const float* row = g + static_cast<std::size_t>(y) * w;
+            const float* below = g + static_cast<std::size_t>(clampIndex(y + 1, h)) * w;
+            for (int x = 0; x < w; ++x) {
+                lo[x] = std::min(std::min(above[x], row[x]), below[x]);
+                hi[x] = std::max(std::max(above[x], row[x]), below[x]);
+            }
+            float* e = edges.data() + static_cast<std::size_t>(y) * w;
+            for (int x = 0; x < w; ++x) {
+                const int l = clampIndex(x - 1, w), r = clampIndex(x + 1, w);
+                const float span = std::max(std::max(hi[l], hi[x]), hi[r]) - std::min(std::min(lo[l], lo[x]), lo[r]);
+                if (!(span >= flatRange)) e[x] = 0.0f;
+            }
+        }
+    });
+}
+
 void boxBlurInto(const ImageGrey& edges, int radius, ImageGrey& out, Mode mode) {
     if (radius < 0) throw std::invalid_argument("boxBlur: negative radius " + std::to_string(radius));
     prepareOutput(edges, out, "boxBlur");
@@ -592,6 +621,7 @@ AamapImages buildAamap(const ImageRGB& snapshot, int width, int height, const Fi
     AamapImages result;
     result.grey = greyscale(snapshot, params.exposure, mode);
     result.laplacian = laplacianMagnitude(result.grey, mode);
+    flatGate(result.grey, result.laplacian, params.flatRange, mode);
     const ImageGrey blurred = boxBlur(result.laplacian, params.blurRadius, mode);
     const ImageGrey map = deadZone(blurred, params.noiseFloor, params.gain, mode);
     result.aamap = reduceMax(map, width, height, mode);

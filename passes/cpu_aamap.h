@@ -13,6 +13,9 @@ enum class Mode { Scalar, Parallel };
 
 ImageGrey greyscale(const ImageRGB& rgb, float exposure, Mode mode = Mode::Parallel);
 ImageGrey laplacianMagnitude(const ImageGrey& grey, Mode mode = Mode::Parallel);  // e = |L|
+// The flat gate (aamap_filter.h step 2): zeroes edges wherever the 3x3 window of grey around the
+// texel spans less than flatRange; flatRange <= 0 leaves edges as they are. Same size, finite grey.
+void flatGate(const ImageGrey& grey, ImageGrey& edges, float flatRange, Mode mode = Mode::Parallel);
 ImageGrey boxBlur(const ImageGrey& edges, int radius, Mode mode = Mode::Parallel);
 // The same, into `out` (resized only when its size differs, so a kept image costs no allocation
 // or zero-fill; it must not be the input). Identical results.
@@ -23,7 +26,7 @@ ImageGrey reduceMax(const ImageGrey& map, int width, int height, Mode mode = Mod
 
 struct AamapImages {
     ImageGrey grey;       // snapshot resolution
-    ImageGrey laplacian;  // |L|, snapshot resolution
+    ImageGrey laplacian;  // |L| after the flat gate, snapshot resolution
     ImageGrey aamap;      // render resolution, in [0,1]
 };
 AamapImages buildAamap(const ImageRGB& snapshot, int width, int height, const FilterParams& params,

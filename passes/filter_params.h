@@ -9,6 +9,7 @@ struct FilterParams {
     int blurRadius = AAMAP_DEFAULT_BLUR_RADIUS;
     float noiseFloor = static_cast<float>(AAMAP_DEFAULT_NOISE_FLOOR);
     float gain = static_cast<float>(AAMAP_DEFAULT_GAIN);
+    float flatRange = static_cast<float>(AAMAP_DEFAULT_FLAT_RANGE);
 };
 
 }  // namespace aamap

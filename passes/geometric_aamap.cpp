@@ -107,7 +107,7 @@ void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const
     graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, graph::Size::relative(in.colour)));
     graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
     if (!in.greyFromGBuffer) chain.luminance.add(graph, executor, in.colour, kGrey, in.params.exposure);
-    chain.laplacian.add(graph, executor, kGrey, kLaplacian);  // geometric: kept only as a debug output
+    chain.laplacian.add(graph, executor, kGrey, kLaplacian, in.params.flatRange);  // geometric: a debug output only
     edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds,
               source == AamapSource::Combined ? kLaplacian : "", kEdges);
     chain.blur.add(graph, executor, kEdges, kMap, in.params.blurRadius, in.params.noiseFloor, in.params.gain);

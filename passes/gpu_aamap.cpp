@@ -26,7 +26,7 @@ void FilterChain::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, co
     graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float,
                             absoluteSize(width, height)));
     if (!greyFromGBuffer) luminance.add(graph, executor, colour, kGrey, params.exposure);
-    laplacian.add(graph, executor, kGrey, kLaplacian);
+    laplacian.add(graph, executor, kGrey, kLaplacian, params.flatRange);
     blur.add(graph, executor, kLaplacian, kMap, params.blurRadius, params.noiseFloor, params.gain);
     reduce.add(graph, executor, kMap, kAamap);
 }
@@ -62,13 +62,13 @@ ImageGrey GpuAamap::greyscale(const ImageRGB& rgb, float exposure) {
     return toImageGrey(run(graph, {kGrey}).outputs.at(kGrey));
 }
 
-ImageGrey GpuAamap::laplacianMagnitude(const ImageGrey& grey) {
+ImageGrey GpuAamap::laplacianMagnitude(const ImageGrey& grey, float flatRange) {
     executor_->clear();
     graph::RenderGraph graph;
     graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, sizeOf(grey), true));
     graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, sizeOf(grey)));
     executor_->setUpload(kGrey, toR32(grey));
-    chain_.laplacian.add(graph, *executor_, kGrey, kLaplacian);
+    chain_.laplacian.add(graph, *executor_, kGrey, kLaplacian, flatRange);
     return toImageGrey(run(graph, {kLaplacian}).outputs.at(kLaplacian));
 }
 

@@ -41,7 +41,7 @@ public:
 
     cpu::AamapImages build(const ImageRGB& snapshot, int width, int height, const FilterParams& params);
     ImageGrey greyscale(const ImageRGB& rgb, float exposure);
-    ImageGrey laplacianMagnitude(const ImageGrey& grey);
+    ImageGrey laplacianMagnitude(const ImageGrey& grey, float flatRange = 0.0f);  // 0: no flat gate
     // Box blur followed by the dead zone: noiseFloor 0 and gain 1 give the plain blur of inputs in [0,1].
     ImageGrey blurDeadZone(const ImageGrey& edges, int radius, float noiseFloor, float gain);
     ImageGrey reduceMax(const ImageGrey& map, int width, int height);

@@ -1,5 +1,7 @@
 #include "passes/snapshot_params.h"
 
+#include "glsl/shared/aamap_filter.h"
+
 namespace aamap {
 
 const std::vector<ParamSpec>& snapshotParams() {
@@ -10,6 +12,9 @@ const std::vector<ParamSpec>& snapshotParams() {
         boolParam("soft_shadows", true,
                   "area-light samples cast the soft shadow of the patch of light each stands for (PCSS)"),
         intParam("blur_radius", 0, 16, 1, "box blur radius after the Laplacian, in snapshot pixels"),
+        realParam("flat_range", 0.0, 1.0, AAMAP_DEFAULT_FLAT_RANGE,
+                  "the Laplacian counts only where the grey spans at least this over a texel's 3x3 window "
+                  "(1/255: one 8-bit code value; 0: everywhere)"),
         realParam("noise_floor", 0.0, 1.0, 0.02, "blurred edge responses below this are smooth shading"),
         realParamAbove("gain", 0.0, 1e6, 1.0, "map = clamp(gain * (blurred - noise_floor), 0, 1)"),
         choiceParam("map", {"luminance", "geometric", "combined"}, "edges the map is built from"),

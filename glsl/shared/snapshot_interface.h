@@ -162,7 +162,7 @@ struct FilterPush {
     float exposure;  // luminance
     float noiseFloor;  // blur
     float gain;        // blur
-    float pad0;
+    float flatRange;   // laplacian: the flat gate (aamap_filter.h step 2)
 };
 // The blur's radius is a specialisation constant (a pipeline per radius), so that its loops
 // unroll (lavapipe runs a loop bounded by a push constant several times slower; docs/results.md).

@@ -214,7 +214,8 @@ TEST(ConfigHash, StableUnderFormattingAndDefaults) {
     EXPECT_EQ(ca.canonicalJson(),
               R"({"scene":"builtin:cornell","view":null,"view_index":0,"lights":[],)"
               R"("image":{"width":512,"height":512,"exposure":1.0},"seed":1,"threads":0,)"
-              R"("snapshot":{"scale":1.5,"area_light_samples":5,"blur_radius":1,"noise_floor":0.02,"gain":1.0},)"
+              R"("snapshot":{"scale":1.5,"area_light_samples":5,"blur_radius":1,"noise_floor":0.02,"gain":1.0,)"
+              R"("flat_range":0.00392156862745098},)"
               R"("shading":{"area_light_samples":16,"mode":"direct","max_depth":5,"russian_roulette":true,)"
               R"("roulette_depth":5,"max_specular_depth":8,"light_selection":"contribution","light_sampling":"auto"},)"
               R"("renders":[{"name":"u","series":"uniform","strategy":"uniform","rpp":4,"params":{}}],)"

@@ -43,6 +43,7 @@ const std::map<std::string, Field>& fields() {
         {"snapshot.environment_lights", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.environmentLights); }},
         {"snapshot.soft_shadows", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.softShadows); }},
         {"snapshot.blur_radius", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.blurRadius); }},
+        {"snapshot.flat_range", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.flatRange); }},
         {"snapshot.noise_floor", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.noiseFloor); }},
         {"snapshot.gain", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.gain); }},
         {"snapshot.map", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.map); }},

@@ -226,7 +226,9 @@ TEST_F(Runner, OracleMapFlagsWhatTheReferenceSaysAndBoundsTheMap) {
         EXPECT_EQ(o.record.times.snapshotTotal, 0.0);
         EXPECT_EQ(o.record.key.rfind("oracle-", 0), 0u);
         // The oracle flags fewer pixels than the Snapshot's band, so it traces fewer rays.
-        if (o.record.maxRaysPerPixel > 1) EXPECT_LT(o.record.meanPrimaryRpp, r.renders[3 + k].meanPrimaryRpp);
+        if (o.record.maxRaysPerPixel > 1) {
+            EXPECT_LT(o.record.meanPrimaryRpp, r.renders[3 + k].meanPrimaryRpp);
+        }
     }
     const OracleRun& best = r.oracle->runs[2];
     ASSERT_EQ(best.mapRender, "aamap16");

@@ -235,6 +235,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                         becomes([](const ExperimentConfig& c, int) { return snap(c, 0).areaLightSamples; }, 9)};
     t["snapshot.blur_radius"] = {{}, {"snapshot.blur_radius=3"}, Renders::UsingAamap, true,
                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.blurRadius; }, 3)};
+    t["snapshot.flat_range"] = {{}, {"snapshot.flat_range=0.25"}, Renders::UsingAamap, true,
+                                becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.flatRange; }, 0.25f)};
     t["snapshot.noise_floor"] = {{}, {"snapshot.noise_floor=0.125"}, Renders::UsingAamap, true,
                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.noiseFloor; }, 0.125f)};
     t["snapshot.gain"] = {{}, {"snapshot.gain=3.5"}, Renders::UsingAamap, true,

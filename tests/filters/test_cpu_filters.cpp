@@ -219,6 +219,47 @@ TEST(Filters, ReduceMaxModesAgreeOnSignedZeros) {
         EXPECT_TRUE(bitIdentical(reduceMax(map, w, h, Mode::Scalar), reduceMax(map, w, h, Mode::Parallel)));
 }
 
+TEST(Filters, FlatGateKeepsTheLaplacianOnlyWhereTheGreySpansTheRange) {
+    // Columns 0..10 at 0.2 and 11..23 at 0.7 (a step between 10 and 11), and, far to the right, a
+    // parabola whose 3x3 windows span under 1/255 but whose Laplacian is not 0.
+    const int w = 48, h = 9;
+    ImageGrey grey(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float d = static_cast<float>(x - 40);
+            grey.at(x, y) = x <= 10 ? 0.2f : (x < 32 ? 0.7f : 0.7f + 1e-5f * d * d);
+        }
+    const float range = 1.0f / 255.0f;
+    for (Mode mode : kModes) {
+        SCOPED_TRACE(name(mode));
+        const ImageGrey plain = laplacianMagnitude(grey, mode);
+        ImageGrey gated = plain;
+        flatGate(grey, gated, range, mode);
+        for (int y = 0; y < h; ++y) {
+            // The 5x5 Laplacian answers two texels either side of the step; the gate keeps the two
+            // texels whose 3x3 window holds both sides, bit for bit.
+            for (int x : {9, 10, 11, 12}) EXPECT_GT(plain.at(x, y), 0.0f) << x;
+            for (int x : {10, 11}) EXPECT_EQ(gated.at(x, y), plain.at(x, y)) << x;
+            for (int x : {9, 12}) EXPECT_EQ(gated.at(x, y), 0.0f) << x;
+            EXPECT_GT(plain.at(40, y), 0.0f);
+            for (int x = 30; x < w; ++x) EXPECT_EQ(gated.at(x, y), 0.0f) << x;
+        }
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                if (gated.at(x, y) != 0.0f) {
+                    EXPECT_TRUE(x == 10 || x == 11) << x << "," << y;
+                }
+        // flatRange 0 (and below) leaves the Laplacian as it is.
+        for (float off : {0.0f, -1.0f}) {
+            ImageGrey same = plain;
+            flatGate(grey, same, off, mode);
+            EXPECT_TRUE(bitIdentical(same, plain));
+        }
+    }
+    ImageGrey wrongSize(w - 1, h);
+    EXPECT_THROW(flatGate(grey, wrongSize, range), std::invalid_argument);
+}
+
 TEST(Filters, BlackSquareOnWhiteLightsUpOnlyItsBorder) {
     // Snapshot 96x96 (scale 1.5 of 64x64) with a black square over texels [30, 66).
     ImageRGB snapshot(96, 96, glm::vec3(1.0f));

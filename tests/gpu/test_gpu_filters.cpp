@@ -46,6 +46,21 @@ TEST_F(FilterTest, LaplacianMatchesCpu) {
     }
 }
 
+TEST_F(FilterTest, FlatGateMatchesCpu) {
+    // Flat patches and random texels, so some windows span less than the range and some more.
+    passes::GpuAamap gpu(context());
+    const ImageGrey grey = cpu::greyscale(randomColour(67, 45, 5u), 1.0f, cpu::Mode::Scalar);
+    for (float range : {1.0f / 255.0f, 0.25f, 2.0f}) {
+        ImageGrey expected = cpu::laplacianMagnitude(grey, cpu::Mode::Scalar);
+        cpu::flatGate(grey, expected, range, cpu::Mode::Scalar);
+        const ImageGrey got = gpu.laplacianMagnitude(grey, range);
+        EXPECT_LE(maxAbsDiff(got, expected), kTolerance) << range;
+        // The same texels are gated: the decision is exact on both sides.
+        for (std::size_t i = 0; i < got.size(); ++i)
+            ASSERT_EQ(got.pixels()[i] == 0.0f, expected.pixels()[i] == 0.0f) << range << " texel " << i;
+    }
+}
+
 TEST_F(FilterTest, BlurMatchesCpu) {
     passes::GpuAamap gpu(context());
     const ImageGrey edges = randomGrey(61, 50, 7u);
