@@ -6,7 +6,9 @@
 // of the output format: rename with care.
 //
 // Resources (format; written by -> read by):
-//   snapshot              RGBA32F, linear colour       gbuffer, mirror.composite -> luminance, mirror.composite
+//   snapshot              RGBA32F, linear colour       gbuffer (v0), mirror.composite and
+//                                                      mirror.probes.composite (each the next
+//                                                      version, in that order) -> luminance
 //   depth                 D32, reversed                gbuffer -> mirror.mask
 //   shadow.cubes          D32 array, 6 layers a light  shadow -> gbuffer, mirror, geometry_buffer
 //   mirror.colour/.depth  RGBA32F/D32, layer a mirror  mirror -> mirror.composite

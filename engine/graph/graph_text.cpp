@@ -1,6 +1,7 @@
 // Names of the enums, format facts, and the two human-readable views of a compiled graph.
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -115,13 +116,27 @@ std::string CompiledGraph::toDot() const {
     }
     // One edge per access direction (resource -> pass for reads, pass -> resource for writes; an
     // update both ways), labelled with the usage; a culled pass's edges are dashed like the pass.
+    // A resource written more than once labels each edge with the version it carries.
+    std::set<std::string> versionedResources;
+    for (const CompiledPass& p : passes)
+        for (const Access& a : p.accesses)
+            if (a.version > 0) versionedResources.insert(a.resource);
+    for (const CulledPass& c : culled)
+        for (const Access& a : c.accesses)
+            if (a.version > 0) versionedResources.insert(a.resource);
     auto edges = [&](const std::string& node, const std::vector<Access>& accesses, bool grey) {
         const char* style = grey ? ", color=gray60, fontcolor=gray50, style=dashed" : "";
         for (const Access& a : accesses) {
             const std::string& r = ids.at(a.resource);
-            const std::string label = quoted(toString(a.usage));
-            if (a.mode != AccessMode::Write) dot += fmt::format("  {} -> {} [label={}{}];\n", r, node, label, style);
-            if (a.mode != AccessMode::Read) dot += fmt::format("  {} -> {} [label={}{}];\n", node, r, label, style);
+            const bool shown = versionedResources.count(a.resource) > 0;
+            auto label = [&](std::uint32_t version) {
+                return quoted(shown ? fmt::format("{} v{}", toString(a.usage), version) : std::string(toString(a.usage)));
+            };
+            // An update reads the version before the one it makes.
+            const std::uint32_t readVersion = a.mode == AccessMode::ReadWrite ? a.version - 1 : a.version;
+            if (a.mode != AccessMode::Write)
+                dot += fmt::format("  {} -> {} [label={}{}];\n", r, node, label(readVersion), style);
+            if (a.mode != AccessMode::Read) dot += fmt::format("  {} -> {} [label={}{}];\n", node, r, label(a.version), style);
         }
     };
     // Tooltips carry why a pass was kept or culled (the --explain text) into SVG renderings.

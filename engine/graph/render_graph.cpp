@@ -17,7 +17,6 @@ namespace {
 constexpr std::uint32_t kNone = ~0u;
 
 bool writesTo(AccessMode mode) { return mode != AccessMode::Read; }
-bool readsFrom(AccessMode mode) { return mode != AccessMode::Write; }
 
 // Usages that can only read, and usages that can only write; attachments may do both.
 bool isReadOnlyUsage(Usage u) { return u == Usage::Sampled || u == Usage::StorageRead || u == Usage::TransferSrc; }
@@ -37,8 +36,12 @@ struct Index {
     const std::vector<ResourceDesc>& resources;
     const std::vector<PassDesc>& passes;
     std::unordered_map<std::string, std::uint32_t> byName;
-    std::vector<std::vector<PassId>> writers;  // per resource: initial writer and updaters, by id
+    // Per resource, the producer of each version: [0] the initial writer (kNone: the import, or
+    // nobody), then the updaters in declaration order.
+    std::vector<std::vector<PassId>> producers;
     std::vector<std::vector<std::uint32_t>> accessed;  // per pass: resource index of each access
+    std::vector<std::vector<std::uint32_t>> versions;  // per pass: version each access reads or makes
+    std::vector<std::vector<std::vector<PassId>>> readers;  // per resource and version: its Read passes
 
     std::uint32_t find(const std::string& name) const {
         auto it = byName.find(name);
@@ -46,6 +49,19 @@ struct Index {
     }
     const std::string& passName(PassId p) const { return passes[p].name; }
     const std::string& resName(std::uint32_t r) const { return resources[r].name; }
+    bool hasWriter(std::uint32_t r) const {
+        return producers[r].size() > 1 || producers[r][0] != kNone;
+    }
+    std::uint32_t finalVersion(std::uint32_t r) const { return static_cast<std::uint32_t>(producers[r].size() - 1); }
+    // The version access i of pass p reads; kNone for an initial write, which reads nothing.
+    std::uint32_t versionRead(PassId p, std::size_t i) const {
+        switch (passes[p].accesses[i].mode) {
+            case AccessMode::Write: return kNone;
+            case AccessMode::ReadWrite: return versions[p][i] - 1;
+            case AccessMode::Read: return versions[p][i];
+        }
+        return kNone;
+    }
 };
 
 void checkAccess(const PassDesc& pass, const Access& a, const ResourceDesc& res) {
@@ -65,11 +81,12 @@ void checkAccess(const PassDesc& pass, const Access& a, const ResourceDesc& res)
 }
 
 Index buildIndex(const std::vector<ResourceDesc>& resources, const std::vector<PassDesc>& passes) {
-    Index idx{resources, passes, {}, {}, {}};
+    Index idx{resources, passes, {}, {}, {}, {}, {}};
     for (std::uint32_t r = 0; r < resources.size(); ++r) idx.byName.emplace(resources[r].name, r);
-    idx.writers.resize(resources.size());
-    std::vector<PassId> initialWriter(resources.size(), kNone);
+    idx.producers.assign(resources.size(), std::vector<PassId>{kNone});
     idx.accessed.resize(passes.size());
+    idx.versions.resize(passes.size());
+    // First the accesses and the version chains (initial writer, then updaters as declared).
     for (PassId p = 0; p < passes.size(); ++p) {
         const PassDesc& pass = passes[p];
         std::set<std::uint32_t> seen;
@@ -82,19 +99,46 @@ Index buildIndex(const std::vector<ResourceDesc>& resources, const std::vector<P
                                              pass.name, a.resource));
             checkAccess(pass, a, resources[r]);
             idx.accessed[p].push_back(r);
-            if (!writesTo(a.mode)) continue;
+            idx.versions[p].push_back(0);
             if (a.mode == AccessMode::Write) {
-                if (initialWriter[r] != kNone)
+                PassId& initial = idx.producers[r][0];
+                if (initial != kNone)
                     throw GraphError(fmt::format(
                         "resource '{}' has two initial writers, passes '{}' and '{}' (a later pass should use updates())",
-                        a.resource, passes[initialWriter[r]].name, pass.name));
-                initialWriter[r] = p;
+                        a.resource, passes[initial].name, pass.name));
+                initial = p;
+            } else if (a.mode == AccessMode::ReadWrite) {
+                idx.versions[p].back() = static_cast<std::uint32_t>(idx.producers[r].size());
+                idx.producers[r].push_back(p);
             }
-            idx.writers[r].push_back(p);
+        }
+    }
+    // Then the version each read sees: the newest made by a pass declared before the reader (an
+    // import before all), else, for a reader declared ahead of every writer, the final one.
+    idx.readers.resize(resources.size());
+    for (std::uint32_t r = 0; r < resources.size(); ++r) idx.readers[r].resize(idx.producers[r].size());
+    for (PassId p = 0; p < passes.size(); ++p) {
+        for (std::size_t i = 0; i < passes[p].accesses.size(); ++i) {
+            if (passes[p].accesses[i].mode != AccessMode::Read) continue;
+            const std::uint32_t r = idx.accessed[p][i];
+            const std::vector<PassId>& made = idx.producers[r];
+            std::uint32_t v = idx.finalVersion(r);
+            for (std::uint32_t k = idx.finalVersion(r) + 1; k-- > 0;) {
+                const bool before = made[k] == kNone ? k == 0 && resources[r].imported : made[k] < p;
+                if (before) {
+                    v = k;
+                    break;
+                }
+            }
+            idx.versions[p][i] = v;
+            idx.readers[r][v].push_back(p);
         }
     }
     return idx;
 }
+
+// The pass that made version v of r, or kNone when it is the import (or nobody's).
+PassId producerOf(const Index& idx, std::uint32_t r, std::uint32_t v) { return idx.producers[r][v]; }
 
 // Why a pass is kept: it writes `resource`, which `consumer` reads (kNone: a requested output).
 struct KeepReason {
@@ -103,53 +147,65 @@ struct KeepReason {
 };
 
 // Walks back from the outputs in breadth-first, declaration order: the recorded reason is the
-// shortest chain to an output, and the result does not depend on hash order.
+// shortest chain to an output, and the result does not depend on hash order. A pass keeps only
+// the producers of the versions it reads.
 std::vector<std::optional<KeepReason>> cull(const Index& idx, const std::vector<std::uint32_t>& outputs) {
     std::vector<std::optional<KeepReason>> kept(idx.passes.size());
     std::deque<PassId> queue;
     for (std::uint32_t r : outputs) {
-        for (PassId w : idx.writers[r]) {
-            if (kept[w]) continue;
-            kept[w] = KeepReason{r, kNone};
-            queue.push_back(w);
-        }
+        const PassId w = producerOf(idx, r, idx.finalVersion(r));
+        if (w == kNone || kept[w]) continue;
+        kept[w] = KeepReason{r, kNone};
+        queue.push_back(w);
     }
     while (!queue.empty()) {
         const PassId p = queue.front();
         queue.pop_front();
         const PassDesc& pass = idx.passes[p];
         for (std::size_t i = 0; i < pass.accesses.size(); ++i) {
-            if (!readsFrom(pass.accesses[i].mode)) continue;
+            const std::uint32_t v = idx.versionRead(p, i);
+            if (v == kNone) continue;
             const std::uint32_t r = idx.accessed[p][i];
-            const auto& ws = idx.writers[r];
-            const bool hasOtherWriter = std::any_of(ws.begin(), ws.end(), [p](PassId w) { return w != p; });
-            if (!hasOtherWriter && !idx.resources[r].imported)
-                throw GraphError(fmt::format("pass '{}' reads '{}', but no other pass writes it and it is not "
+            const PassId w = producerOf(idx, r, v);
+            if (w == kNone && !idx.resources[r].imported)
+                throw GraphError(fmt::format("pass '{}' {} '{}', but no other pass writes {} and it is not "
                                              "imported (missing producer)",
-                                             pass.name, idx.resName(r)));
-            for (PassId w : ws) {
-                if (w == p || kept[w]) continue;
-                kept[w] = KeepReason{r, p};
-                queue.push_back(w);
-            }
+                                             pass.name, toString(pass.accesses[i].mode), idx.resName(r),
+                                             v == 0 ? "it" : "the version it reads"));
+            if (w == kNone || kept[w]) continue;
+            kept[w] = KeepReason{r, p};
+            queue.push_back(w);
         }
     }
     return kept;
 }
 
+// Why one pass must run before another: it makes the version the other reads, or it reads the
+// version the other (an updater) overwrites.
+struct Edge {
+    std::uint32_t resource = kNone;
+    bool writeAfterRead = false;
+};
+
 // Kahn's algorithm; among ready passes the earliest declared goes first (deterministic).
 std::vector<PassId> order(const Index& idx, const std::vector<std::optional<KeepReason>>& kept) {
     const std::size_t n = idx.passes.size();
-    std::vector<std::map<PassId, std::uint32_t>> preds(n);  // producer -> first resource linking them
+    std::vector<std::map<PassId, Edge>> preds(n);  // predecessor -> first resource linking them
     std::vector<std::vector<PassId>> succs(n);
+    auto link = [&](PassId before, PassId after, Edge e) {
+        if (before != kNone && before != after && kept[before] && preds[after].emplace(before, e).second)
+            succs[before].push_back(after);
+    };
     for (PassId c = 0; c < n; ++c) {
         if (!kept[c]) continue;
         const PassDesc& pass = idx.passes[c];
         for (std::size_t i = 0; i < pass.accesses.size(); ++i) {
-            if (!readsFrom(pass.accesses[i].mode)) continue;
             const std::uint32_t r = idx.accessed[c][i];
-            for (PassId w : idx.writers[r])
-                if (w != c && preds[c].emplace(w, r).second) succs[w].push_back(c);
+            const std::uint32_t v = idx.versionRead(c, i);
+            if (v != kNone) link(producerOf(idx, r, v), c, {r, false});
+            // An updater overwrites the image its predecessor version's readers sample.
+            if (pass.accesses[i].mode == AccessMode::ReadWrite)
+                for (PassId reader : idx.readers[r][v]) link(reader, c, {r, true});
         }
     }
     std::vector<std::size_t> inDegree(n);
@@ -180,7 +236,7 @@ std::vector<PassId> order(const Index& idx, const std::vector<std::optional<Keep
     std::map<PassId, std::size_t> position{{start, 0}};
     for (;;) {
         PassId pred = kNone;
-        for (const auto& [w, r] : preds[walk.back()])
+        for (const auto& [w, e] : preds[walk.back()])
             if (left(w)) { pred = w; break; }
         if (auto it = position.find(pred); it != position.end()) {
             walk.erase(walk.begin(), walk.begin() + static_cast<std::ptrdiff_t>(it->second));
@@ -193,9 +249,13 @@ std::vector<PassId> order(const Index& idx, const std::vector<std::optional<Keep
     std::string names, steps;
     for (std::size_t i = 0; i < walk.size(); ++i) {
         const PassId from = walk[i], to = walk[(i + 1) % walk.size()];
+        const Edge& e = preds[to].at(from);
         names += fmt::format("{}'{}'", i ? ", " : "", idx.passName(from));
-        steps += fmt::format("{}'{}' writes '{}' read by '{}'", i ? "; " : "", idx.passName(from),
-                             idx.resName(preds[to].at(from)), idx.passName(to));
+        steps += e.writeAfterRead
+                     ? fmt::format("{}'{}' reads '{}' before '{}' updates it", i ? "; " : "", idx.passName(from),
+                                   idx.resName(e.resource), idx.passName(to))
+                     : fmt::format("{}'{}' writes '{}' read by '{}'", i ? "; " : "", idx.passName(from),
+                                   idx.resName(e.resource), idx.passName(to));
     }
     throw GraphError(fmt::format("cycle through passes {}: {}", names, steps));
 }
@@ -285,6 +345,13 @@ std::string culledReason(const PassDesc& pass) {
     return fmt::format("none of its writes ({}) reaches a requested output", writes);
 }
 
+// A pass's accesses with the version each reads or makes.
+std::vector<Access> versioned(const Index& idx, PassId p) {
+    std::vector<Access> accesses = idx.passes[p].accesses;
+    for (std::size_t i = 0; i < accesses.size(); ++i) accesses[i].version = idx.versions[p][i];
+    return accesses;
+}
+
 }  // namespace
 
 void RenderGraph::addResource(ResourceDesc desc) {
@@ -307,7 +374,7 @@ CompiledGraph RenderGraph::compile(std::span<const std::string> outputs) const {
     for (const std::string& name : outputs) {
         const std::uint32_t r = idx.find(name);
         if (r == kNone) throw GraphError(fmt::format("unknown output '{}': no resource has that name", name));
-        if (idx.writers[r].empty() && !resources_[r].imported)
+        if (!idx.hasWriter(r) && !resources_[r].imported)
             throw GraphError(fmt::format("output '{}' has no producer: no pass writes it and it is not imported", name));
         if (std::find(outputIds.begin(), outputIds.end(), r) == outputIds.end()) outputIds.push_back(r);
     }
@@ -327,14 +394,14 @@ CompiledGraph RenderGraph::compile(std::span<const std::string> outputs) const {
     };
     std::vector<State> state(resources_.size());
     for (PassId p : sequence) {
-        CompiledPass cp{p, passes_[p].name, {}, keptBecause(idx, kept, p), passes_[p].accesses};
+        CompiledPass cp{p, passes_[p].name, {}, keptBecause(idx, kept, p), versioned(idx, p)};
         for (std::size_t i = 0; i < cp.accesses.size(); ++i) {
             const Access& a = cp.accesses[i];
             const std::uint32_t r = idx.accessed[p][i];
             State& s = state[r];
             if (!s.touched) {
                 cp.barriersBefore.push_back({a.resource, resources_[r].imported ? Usage::TransferDst : Usage::Undefined, a.usage});
-            } else if (s.usage != a.usage || s.wrote) {
+            } else if (s.usage != a.usage || s.wrote || writesTo(a.mode)) {  // RAW, WAW and WAR
                 cp.barriersBefore.push_back({a.resource, s.usage, a.usage});
             }
             s = {true, a.usage, writesTo(a.mode)};
@@ -349,7 +416,7 @@ CompiledGraph RenderGraph::compile(std::span<const std::string> outputs) const {
         g.resources.emplace(resources_[r].name, sizes[r]);
     }
     for (PassId p = 0; p < passes_.size(); ++p)
-        if (!kept[p]) g.culled.push_back({p, passes_[p].name, culledReason(passes_[p]), passes_[p].accesses});
+        if (!kept[p]) g.culled.push_back({p, passes_[p].name, culledReason(passes_[p]), versioned(idx, p)});
     return g;
 }
 

@@ -5,13 +5,18 @@
 // compiler culls everything the requested outputs do not need, orders the rest topologically
 // and plans, for every access, the transition from the resource's previous use.
 //
-// Dependency rule (declarative, independent of declaration order):
-//   * A pass that reads resource R depends on every *other* pass that writes R.
-//   * R may have one initial writer (an access with mode Write) and any number of passes that
-//     update it in place (mode ReadWrite); each updater thereby depends on the initial writer.
-//     Two initial writers of one resource are an error; two updaters form a cycle.
-//   * A read of R with no writer is an error ("missing producer") unless R is imported, i.e.
-//     filled from the host before the graph runs.
+// Versioned resources (as FrameGraph and Granite): every write makes a new version of a resource.
+//   * R has at most one initial writer (mode Write), which makes version 0; without one, version 0
+//     is the host upload of an imported resource. Two initial writers are an error.
+//   * Each pass that updates R in place (mode ReadWrite) reads the version before it and makes the
+//     next one; updaters form one chain in declaration order, so any number of them compose (a
+//     planar-mirror composite and a probe composite both updating the snapshot).
+//   * A read of R sees the newest version made by a pass declared before the reader (an import
+//     counts as declared first). A read declared before every writer of R sees R's final version,
+//     so a chain may also be declared consumer-first.
+//   * A pass depends on the producer of each version it reads (read after write), and an updater
+//     also on every pass that reads the version it overwrites (write after read: the versions share
+//     one image). A read of a version nobody makes is an error ("missing producer").
 #include <cstdint>
 #include <map>
 #include <span>
@@ -87,10 +92,13 @@ struct Access {
     std::string resource;
     Usage usage = Usage::Sampled;
     AccessMode mode = AccessMode::Read;
+    // Filled by the compiler in CompiledPass/CulledPass: the version of the resource this access
+    // reads (Read) or makes (Write, ReadWrite); ignored in a PassDesc.
+    std::uint32_t version = 0;
 };
-inline Access reads(std::string r, Usage u) { return {std::move(r), u, AccessMode::Read}; }
-inline Access writes(std::string r, Usage u) { return {std::move(r), u, AccessMode::Write}; }
-inline Access updates(std::string r, Usage u) { return {std::move(r), u, AccessMode::ReadWrite}; }
+inline Access reads(std::string r, Usage u) { return {std::move(r), u, AccessMode::Read, 0}; }
+inline Access writes(std::string r, Usage u) { return {std::move(r), u, AccessMode::Write, 0}; }
+inline Access updates(std::string r, Usage u) { return {std::move(r), u, AccessMode::ReadWrite, 0}; }
 
 enum class QueueKind : std::uint8_t { Graphics, Compute };
 
@@ -158,8 +166,9 @@ public:
     const std::vector<ResourceDesc>& resources() const { return resources_; }
     const std::vector<PassDesc>& passes() const { return passes_; }
 
-    // Culls, orders and plans barriers for the given outputs. Throws GraphError naming the pass
-    // and the resource on: an unknown resource, a missing producer, two initial writers, a cycle,
+    // Culls, orders and plans barriers for the given outputs (each its final version). Throws
+    // GraphError naming the pass and the resource on: an unknown resource, a missing producer,
+    // two initial writers, a cycle,
     // a relative size that refers to an unknown resource or to itself (also indirectly).
     CompiledGraph compile(std::span<const std::string> outputs) const;
 

@@ -146,13 +146,105 @@ TEST(Graph, CycleErrorNamesPassesAndResources) {
     expectGraphError([&] { compileFor(g, {"out"}); }, {"cycle", "'alpha'", "'beta'", "'ping'", "'pong'"});
 }
 
-TEST(Graph, TwoUpdatersFormACycle) {
+TEST(Graph, TwoUpdatersComposeInDeclarationOrder) {
     RenderGraph g;
     g.addResource(image("accum"));
+    g.addPass(pass("addB", {updates("accum", Usage::StorageWrite)}));  // declared first, so version 1
     g.addPass(pass("init", {writes("accum", Usage::StorageWrite)}));
     g.addPass(pass("addA", {updates("accum", Usage::StorageWrite)}));
-    g.addPass(pass("addB", {updates("accum", Usage::StorageWrite)}));
-    expectGraphError([&] { compileFor(g, {"accum"}); }, {"cycle", "'addA'", "'addB'", "'accum'"});
+    const CompiledGraph c = compileFor(g, {"accum"});
+    EXPECT_EQ(order(c), (std::vector<std::string>{"init", "addB", "addA"}));
+    EXPECT_TRUE(c.culled.empty());
+    EXPECT_EQ(find(c, "init").accesses[0].version, 0u);
+    EXPECT_EQ(find(c, "addB").accesses[0].version, 1u);
+    EXPECT_EQ(find(c, "addA").accesses[0].version, 2u);
+    // Each update waits for the previous write (same usage, still a barrier), and the readback
+    // for the last one.
+    for (const char* updater : {"addB", "addA"}) {
+        const auto& b = find(c, updater).barriersBefore;
+        ASSERT_EQ(b.size(), 1u) << updater;
+        EXPECT_TRUE(sameBarrier(b[0], "accum", Usage::StorageWrite, Usage::StorageWrite)) << updater;
+    }
+    ASSERT_EQ(c.finalBarriers.size(), 1u);
+    EXPECT_TRUE(sameBarrier(c.finalBarriers[0], "accum", Usage::StorageWrite, Usage::TransferSrc));
+}
+
+// The Snapshot's shape: a G-buffer, two composites that each update the colour in place (planar
+// mirrors, then curved ones), a luminance pass after both, and a mask drawn from the depth.
+RenderGraph mirroredSnapshot() {
+    RenderGraph g;
+    for (const char* r : {"snapshot", "mask", "probeColour", "grey"}) g.addResource(image(r));
+    g.addResource(image("depth"));
+    g.addPass(pass("gbuffer", {writes("snapshot", Usage::ColorAttachment)}));
+    g.addPass(pass("mirror.mask", {writes("mask", Usage::StorageWrite)}));
+    g.addPass(pass("mirror.composite", {updates("snapshot", Usage::StorageWrite), reads("mask", Usage::StorageRead)}));
+    g.addPass(pass("probes.render", {writes("probeColour", Usage::ColorAttachment)}));
+    g.addPass(pass("probes.composite", {updates("snapshot", Usage::ColorAttachment), reads("probeColour", Usage::Sampled)}));
+    g.addPass(pass("luminance", {reads("snapshot", Usage::StorageRead), writes("grey", Usage::StorageWrite)}));
+    return g;
+}
+
+TEST(Graph, PlanarAndProbeCompositesBothKeptAndOrdered) {
+    const CompiledGraph c = compileFor(mirroredSnapshot(), {"grey", "snapshot"});
+    EXPECT_TRUE(c.culled.empty());
+    const std::vector<std::string> seq = order(c);
+    auto at = [&](const char* n) { return std::find(seq.begin(), seq.end(), n) - seq.begin(); };
+    EXPECT_LT(at("gbuffer"), at("mirror.composite"));
+    EXPECT_LT(at("mirror.composite"), at("probes.composite"));
+    EXPECT_LT(at("probes.composite"), at("luminance"));
+    EXPECT_EQ(find(c, "luminance").accesses[0].version, 2u) << "reads the snapshot after both composites";
+    const auto& b = find(c, "probes.composite").barriersBefore;
+    EXPECT_TRUE(std::any_of(b.begin(), b.end(), [](const Barrier& x) {
+        return sameBarrier(x, "snapshot", Usage::StorageWrite, Usage::ColorAttachment);
+    }));
+    EXPECT_NE(find(c, "mirror.composite").keptBecause.find("'probes.composite'"), std::string::npos)
+        << find(c, "mirror.composite").keptBecause;
+}
+
+TEST(Graph, ReaderBetweenUpdatersSeesItsVersionAndRunsBeforeTheNextUpdate) {
+    RenderGraph g;
+    for (const char* r : {"color", "histogram"}) g.addResource(image(r));
+    g.addPass(pass("draw", {writes("color", Usage::ColorAttachment)}));
+    g.addPass(pass("measure", {reads("color", Usage::Sampled), writes("histogram", Usage::StorageWrite)}));
+    g.addPass(pass("overlay", {updates("color", Usage::ColorAttachment)}));
+    const CompiledGraph c = compileFor(g, {"color", "histogram"});
+    EXPECT_EQ(order(c), (std::vector<std::string>{"draw", "measure", "overlay"}));
+    EXPECT_EQ(find(c, "measure").accesses[0].version, 0u);
+    // Write after read of the same image: the overlay waits for the sampling to finish.
+    const auto& b = find(c, "overlay").barriersBefore;
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_TRUE(sameBarrier(b[0], "color", Usage::Sampled, Usage::ColorAttachment));
+
+    // Only the final version asked for: the reader of version 0 is culled, the chain is not.
+    const CompiledGraph only = compileFor(g, {"color"});
+    EXPECT_EQ(order(only), (std::vector<std::string>{"draw", "overlay"}));
+    ASSERT_EQ(only.culled.size(), 1u);
+    EXPECT_EQ(only.culled[0].name, "measure");
+}
+
+TEST(Graph, UpdaterOfAnImportRunsAfterTheImportsEarlierReaders) {
+    RenderGraph g;
+    g.addResource(image("lut", Size::absolute(16, 16), true));
+    g.addResource(image("out"));
+    g.addPass(pass("use", {reads("lut", Usage::Sampled), writes("out", Usage::StorageWrite)}));
+    g.addPass(pass("refine", {updates("lut", Usage::StorageWrite)}));
+    const CompiledGraph c = compileFor(g, {"out", "lut"});
+    EXPECT_EQ(order(c), (std::vector<std::string>{"use", "refine"}));
+    EXPECT_EQ(find(c, "use").accesses[0].version, 0u) << "the host's upload";
+    EXPECT_TRUE(sameBarrier(find(c, "use").barriersBefore[0], "lut", Usage::TransferDst, Usage::Sampled));
+}
+
+TEST(Graph, WriteAfterReadCycleIsNamed) {
+    // 'probe' reads version 0 of 'colour' and 'cubes', which the update of 'colour' makes: the
+    // update must run both after and before 'probe'.
+    RenderGraph h;
+    for (const char* r : {"colour", "cubes", "stats"}) h.addResource(image(r));
+    h.addPass(pass("draw", {writes("colour", Usage::ColorAttachment)}));
+    h.addPass(pass("probe", {reads("colour", Usage::Sampled), reads("cubes", Usage::Sampled),
+                             writes("stats", Usage::StorageWrite)}));
+    h.addPass(pass("composite", {updates("colour", Usage::StorageWrite), writes("cubes", Usage::StorageWrite)}));
+    expectGraphError([&] { compileFor(h, {"stats", "colour"}); },
+                     {"cycle", "'probe'", "'composite'", "reads 'colour' before 'composite' updates it", "'cubes'"});
 }
 
 TEST(Graph, MissingProducerNamesPassAndResource) {
