@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> compareDirs;
     std::string compareOut;
     bool compareNoPlots = false;
-    compare->add_option("OUTDIR", compareDirs, "Experiment output folders (each with results.json)")->required();
+    compare->add_option("OUTDIR", compareDirs, "Experiment output folders (each with results.json; a sweep's folder counts as all its variants)")->required();
     compare->add_option("-o,--out", compareOut, "Where compare.html, compare.md and compare.csv go")
         ->required()
         ->type_name("OUT");

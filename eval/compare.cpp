@@ -115,8 +115,27 @@ Table paretoTable(const std::vector<const ComparedRun*>& group, std::size_t scen
     return t;
 }
 
-std::vector<ComparedRun> loadComparedRuns(const std::vector<fs::path>& dirs) {
-    if (dirs.empty()) throw InputError("compare", "needs at least one experiment folder");
+std::vector<fs::path> experimentFolders(const fs::path& dir) {
+    const fs::path file = dir / "sweep.json";
+    if (!fs::is_regular_file(file)) return {dir};
+    std::ifstream in(file);
+    if (!in) throw InputError(file, "cannot read");
+    std::vector<fs::path> folders;
+    try {
+        const Json sweep = Json::parse(in);
+        for (const Json& v : sweep.at("variants")) folders.push_back(dir / v.at("folder").get<std::string>());
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError(file, fmt::format("not a sweep's index: {}", e.what()));
+    }
+    if (folders.empty()) throw InputError(file, "the sweep has no finished variant yet");
+    return folders;
+}
+
+std::vector<ComparedRun> loadComparedRuns(const std::vector<fs::path>& given) {
+    if (given.empty()) throw InputError("compare", "needs at least one experiment folder");
+    std::vector<fs::path> dirs;
+    for (const fs::path& dir : given)
+        for (fs::path& folder : experimentFolders(dir)) dirs.push_back(std::move(folder));
     std::vector<ComparedRun> runs;
     std::vector<std::map<std::string, std::string>> flat;
     for (const fs::path& dir : dirs) {

@@ -23,8 +23,14 @@ struct ComparedRun {
     std::string label;  // "snapshot.blur_radius=2", or the folder's name when nothing differs
 };
 
+// The experiment folders `dir` stands for: a sweep's output folder (it holds sweep.json) stands for
+// its variants' folders, in sweep order; any other folder for itself. InputError names sweep.json
+// when it is malformed.
+std::vector<std::filesystem::path> experimentFolders(const std::filesystem::path& dir);
+
 // Reads each dir/results.json (InputError naming the file when missing or malformed) and works
-// out the settings that differ between them. Needs at least one folder.
+// out the settings that differ between them; a sweep's folder counts as all its variants (so a
+// sweep compares with another sweep or a single run). Needs at least one folder.
 std::vector<ComparedRun> loadComparedRuns(const std::vector<std::filesystem::path>& dirs);
 
 // The renders of one scene's runs that no other render beats in both time and error (% pixels above

@@ -57,13 +57,8 @@ void rebuildReport(const fs::path& outDir, bool plots) {
         writeReport(outDir, readJsonFile(outDir / "results.json"), plots);
         return;
     }
-    const Json sweep = readJsonFile(outDir / "sweep.json");
-    std::vector<fs::path> dirs;
-    for (const Json& v : sweep.at("variants")) {
-        const fs::path dir = outDir / v.at("folder").get<std::string>();
-        writeReport(dir, readJsonFile(dir / "results.json"), plots);
-        dirs.push_back(dir);
-    }
+    const std::vector<fs::path> dirs = experimentFolders(outDir);
+    for (const fs::path& dir : dirs) writeReport(dir, readJsonFile(dir / "results.json"), plots);
     writeComparison(dirs, outDir, kSweepFiles, plots);
 }
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages aamap needs, and only those missing: quick when all are present.
+#   tools/install-deps.sh        everything: build, run, and the whole test suite (tools/test.sh)
+#   tools/install-deps.sh run    only what building the aamap binary and running it need (tools/setup.sh)
 set -euo pipefail
 
-packages=(
+run_packages=(
   # toolchain
   build-essential cmake ninja-build pkg-config git
   # Vulkan: loader, headers, Mesa lavapipe (CPU device), validation layer, shader compiler
@@ -11,15 +13,22 @@ packages=(
   libglm-dev libembree-dev libtbb-dev libopenexr-dev libtinygltf-dev libtinyobjloader-dev
   libglfw3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev libstb-dev
   libpugixml-dev libassimp-dev
+  # the report's plots (the venv is made by tools/python-env.sh)
+  python3 python3-venv
+)
+test_packages=(
   # tests and benchmarks (xvfb + xauth: a virtual display for the viewer test, xvfb-run)
   libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
   # the report page test (ctest -L browser): report.html in headless Chromium
   chromium
   # sanitizer build and libFuzzer targets (the asan preset): clang and its runtime libraries
   clang libclang-rt-14-dev
-  # plots and metric cross-checks (the venv is made by tools/python-env.sh)
-  python3 python3-venv
 )
+case "${1:-all}" in
+  run) packages=("${run_packages[@]}") ;;
+  all) packages=("${run_packages[@]}" "${test_packages[@]}") ;;
+  *) echo "install-deps: error: unknown set '$1' (run or all)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

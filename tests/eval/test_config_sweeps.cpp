@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "eval/config.h"
+#include "eval/compare.h"
 #include "eval/sweep_runner.h"
 #include "tests/eval/fake_backend.h"
 
@@ -111,6 +112,22 @@ TEST(ConfigSweeps, VariantsShareOneCacheAndOneReport) {
     fs::remove(out / "report.md");
     rebuildReport(out, false);
     EXPECT_TRUE(fs::is_regular_file(out / "report.md"));
+    // `aamap compare` takes the sweep's folder as all its variants, in sweep order.
+    const std::vector<ComparedRun> runs = loadComparedRuns({out});
+    ASSERT_EQ(runs.size(), e.folders.size());
+    for (std::size_t i = 0; i < runs.size(); ++i) EXPECT_EQ(runs[i].dir, out / e.folders[i]);
+    EXPECT_FALSE(runs[0].differs.empty()) << "the swept key tells the variants apart";
+    writeComparison({out}, out / "cmp", {}, false);
+    EXPECT_TRUE(fs::is_regular_file(out / "cmp" / "compare.csv"));
+    // A malformed index is an error naming it, and nothing is written.
+    std::ofstream(out / "sweep.json") << "{\"variants\": 3}";
+    try {
+        writeComparison({out}, out / "cmp2", {}, false);
+        ADD_FAILURE() << "a malformed sweep.json must be an error";
+    } catch (const InputError& err) {
+        EXPECT_NE(std::string(err.what()).find("sweep.json"), std::string::npos) << err.what();
+    }
+    EXPECT_FALSE(fs::exists(out / "cmp2"));
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 // Mutated input must give a Scene or an InputError, never a crash or another exception.
+#include <cmath>
 #include <random>
+
+#include <glm/geometric.hpp>
 
 #include <gtest/gtest.h>
 
@@ -41,15 +44,31 @@ TEST(Robustness, MutatedObjAndMtl) {
     EXPECT_GT(rejected, 0);
 }
 
+// Every view a mutated line parses to is usable: a finite position, a unit direction and an up
+// vector not parallel to it, fields of view in (0, 180) degrees, finite shifts; and the error of
+// a rejected line names the file and line.
 TEST(Robustness, MutatedViewLines) {
     const std::string line = "rview -vtv -vp 0 1 3.9 -vd 0 0 -1 -vu 0 1 0 -vh 39.3 -vv 39.3 -vs 0 -vl 0";
     std::mt19937 rng(777);
+    int parsed = 0, rejected = 0;
     for (int i = 0; i < 2000; ++i) {
         try {
-            parseViewText(mutate(line, rng), "m.vf");
-        } catch (const InputError&) {
+            for (const View& v : parseViewText(mutate(line, rng), "m.vf")) {
+                for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(v.position[k]) && std::isfinite(v.direction[k]));
+                ASSERT_NEAR(glm::length(v.direction), 1.0f, 1e-4f);
+                ASSERT_LT(std::abs(glm::dot(glm::normalize(v.up), v.direction)), 1.0f - 1e-6f);
+                ASSERT_TRUE(v.horizontalFovDeg > 0.0f && v.horizontalFovDeg < 180.0f) << v.horizontalFovDeg;
+                ASSERT_TRUE(v.verticalFovDeg > 0.0f && v.verticalFovDeg < 180.0f) << v.verticalFovDeg;
+                ASSERT_TRUE(std::isfinite(v.shiftX) && std::isfinite(v.shiftY));
+                ++parsed;
+            }
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("m.vf"), std::string::npos) << e.what();
+            ++rejected;
         }
     }
+    EXPECT_GT(parsed, 0);
+    EXPECT_GT(rejected, 0);
 }
 
 }  // namespace
