@@ -138,6 +138,8 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.shading.areaLightSamples = hv.integer("area_light_samples");
     c.shading.mode = hv.choice("mode");
     c.shading.maxDepth = hv.integer("max_depth");
+    c.shading.maxDepthGiven = shading.has("max_depth");
+    c.shading.rouletteDepthGiven = shading.has("roulette_depth");
     c.shading.russianRoulette = hv.boolean("russian_roulette");
     c.shading.rouletteDepth = hv.integer("roulette_depth");
     c.shading.maxSpecularDepth = hv.integer("max_specular_depth");
@@ -235,6 +237,12 @@ Json snapshotJson(const ExperimentConfig& c) {
     return j;
 }
 
+// A Mitsuba scene file says how it is rendered (film size, integrator depths): what the config
+// leaves out, the file decides.
+bool sceneDecidesRendering(const ExperimentConfig& c) {
+    return !c.scene.starts_with("builtin:") && c.scene.ends_with(".xml");
+}
+
 // What every image of the experiment depends on, with paths resolved. forKey: for one render's
 // cache key, which leaves out what its shading mode never reads (the cache outside cache mode).
 Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = "", bool forKey = false) {
@@ -244,6 +252,12 @@ Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = ""
             {"max_depth", s.maxDepth}, {"russian_roulette", s.russianRoulette}, {"roulette_depth", s.rouletteDepth},
             {"max_specular_depth", s.maxSpecularDepth}, {"light_selection", s.lightSelection},
             {"light_sampling", s.lightSampling}};
+    // A Mitsuba file's own integrator decides the depths the config leaves out; the key then
+    // follows the file's contents (scene_content) instead of the value.
+    if (forKey && sceneDecidesRendering(c)) {
+        if (!s.maxDepthGiven) j["max_depth"] = "scene";
+        if (!s.rouletteDepthGiven) j["roulette_depth"] = "scene";
+    }
     if (s.textureFilter != "anisotropic") j["texture_filter"] = s.textureFilter;  // else configs keep their hash
     // The cache's settings only when they differ from the defaults: other configs keep their keys.
     if (!(s.cache == ShadingConfig::Cache{}) && (!forKey || mode == "cache"))
@@ -280,7 +294,7 @@ Json sceneJson(const ExperimentConfig& c) {
     for (const LightConfig& l : c.lights)
         if (!l.map.empty()) maps.push_back(fileDigest(l.map));
     if (!maps.empty()) j["light_map_content"] = maps;
-    if (!c.image.sizeGiven && !c.scene.starts_with("builtin:") && c.scene.ends_with(".xml"))
+    if (!c.image.sizeGiven && sceneDecidesRendering(c))
         j["image"]["size"] = "scene";  // the Mitsuba film's size, which the file decides
     return j;
 }

@@ -68,6 +68,9 @@ struct ShadingConfig {
     int maxDepth = 5;             // path: longest path in segments
     bool russianRoulette = true;  // path
     int rouletteDepth = 5;        // path: roulette from this segment on
+    // Written in the config (or --set): else a scene file's own integrator depths win
+    // (withSceneRenderSettings in eval/experiment.h).
+    bool maxDepthGiven = false, rouletteDepthGiven = false;
     int maxSpecularDepth = 8;     // direct/cache: mirror and glass bounces
     std::string lightSelection = "contribution";  // contribution | power: which light a shadow ray goes to
     std::string lightSampling = "auto";           // auto | solid_angle | area: where an area light's samples go

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <glm/geometric.hpp>
 #include <spdlog/spdlog.h>
 
@@ -30,6 +31,7 @@
 #include "eval/runner.h"
 #include "eval/strategy_settings.h"
 #include "tracer/block_sums.h"
+#include "tracer/shading_params.h"
 #include "tracer/tracer.h"
 
 namespace aamap {
@@ -137,6 +139,8 @@ public:
         scene_ = std::move(prepared.scene);
         view_ = prepared.view;
         SceneInfo info;
+        effective_ = withSceneRenderSettings(config_, scene_, info.warnings);
+        for (const std::string& note : info.warnings) spdlog::info("{}", note);
         info.loadSeconds = prepared.loadSeconds;
         info.viewLabel = prepared.viewLabel;
         info.width = prepared.width;
@@ -262,7 +266,7 @@ public:
 
     TraceOutput trace(const RenderConfig& render, const ImageGrey* aamap,
                       const std::function<void(int, int)>& progress) override {
-        TraceSettings ts = traceSettingsFor(config_, render, info_.width, info_.height, options_.threads);
+        TraceSettings ts = traceSettingsFor(effective_, render, info_.width, info_.height, options_.threads);
         ts.onTileDone = progress;
         StrategySettings ss = toStrategySettings(render, aamap);
         ss.exposure = static_cast<float>(config_.image.exposure);  // display-space tests (Space's gradients)
@@ -292,6 +296,7 @@ public:
 
 private:
     const ExperimentConfig& config_;
+    ExperimentConfig effective_;  // with what the scene file decides (withSceneRenderSettings)
     RunOptions options_;
     Scene scene_;
     View view_;
@@ -319,6 +324,40 @@ PreparedScene prepareScene(const ExperimentConfig& config) {
     p.view = pickView(config, p.scene, p.viewLabel, width, height);
     std::tie(p.width, p.height) = fitResolution(p.view, width, height);
     return p;
+}
+
+ExperimentConfig withSceneRenderSettings(const ExperimentConfig& config, const Scene& scene,
+                                         std::vector<std::string>& notes) {
+    ExperimentConfig c = config;
+    const SceneRenderSettings& r = scene.render;
+    const std::string from = fmt::format("the scene file's <integrator type=\"{}\"> ({})", r.integrator, r.at);
+    if (!r.integrator.empty()) {
+        std::vector<std::string> applied;
+        if (!c.shading.maxDepthGiven) {
+            // Unlimited in the file: the longest path the config allows, where roulette ends it.
+            c.shading.maxDepth = std::min(r.maxDepth.value_or(kMaxPathDepth), kMaxPathDepth);
+            applied.push_back(fmt::format("shading.max_depth {}{}", c.shading.maxDepth,
+                                          r.maxDepth ? "" : " (unlimited there)"));
+        }
+        if (!c.shading.rouletteDepthGiven && r.rrDepth) {
+            c.shading.rouletteDepth = *r.rrDepth;
+            applied.push_back(fmt::format("shading.roulette_depth {}", c.shading.rouletteDepth));
+        }
+        if (!applied.empty())
+            notes.push_back(fmt::format("{} from {}; the config's own values win", fmt::join(applied, " and "), from));
+        if (r.hideEmitters)
+            notes.push_back(fmt::format("{} hides directly visible emitters; aamap shows them", from));
+    }
+    if (r.sampleCount)
+        notes.push_back(fmt::format("the scene file's sampler asks {} samples per pixel; each render's rays per pixel "
+                                    "come from the config (renders[].rpp)",
+                                    *r.sampleCount));
+    const bool filterAsFile = r.filter.empty() || r.filter == c.image.filter;
+    if (!filterAsFile)
+        notes.push_back(fmt::format("the scene file's film filters pixels with a '{}' filter; the renders use "
+                                    "image.filter {} (set image.filter to match it)",
+                                    r.filter, c.image.filter));
+    return c;
 }
 
 SnapshotSettings snapshotSettingsFor(const ExperimentConfig& config) { return snapshotSettings(config); }

@@ -63,6 +63,11 @@ struct PreparedScene {
     double loadSeconds = 0;
 };
 PreparedScene prepareScene(const ExperimentConfig& config);  // throws InputError naming the config line
+// The config with what the scene file decides where the config is silent (a Mitsuba integrator's
+// max_depth and rr_depth), and in `notes` one sentence per render setting of the file: applied,
+// or not applied and why (its sample count, pixel filter, hidden emitters).
+ExperimentConfig withSceneRenderSettings(const ExperimentConfig& config, const Scene& scene,
+                                         std::vector<std::string>& notes);
 // snapshot.* (and image.exposure for the greyscale) as the Snapshot's settings.
 SnapshotSettings snapshotSettingsFor(const ExperimentConfig& config);
 // One render's tracer settings at width x height; threads >= 0 overrides the config's.

@@ -128,12 +128,20 @@ void addSensor(const Element& sensor, Scene& scene, Warnings& warnings) {
         fail(sensor, fmt::format("sensor type '{}' is not supported (only perspective and thinlens)", type));
     }
     int width = 768, height = 576;
+    const bool first = scene.views.empty();  // the scene's render settings come from its first sensor
     for (const Element& c : sensor.children) {
+        if (c.tag == "sampler" && first) {
+            const int spp = integerProperty(c, "sample_count", 4);
+            if (spp < 1) fail(c, fmt::format("sample_count {} is not positive", spp));
+            scene.render.sampleCount = spp;
+        }
         if (c.tag != "film") continue;
         width = integerProperty(c, "width", width);
         height = integerProperty(c, "height", height);
         if (width < 1 || height < 1 || width > 16384 || height > 16384)
             fail(c, fmt::format("film size {} x {} is outside 1..16384", width, height));
+        for (const Element& f : c.children)
+            if (f.tag == "rfilter" && first) scene.render.filter = f.type();
     }
     double fov = 0.0;
     if (sensor.property("fov") != nullptr) {

@@ -30,9 +30,10 @@ public:
             else if (e.tag == "medium") ignoreMedium(e);
             else if (e.tag == "bsdf" || e.tag == "texture") {
                 if (e.id().empty()) fail(e, fmt::format("a top-level <{}> needs an id for shapes to <ref> it", e.tag));
-            } else if (e.tag == "integrator" || e.tag == "sampler" || e.tag == "film" || e.tag == "rfilter") {
-                spdlog::debug("{}:{}: <{}> is not read; the experiment config decides how to render", e.file.string(),
-                              e.line, e.tag);
+            } else if (e.tag == "integrator") {
+                readIntegrator(e, 0);
+            } else if (e.tag == "sampler" || e.tag == "film" || e.tag == "rfilter") {
+                spdlog::debug("{}:{}: a top-level <{}> is not read (a sensor's is)", e.file.string(), e.line, e.tag);
             } else {
                 fail(e, fmt::format("unexpected <{}> in <scene>", e.tag));
             }
@@ -44,6 +45,31 @@ public:
     std::size_t degenerate() const { return degenerate_; }
 
 private:
+    // The path-tracing settings of the first integrator that has them: a wrapper (aov, moment,
+    // stokes) holds the one that renders. Mitsuba's defaults apply to what the file leaves out.
+    void readIntegrator(const Element& e, int depth) {
+        SceneRenderSettings& r = scene_.render;
+        if (!r.integrator.empty()) return;
+        const std::string type = e.type();
+        for (const Element& c : e.children)
+            if (c.tag == "integrator" && depth < kMaxInstanceDepth) readIntegrator(c, depth + 1);
+        if (!r.integrator.empty()) return;  // a nested one rendered
+        r.integrator = type;
+        r.at = fmt::format("{}:{}", e.file.string(), e.line);
+        r.hideEmitters = booleanProperty(e, "hide_emitters", false);
+        if (type == "direct") {
+            r.maxDepth = 2;  // emitted and direct light: a path of two segments
+            return;
+        }
+        const int maxDepth = integerProperty(e, "max_depth", -1);
+        if (maxDepth < -1 || maxDepth == 0)
+            fail(e, fmt::format("max_depth {} is not -1 (unlimited) or a positive depth", maxDepth));
+        if (maxDepth > 0) r.maxDepth = maxDepth;
+        const int rrDepth = integerProperty(e, "rr_depth", 5);
+        if (rrDepth < 1) fail(e, fmt::format("rr_depth {} is not positive", rrDepth));
+        r.rrDepth = rrDepth;
+    }
+
     void ignoreMedium(const Element& e) {
         warnings_.once("medium", fmt::format("{}:{}: participating media are ignored", e.file.string(), e.line));
     }

@@ -122,6 +122,19 @@ struct Texture {
     std::vector<float> rgba;  // linear, row 0 at the top
 };
 
+// How the scene file asks to be rendered (a Mitsuba <integrator>, its sensor's <sampler> and
+// <rfilter>). The experiment config's own settings win; eval/experiment.cpp applies the rest and
+// says which.
+struct SceneRenderSettings {
+    std::string integrator;         // its type ("path", "direct", ...); "" when the file names none
+    std::string at;                 // "file:line" of the integrator
+    std::optional<int> maxDepth;    // longest path in segments; unset: unlimited (Mitsuba's -1)
+    std::optional<int> rrDepth;     // Russian roulette from this depth on
+    bool hideEmitters = false;      // directly visible emitters rendered black
+    std::optional<int> sampleCount;  // the sampler's samples per pixel
+    std::string filter;             // the film's rfilter type; "" when the file names none
+};
+
 struct Scene {
     std::string name;
     std::filesystem::path source;  // file it was loaded from, "" for built-in scenes
@@ -134,6 +147,7 @@ struct Scene {
     std::optional<EnvironmentLight> environment;  // at most one sky
     std::vector<View> views;  // views that came with the scene (glTF cameras, built-in default view)
     int imageWidth = 0, imageHeight = 0;  // the image size the scene file asks for (a Mitsuba film); 0: none
+    SceneRenderSettings render;           // the rest of how the file asks to be rendered
 
     bool hasTextures() const { return !textures.empty(); }
 };

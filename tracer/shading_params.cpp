@@ -8,9 +8,11 @@ const std::vector<ParamSpec>& shadingParams() {
     static const std::vector<ParamSpec> params = {
         intParam("area_light_samples", 1, 4096, 16, "shadow rays per area light per hit"),
         choiceParam("mode", {"direct", "path", "cache"}, "direct light, path tracing or an irradiance cache"),
-        intParam("max_depth", 1, 1024, 5, "path: longest path in segments"),
+        intParam("max_depth", 1, kMaxPathDepth, 5,
+                 "path: longest path in segments; unset: a Mitsuba scene file's integrator decides"),
         boolParam("russian_roulette", true, "path"),
-        intParam("roulette_depth", 1, 1024, 5, "path: roulette from this segment on"),
+        intParam("roulette_depth", 1, kMaxPathDepth, 5,
+                 "path: roulette from this segment on; unset: a Mitsuba scene file's integrator decides"),
         intParam("max_specular_depth", 0, 1024, 8, "direct/cache: mirror and glass bounces"),
         choiceParam("light_selection", {"contribution", "power"}, "which light a shadow ray goes to"),
         choiceParam("light_sampling", {"auto", "solid_angle", "area"},

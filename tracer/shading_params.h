@@ -8,6 +8,9 @@
 
 namespace aamap {
 
+// The longest path shading.max_depth allows (a scene file's unlimited depth becomes this).
+inline constexpr int kMaxPathDepth = 1024;
+
 const std::vector<ParamSpec>& shadingParams();
 const std::vector<ParamSpec>& shadingCacheParams();
 

@@ -65,7 +65,7 @@ struct ViewerSession::TraceJob {
 ViewerSession::ViewerSession(VulkanContext& context, const ExperimentConfig& config, PreparedScene prepared,
                              const RenderConfig& render, int threads)
     : context_(context),
-      config_(config),
+      config_(withSceneRenderSettings(config, prepared.scene, sceneNotes_)),
       prepared_(std::move(prepared)),
       baseRender_(render),
       threads_(threads),
@@ -74,6 +74,7 @@ ViewerSession::ViewerSession(VulkanContext& context, const ExperimentConfig& con
       camera_(prepared_.view, pivotDistanceFor(prepared_.scene, prepared_.view)),
       snapshotRenderer_(context, prepared_.scene),
       tracer_(prepared_.scene) {
+    for (const std::string& note : sceneNotes_) spdlog::info("{}", note);
     params_.blurRadius = config.snapshot.blurRadius;
     params_.noiseFloor = config.snapshot.noiseFloor;
     params_.strata = render.strata();

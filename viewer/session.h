@@ -79,7 +79,8 @@ private:
     RenderConfig renderFromParams() const;
 
     VulkanContext& context_;
-    const ExperimentConfig& config_;
+    std::vector<std::string> sceneNotes_;  // what the scene file decides (withSceneRenderSettings)
+    ExperimentConfig config_;              // the config with it
     PreparedScene prepared_;
     RenderConfig baseRender_;
     int threads_;

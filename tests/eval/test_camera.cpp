@@ -1,5 +1,6 @@
 // The config's camera key and the views prepareScene picks: camera, view file, the scene's own
 // views, or a framed view; and the image size a Mitsuba film gives.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -123,6 +124,56 @@ TEST_F(Files, MitsubaFilmIsTheDefaultImageSize) {
     // The key says the size comes from the scene, so an explicit 512 x 512 is a different render.
     const ExperimentConfig fromScene = loadConfig(cfg), explicitSize = loadConfig(cfg, {"image.width=512"});
     EXPECT_NE(renderKey(fromScene, fromScene.renders[0]), renderKey(explicitSize, explicitSize.renders[0]));
+}
+
+TEST_F(Files, MitsubaIntegratorDecidesTheDepthsTheConfigLeavesOut) {
+    write("scene.xml", R"(<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="65"/><integer name="rr_depth" value="9"/>
+    <boolean name="hide_emitters" value="true"/></integrator>
+  <sensor type="perspective"><float name="fov" value="50"/>
+    <sampler type="independent"><integer name="sample_count" value="64"/></sampler>
+    <film type="hdrfilm"><rfilter type="gaussian"/></film>
+  </sensor>
+  <shape type="cube"><transform name="to_world"><translate z="5"/></transform></shape>
+</scene>
+)");
+    const fs::path cfg = write("exp.yaml", "scene: scene.xml\n" + kRenders);
+    const ExperimentConfig silent = loadConfig(cfg);
+    const PreparedScene p = prepareScene(silent);
+    std::vector<std::string> notes;
+    const ExperimentConfig effective = withSceneRenderSettings(silent, p.scene, notes);
+    EXPECT_EQ(effective.shading.maxDepth, 65);
+    EXPECT_EQ(effective.shading.rouletteDepth, 9);
+    auto noted = [&](const std::string& needle) {
+        return std::any_of(notes.begin(), notes.end(), [&](const std::string& n) { return n.find(needle) != n.npos; });
+    };
+    EXPECT_TRUE(noted("shading.max_depth 65 and shading.roulette_depth 9 from the scene file's <integrator "
+                      "type=\"path\">"));
+    EXPECT_TRUE(noted("hides directly visible emitters"));
+    EXPECT_TRUE(noted("asks 64 samples per pixel"));
+    EXPECT_TRUE(noted("'gaussian' filter"));
+
+    // The config's own values win, and only what the config leaves out is noted as applied.
+    const ExperimentConfig given = loadConfig(cfg, {"shading.max_depth=7", "image.filter=gaussian"});
+    notes.clear();
+    const ExperimentConfig mixed = withSceneRenderSettings(given, p.scene, notes);
+    EXPECT_EQ(mixed.shading.maxDepth, 7);
+    EXPECT_EQ(mixed.shading.rouletteDepth, 9);
+    EXPECT_TRUE(noted("shading.roulette_depth 9 from"));
+    EXPECT_FALSE(noted("shading.max_depth"));
+    EXPECT_FALSE(noted("filter"));
+
+    // The key follows the file when the file decides: an explicit depth is another render.
+    const ExperimentConfig explicitDepth = loadConfig(cfg, {"shading.max_depth=65"});
+    EXPECT_NE(renderKey(silent, silent.renders[0]), renderKey(explicitDepth, explicitDepth.renders[0]));
+
+    // Without an integrator the config's defaults stand, unnoted.
+    write("plain.xml", "<scene version=\"3.0.0\"><shape type=\"cube\"/></scene>\n");
+    const ExperimentConfig plain = loadConfig(write("plain.yaml", "scene: plain.xml\n" + kRenders));
+    notes.clear();
+    const ExperimentConfig same = withSceneRenderSettings(plain, prepareScene(plain).scene, notes);
+    EXPECT_EQ(same.shading.maxDepth, plain.shading.maxDepth);
+    EXPECT_TRUE(notes.empty());
 }
 
 }  // namespace

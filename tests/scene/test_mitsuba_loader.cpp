@@ -93,6 +93,42 @@ TEST_F(Mitsuba, Version05CamelCaseNamesAndDefaultFilm) {
     EXPECT_EQ(s.imageHeight, 576);
 }
 
+TEST_F(Mitsuba, IntegratorSamplerAndFilterSayHowTheFileRenders) {
+    // Mitsuba 0.5 names, a path tracer inside an aov wrapper, the first sensor's sampler and filter.
+    const Scene s = load(R"(<integrator type="aov">
+  <integrator type="path"><integer name="maxDepth" value="65"/><integer name="rrDepth" value="12"/>
+    <boolean name="hideEmitters" value="true"/></integrator>
+</integrator>
+<sensor type="perspective"><float name="fov" value="40"/>
+  <sampler type="independent"><integer name="sampleCount" value="64"/></sampler>
+  <film type="hdrfilm"><rfilter type="gaussian"/></film>
+</sensor>
+)", nullptr, "0.5.0");
+    EXPECT_EQ(s.render.integrator, "path");
+    EXPECT_EQ(s.render.maxDepth, 65);
+    EXPECT_EQ(s.render.rrDepth, 12);
+    EXPECT_TRUE(s.render.hideEmitters);
+    EXPECT_EQ(s.render.sampleCount, 64);
+    EXPECT_EQ(s.render.filter, "gaussian");
+    EXPECT_NE(s.render.at.find("scene.xml:"), std::string::npos) << s.render.at;
+
+    // Mitsuba's defaults: unlimited depth, roulette from 5; direct light is a path of two segments.
+    const Scene unlimited = load("<integrator type=\"volpath\"/>\n");
+    EXPECT_FALSE(unlimited.render.maxDepth.has_value());
+    EXPECT_EQ(unlimited.render.rrDepth, 5);
+    EXPECT_EQ(load("<integrator type=\"direct\"/>\n").render.maxDepth, 2);
+    const Scene none = load("");
+    EXPECT_TRUE(none.render.integrator.empty());
+    EXPECT_FALSE(none.render.maxDepth.has_value());
+
+    // Depths Mitsuba would refuse are errors naming the line.
+    EXPECT_NE(error("<integrator type=\"path\"><integer name=\"max_depth\" value=\"0\"/></integrator>\n")
+                  .find("max_depth 0"),
+              std::string::npos);
+    EXPECT_NE(error("<integrator type=\"path\"><integer name=\"rr_depth\" value=\"-2\"/></integrator>\n").find(":2"),
+              std::string::npos);
+}
+
 TEST_F(Mitsuba, TransformsApplyInOrder) {
     // Scale by 2, then rotate 90 degrees about +Z, then translate: the rectangle [-1,1]^2 becomes
     // [-2,2]^2 around (10, 0, 0).
