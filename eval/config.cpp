@@ -312,7 +312,7 @@ std::string fnv1a64Hex(const std::string& text) {
 
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-8";  // bump when the image for the same settings and files changes (tracer or loader)
+    j["format"] = "aamap-render-9";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);
@@ -333,7 +333,7 @@ std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-8";  // bump as the render key
+    j["format"] = "aamap-snapshot-9";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c);
     return fnv1a64Hex(j.dump());

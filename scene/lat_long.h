@@ -1,7 +1,8 @@
 #pragma once
 // The equirectangular (latitude-longitude) map convention of EnvironmentLight (scene/scene.h),
-// Mitsuba's `envmap`: in the map's frame (+Y up), u = 0.5 + atan2(x, -z) / (2 pi) (wrapping) and
-// v = acos(y) / pi, row 0 at the top. Inline and header-only: the tracer and the Snapshot both use
+// Mitsuba's `envmap` (0.5/0.6 and 3.x alike: envmap.cpp's direction_to_uv): in the map's frame
+// (+Y up), u = atan2(x, -z) / (2 pi) (wrapping) and v = acos(y) / pi, row 0 at the top. The left
+// edge (u = 0) looks along -Z, u = 0.25 along +X, the centre column along +Z. Inline and header-only: the tracer and the Snapshot both use
 // it without linking the scene library.
 #include <algorithm>
 #include <cmath>
@@ -16,7 +17,7 @@ namespace aamap::latlong {
 // (u, v) in [0,1]^2 of a unit direction in the map's frame.
 inline glm::vec2 fromDirection(const glm::vec3& d) {
     constexpr float kPi = std::numbers::pi_v<float>;
-    float u = 0.5f + std::atan2(d.x, -d.z) * (0.5f / kPi);
+    float u = std::atan2(d.x, -d.z) * (0.5f / kPi);
     u -= std::floor(u);
     return {u, std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi};
 }
@@ -24,7 +25,7 @@ inline glm::vec2 fromDirection(const glm::vec3& d) {
 // The unit direction in the map's frame at (u, v).
 inline glm::vec3 toDirection(glm::vec2 uv) {
     constexpr float kPi = std::numbers::pi_v<float>;
-    const float phi = (uv.x - 0.5f) * 2.0f * kPi, theta = uv.y * kPi;
+    const float phi = uv.x * 2.0f * kPi, theta = uv.y * kPi;
     const float sinTheta = std::sin(theta);
     return glm::normalize(glm::vec3(sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)));
 }

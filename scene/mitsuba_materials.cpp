@@ -88,6 +88,7 @@ std::uint32_t MaterialBuilder::material(const Element* bsdf, glm::vec3 radiance)
     } else {
         m.name = "default";
         m.kd = glm::vec3(0.5f);
+        m.oneSided = true;  // Mitsuba's default BSDF is a one-sided diffuse
     }
     m.ke = radiance;
     if (radiance != glm::vec3(0.0f)) m.name += "+emitter";
@@ -109,8 +110,9 @@ int MaterialBuilder::bitmap(const Element& texture, bool coverage) {
         t.property("uoffset") != nullptr) {
         warnings_.once("texture-transform", fmt::format("{}: texture coordinate transforms are ignored", at(t)));
     }
+    // raw=true: 8-bit texels as they are (Mitsuba's default decodes sRGB); coverage is never decoded.
     const int index = coverage ? textures_.getCoverage(t.file.parent_path(), file, t.file)
-                               : textures_.get(t.file.parent_path(), file, t.file);
+                               : textures_.get(t.file.parent_path(), file, t.file, nullptr, booleanProperty(t, "raw", false));
     return index;
 }
 
@@ -150,10 +152,15 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
 
     Material m;
     m.name = bsdf.id().empty() ? type : bsdf.id();
+    // Mitsuba's reflecting BSDFs are one-sided unless wrapped in twosided (dielectrics are two-sided
+    // by nature; wrappers inherit what they wrap).
+    m.oneSided = type == "diffuse" || type == "plastic" || type == "roughplastic" || type == "conductor" ||
+                 type == "roughconductor" || type == "phong" || type == "ward";
     if (type == "diffuse") {
         m.kd = colourOrTexture(bsdf, "reflectance", glm::vec3(0.5f), &m.diffuseTexture);
     } else if (type == "twosided") {
         m = convert(*nested(true), depth + 1);
+        m.oneSided = false;
     } else if (type == "bumpmap" || type == "normalmap") {
         approximated(fmt::format("{} is ignored; the nested BSDF is used without it", type));
         m = convert(*nested(true), depth + 1);
@@ -206,8 +213,9 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
             m.ns = phongExponent(alpha);
         }
     } else if (type == "dielectric" || type == "thindielectric" || type == "roughdielectric") {
-        if (type != "dielectric") approximated(fmt::format("{} is approximated by a smooth solid dielectric", type));
+        if (type == "roughdielectric") approximated("roughdielectric is approximated by a smooth solid dielectric");
         m.kind = MaterialKind::Glass;
+        m.thin = type == "thindielectric";
         m.ior = iorProperty(bsdf, "int_ior", 1.5046f) / iorProperty(bsdf, "ext_ior", 1.000277f);
         m.ks = colourProperty(bsdf, "specular_transmittance", glm::vec3(1.0f), warnings_);
         m.kd = glm::vec3(0.0f);

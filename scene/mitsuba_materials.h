@@ -1,12 +1,13 @@
 #pragma once
 // Mitsuba BSDFs to aamap materials. What aamap represents exactly: diffuse (constant or bitmap
-// reflectance), smooth conductors as mirrors, smooth dielectrics as glass, mask as an alpha cut-out.
+// reflectance), smooth conductors as mirrors, smooth and thin dielectrics as glass, mask as an alpha
+// cut-out, and one-sidedness (a BSDF outside twosided is black from the back).
 // What it approximates (one warning per kind, naming the approximation):
 // - plastic/roughplastic: Lambert kd = diffuse_reflectance plus a Phong lobe ks =
 //   specular_reflectance * F0(int_ior / ext_ior), ns = 2 / alpha^2 - 2 (smooth: alpha 0.01);
 // - roughconductor: a Phong lobe ks = F0(eta, k) * specular_reflectance, ns = 2 / alpha^2 - 2
 //   (a mirror when alpha <= 0.05); conductor: a mirror of tint F0;
-// - thindielectric and roughdielectric: a smooth solid dielectric;
+// - roughdielectric: a smooth solid dielectric (thindielectric is exact: a thin Glass sheet);
 // - bumpmap/normalmap: ignored (the nested BSDF is used); twosided: the nested BSDF (aamap shades
 //   both sides); coating/roughcoating and blendbsdf: the (first) nested BSDF; null: fully cut out;
 // - phong/ward: kd plus a Phong lobe.

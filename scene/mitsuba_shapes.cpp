@@ -82,10 +82,15 @@ ShapeMesh plyMesh(const Element& shape) {
     return m;
 }
 
-void quad(ShapeMesh& m, glm::vec3 corner, glm::vec3 du, glm::vec3 dv) {
+// uv of the corners corner, +du, +du+dv, +dv, with v = 0 at the image's top.
+const glm::vec2 kQuadUv[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+// Mitsuba's rectangle: uv = (x, y) / 2 + 1/2 of the local point, and Mitsuba's v = 0 is the image's
+// top row as aamap's is, so local (-1, -1) shows the image's top-left texel.
+const glm::vec2 kRectangleUv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+
+void quad(ShapeMesh& m, glm::vec3 corner, glm::vec3 du, glm::vec3 dv, const glm::vec2 (&uv)[4] = kQuadUv) {
     const auto base = static_cast<std::uint32_t>(m.positions.size());
     const glm::vec3 n = glm::normalize(glm::cross(du, dv));
-    const glm::vec2 uv[4] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};  // (u, v) with v = 0 at the top
     const glm::vec3 p[4] = {corner, corner + du, corner + du + dv, corner + dv};
     for (int i = 0; i < 4; ++i) {
         m.positions.push_back(p[i]);
@@ -98,7 +103,7 @@ void quad(ShapeMesh& m, glm::vec3 corner, glm::vec3 du, glm::vec3 dv) {
 
 ShapeMesh rectangle() {
     ShapeMesh m;
-    quad(m, {-1, -1, 0}, {2, 0, 0}, {0, 2, 0});
+    quad(m, {-1, -1, 0}, {2, 0, 0}, {0, 2, 0}, kRectangleUv);
     return m;
 }
 

@@ -32,6 +32,13 @@ struct Material {
     float ns = 0.0f;      // Phong exponent
     glm::vec3 ke{0.0f};   // emitted radiance; non-zero makes its triangles area lights
     float ior = 1.5f;
+    // Glass only: a thin sheet (Mitsuba's thindielectric) that light crosses straight, without
+    // refraction: reflectance R' = 2R / (1 + R) of the single interface's R (both faces and their
+    // inter-reflections), transmittance 1 - R'.
+    bool thin = false;
+    // Reflects only from the front (Mitsuba's BSDFs outside `twosided`); the back is black. Emission
+    // is one-sided regardless. OBJ and glTF materials shade both sides.
+    bool oneSided = false;
     int diffuseTexture = -1;  // index into Scene::textures, -1 if untextured
     // Coverage (docs/architecture.md, "Alpha"): alpha = alpha * (alphaTexture's alpha channel).
     // Mask cuts out where alpha < alphaCutoff; Blend is treated as Mask at alphaCutoff = 0.5 by
@@ -94,7 +101,7 @@ struct DirectionalLight {
 // equirectangular (latitude-longitude) map. Radiance from world direction d (pointing away from
 // the scene, towards the sky) is scale * map(toLocal * d), or scale alone without a map.
 // The map's convention is Mitsuba's `envmap`, so imported scenes need no conversion: in the
-// light's local frame (+Y up), column u = 0.5 + atan2(x, -z) / (2 pi) (wrapping) and row
+// light's local frame (+Y up), column u = atan2(x, -z) / (2 pi) (wrapping) and row
 // v = acos(y) / pi, row 0 at the top (+Y).
 struct EnvironmentLight {
     std::string name;

@@ -146,7 +146,7 @@ bool decode8(const std::string& name, Decoded8& out, std::string* error) {
 
 }  // namespace
 
-std::optional<Texture> loadTexture(const fs::path& path, std::string* error) {
+std::optional<Texture> loadTexture(const fs::path& path, std::string* error, bool raw) {
     const std::string name = path.string();
     if (!supportedPnm(name, error) || !withinTexelLimit(name, error)) return std::nullopt;
     int width = 0, height = 0, channels = 0;
@@ -166,7 +166,7 @@ std::optional<Texture> loadTexture(const fs::path& path, std::string* error) {
         width = decoded.width;
         height = decoded.height;
         std::array<float, 256> toLinear{};
-        for (int i = 0; i < 256; ++i) toLinear[i] = srgbToLinear(static_cast<float>(i) / 255.0f);
+        for (int i = 0; i < 256; ++i) toLinear[i] = raw ? static_cast<float>(i) / 255.0f : srgbToLinear(static_cast<float>(i) / 255.0f);
         const std::size_t texels = static_cast<std::size_t>(width) * height;
         texture.rgba.resize(4 * texels);
         for (std::size_t i = 0; i < texels; ++i) {
@@ -201,17 +201,17 @@ std::optional<Texture> loadCoverageTexture(const fs::path& path, std::string* er
 }
 
 int TextureCache::get(const fs::path& baseDir, std::string_view name, const fs::path& referrer,
-                      std::vector<std::string>* warnings) {
-    return load(baseDir, name, referrer, warnings, false);
+                      std::vector<std::string>* warnings, bool raw) {
+    return load(baseDir, name, referrer, warnings, raw ? Kind::RawColour : Kind::Colour);
 }
 
 int TextureCache::getCoverage(const fs::path& baseDir, std::string_view name, const fs::path& referrer,
                               std::vector<std::string>* warnings) {
-    return load(baseDir, name, referrer, warnings, true);
+    return load(baseDir, name, referrer, warnings, Kind::Coverage);
 }
 
 int TextureCache::load(const fs::path& baseDir, std::string_view name, const fs::path& referrer,
-                       std::vector<std::string>* warnings, bool coverage) {
+                       std::vector<std::string>* warnings, Kind kind) {
     const auto warn = [&](const std::string& message) {
         spdlog::warn("{}", message);
         if (warnings) warnings->push_back(message);
@@ -222,10 +222,11 @@ int TextureCache::load(const fs::path& baseDir, std::string_view name, const fs:
                          name, baseDir.string()));
         return -1;
     }
-    const std::pair key(*resolved, coverage);
+    const std::pair key(*resolved, kind);
     if (const auto it = byPath_.find(key); it != byPath_.end()) return it->second;
     std::string error;
-    auto texture = coverage ? loadCoverageTexture(*resolved, &error) : loadTexture(*resolved, &error);
+    auto texture = kind == Kind::Coverage ? loadCoverageTexture(*resolved, &error)
+                                          : loadTexture(*resolved, &error, kind == Kind::RawColour);
     if (!texture) {
         warn(fmt::format("{}: texture '{}' could not be decoded ({}); using the plain colour instead",
                          referrer.string(), resolved->string(), error));

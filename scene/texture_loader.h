@@ -18,9 +18,10 @@ namespace aamap {
 std::optional<std::filesystem::path> resolveCaseInsensitive(const std::filesystem::path& baseDir, std::string_view name);
 
 // Decodes an image with stb_image to linear RGBA floats, row 0 at the top. 8-bit images are taken
-// to be sRGB-encoded (colour channels linearised, alpha left as is); .hdr files are already linear.
+// to be sRGB-encoded (colour channels linearised, alpha left as is) unless `raw` (Mitsuba's
+// bitmap raw=true: the values / 255 as they are); .hdr files are already linear.
 // On failure returns nullopt and sets `error`.
-std::optional<Texture> loadTexture(const std::filesystem::path& path, std::string* error = nullptr);
+std::optional<Texture> loadTexture(const std::filesystem::path& path, std::string* error = nullptr, bool raw = false);
 
 // Decodes a coverage map (MTL map_d) to a texture whose alpha channel is the coverage: the image's
 // alpha channel if it has one, else its first channel. Coverage is data, not colour: no sRGB decode.
@@ -33,18 +34,20 @@ public:
 
     // Index into the scene's textures, or -1 (after a spdlog warning naming the texture and the
     // referring file, also appended to `warnings` if given) when it is missing or unreadable.
+    // raw: no sRGB decode of 8-bit images (loadTexture); cached apart from the decoded texture.
     int get(const std::filesystem::path& baseDir, std::string_view name, const std::filesystem::path& referrer,
-            std::vector<std::string>* warnings = nullptr);
+            std::vector<std::string>* warnings = nullptr, bool raw = false);
     // The same for a coverage map (loadCoverageTexture), cached apart from colour textures.
     int getCoverage(const std::filesystem::path& baseDir, std::string_view name, const std::filesystem::path& referrer,
                     std::vector<std::string>* warnings = nullptr);
 
 private:
+    enum class Kind { Colour, Coverage, RawColour };
     int load(const std::filesystem::path& baseDir, std::string_view name, const std::filesystem::path& referrer,
-             std::vector<std::string>* warnings, bool coverage);
+             std::vector<std::string>* warnings, Kind kind);
 
     std::vector<Texture>& textures_;
-    std::map<std::pair<std::filesystem::path, bool>, int> byPath_;  // (path, coverage)
+    std::map<std::pair<std::filesystem::path, Kind>, int> byPath_;
 };
 
 }  // namespace aamap

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes a synthetic lat-long sky as a Radiance HDR (flat RGBE, no dependencies): a blue
 gradient sky, a dim ground and a small sun disc, in the EnvironmentLight convention
-(docs/lights.md: row 0 at the top, u = 0.5 + atan2(x, -z) / (2 pi)). For measuring environment
+(docs/lights.md: row 0 at the top, u = atan2(x, -z) / (2 pi), Mitsuba's). For measuring environment
 lighting on scenes that ship without a sky.
 
     python3 tools/make_sky_hdr.py OUT.hdr [--width 512] [--sun-elevation 35] [--sun-azimuth 60]
@@ -38,7 +38,7 @@ def main():
         theta = (y + 0.5) / h * math.pi
         row = bytearray()
         for x in range(w):
-            phi = ((x + 0.5) / w - 0.5) * 2 * math.pi
+            phi = (x + 0.5) / w * 2 * math.pi
             d = (math.sin(theta) * math.sin(phi), math.cos(theta), -math.sin(theta) * math.cos(phi))
             if d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2] >= cos_sun:
                 c = (a.sun_radiance, 0.9 * a.sun_radiance, 0.75 * a.sun_radiance)

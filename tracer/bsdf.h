@@ -55,6 +55,15 @@ inline float fresnelDielectric(float cosI, float eta, float& cosT) {
     return 0.5f * (rs * rs + rp * rp);
 }
 
+// Reflectance of a thin dielectric sheet (Mitsuba's thindielectric): the interface's R, plus what
+// the inter-reflections between the two faces send back, R + T^2 R / (1 - R^2) = 2R / (1 + R).
+// The rest crosses straight through (no refraction: the two faces undo each other's bending).
+inline float thinDielectricReflectance(float cosI, float ior) {
+    float cosT = 0.0f;
+    const float R = fresnelDielectric(cosI, ior, cosT);
+    return R < 1.0f ? 2.0f * R / (1.0f + R) : 1.0f;
+}
+
 // Refracted direction of wo through a surface with normal n on wo's side.
 inline glm::vec3 refract(const glm::vec3& wo, const glm::vec3& n, float eta, float cosI, float cosT) {
     return (-1.0f / eta) * wo + (cosI / eta - cosT) * n;

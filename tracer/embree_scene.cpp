@@ -100,6 +100,8 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
     s.kdOverPi = kd * std::numbers::inv_pi_v<float>;
     s.ks = mat.kind == MaterialKind::Glass ? glm::min(ks, glm::vec3(1.0f)) : ks;
     s.ior = mat.ior > 0.0f ? mat.ior : 1.5f;
+    s.thin = mat.kind == MaterialKind::Glass && mat.thin;
+    s.oneSided = mat.kind != MaterialKind::Glass && mat.oneSided;
     if (mat.diffuseTexture >= 0 && static_cast<std::size_t>(mat.diffuseTexture) < textureCount && positive(kd))
         s.texture = mat.diffuseTexture;
     s.diffuse = kd.x != 0.0f || kd.y != 0.0f || kd.z != 0.0f;  // true for NaN: bad data is counted, not hidden

@@ -35,6 +35,8 @@ struct ShadingMaterial {
     float phongPdfNorm = 0.0f; // (ns + 1) / (2 pi): sampling pdf normalisation
     float diffuseWeight = 1.0f;  // probability of sampling the Lambert lobe (vs glossy)
     float ior = 1.5f;
+    bool thin = false;      // Glass: a thin sheet (straight through, R' = 2R / (1 + R)); see scene.h
+    bool oneSided = false;  // the back reflects nothing (Mitsuba's BSDFs outside twosided)
     glm::vec3 ke{0.0f};
     // Alpha test (Mask, or Blend cut at 0.5; see scene.h): a hit is cut out where
     // alpha * alphaTexture.a < alphaCutoff. Only tested materials reach the Embree filter.

@@ -127,6 +127,7 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
     glm::vec3 L(0.0f);
     // One-sided emitters: the front emits Ke; both sides also reflect like their material.
     if (m.emissive && hit.front) L += m.ke;
+    if (m.oneSided && !hit.front) return L;  // a one-sided BSDF's back reflects nothing
     if (m.diffuse || m.glossy) L += directLight(hit, sampler, depth, rays);
     if (m.diffuse && weight > 0.0f && indirect_ && shading_.mode == ShadingMode::Cache)
         L += hit.albedo * bsdf::kInvPi * indirect_->indirectIrradiance(*this, hit, sampler, depth, rays);

@@ -88,13 +88,22 @@ glm::vec3 sumSpecularBranches(const SurfaceHit& hit, Follow&& follow) {
     }
     const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
     if (!(cosI > 0.0f)) return L;
+    if (m.thin) {  // a thin sheet: reflect 2R / (1 + R), the rest straight through
+        const float R = bsdf::thinDielectricReflectance(cosI, m.ior);
+        if (reflectionLeaves) L += follow(r, R);
+        if (R < 1.0f) L += follow(-hit.wo, 1.0f - R);
+        return L;
+    }
     const float eta = hit.front ? m.ior : 1.0f / m.ior;
     float cosT = 0.0f;
     const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
     if (reflectionLeaves) L += follow(r, F);
     if (F < 1.0f) {
         const glm::vec3 t = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
-        if (glm::dot(t, hit.geometric) < 0.0f) L += follow(t, 1.0f - F);
+        // Radiance inside is eta^2 times what crosses out (Mitsuba's dielectric scales alike). The
+        // branch's weight, which decides when a branch is too faint to follow, stays without the
+        // factor (a closed object's entry and exit cancel it), as path mode's roulette does.
+        if (glm::dot(t, hit.geometric) < 0.0f) L += follow(t, 1.0f - F) * (1.0f / (eta * eta));
     }
     return L;
 }

@@ -107,6 +107,7 @@ struct Integrator::PathState {
     glm::vec3 before{0.0f};      // the vertex the last BSDF sample left from (where light sampling views the light)
     float pdfBefore = 0.0f;      // solid-angle pdf of that BSDF sample
     bool specularBefore = true;  // the camera "sampled" the primary direction: no MIS on it
+    float etaScale = 1.0f;       // product of eta^2 over the refractions so far (beta * etaScale is unscaled)
     int depth = 0;
 };
 
@@ -143,6 +144,7 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
         s.L += s.beta * m.ke * w;
     }
     if (depth + 1 >= shading_.maxDepth) return;  // one more segment would exceed maxDepth
+    if (m.oneSided && !hit.front) return;         // a one-sided BSDF's back: black, the path ends
 
     const float lobeU = sampler.get1D(dims::path(depth, dims::PathSlot::Lobe));
     glm::vec3 dir;
@@ -152,13 +154,21 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
         if (!(cosI > 0.0f)) return;
         const float eta = hit.front ? m.ior : 1.0f / m.ior;
         float cosT = 0.0f;
-        const float F = bsdf::fresnelDielectric(cosI, eta, cosT);
-        if (lobeU < F) {
+        // A thin sheet reflects 2R / (1 + R) and lets the rest straight through.
+        const float F = m.thin ? bsdf::thinDielectricReflectance(cosI, m.ior) : bsdf::fresnelDielectric(cosI, eta, cosT);
+        if (m.thin && !(lobeU < F)) {
+            dir = -hit.wo;
+        } else if (lobeU < F) {
             dir = bsdf::reflect(hit.wo, hit.shading);
             if (glm::dot(dir, hit.geometric) <= 0.0f) return;
         } else {
             dir = bsdf::refract(hit.wo, hit.shading, eta, cosI, cosT);
             if (glm::dot(dir, hit.geometric) >= 0.0f) return;
+            // Radiance crossing into a medium of relative index eta is L / eta^2 of the radiance
+            // there (Mitsuba's dielectric does the same): a closed object's entry and exit cancel,
+            // a single open interface (a pane as one sheet) keeps it.
+            s.beta *= 1.0f / (eta * eta);
+            s.etaScale *= eta * eta;
         }
         s.beta *= m.ks;
         s.specularBefore = true;
@@ -197,7 +207,8 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
         }
     }
     if (shading_.russianRoulette && depth + 1 >= shading_.rouletteDepth) {
-        const float survive = std::min(bsdf::maxComponent(s.beta), 0.95f);
+        // As Mitsuba: the throughput without the eta^2 factors, which cancel on leaving the medium.
+        const float survive = std::min(bsdf::maxComponent(s.beta) * s.etaScale, 0.95f);
         if (!(sampler.get1D(dims::path(depth, dims::PathSlot::Roulette)) < survive)) return;
         s.beta *= 1.0f / survive;
     }

@@ -130,7 +130,7 @@ TEST_F(SnapshotEnvironment, ConstantSkyOnAConvexBoxIsAlbedoTimesSky) {
 enum class Sun { MapCell, DirectionalLight };
 
 Scene floorAndBlocker(Sun sun) {
-    constexpr int w = 512, h = 256, column = 300, row = 60;
+    constexpr int w = 512, h = 256, column = 44, row = 60;
     const glm::vec3 radiance(20000.0f, 15000.0f, 10000.0f);
     Scene scene = withMaterial(0.5f);
     addQuad(scene, {-3, 0, -3}, {0, 0, 6}, {6, 0, 0}, 0);

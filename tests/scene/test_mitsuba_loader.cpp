@@ -265,6 +265,40 @@ TEST_F(Mitsuba, MaterialsMapToTheNearestAndWarnOncePerKind) {
     EXPECT_NE(report.warnings[2].find("bumpmap"), std::string::npos);
 }
 
+TEST_F(Mitsuba, ThinDielectricOneSidedRawBitmapAndRectangleUvAsMitsuba) {
+    // One 8-bit texel of 128: its sRGB decode by default, 128 / 255 with raw=true (Mitsuba 3's bitmap).
+    std::ofstream(dir / "grey.ppm", std::ios::binary) << "P6 1 1 255\n" << std::string(3, static_cast<char>(128));
+    const Scene s = load(R"(<shape type="rectangle"><bsdf type="thindielectric"/></shape>
+<shape type="rectangle"><bsdf type="dielectric"/></shape>
+<shape type="rectangle"><bsdf type="diffuse"/></shape>
+<shape type="rectangle"><bsdf type="twosided"><bsdf type="diffuse"/></bsdf></shape>
+<shape type="rectangle"><bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="grey.ppm"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="grey.ppm"/><boolean name="raw" value="true"/></texture></bsdf></shape>
+)");
+    ASSERT_EQ(s.materials.size(), 6u);
+    EXPECT_EQ(s.materials[0].kind, MaterialKind::Glass);
+    EXPECT_TRUE(s.materials[0].thin);
+    EXPECT_FALSE(s.materials[1].thin);
+    EXPECT_FALSE(s.materials[1].oneSided);     // dielectrics are two-sided
+    EXPECT_TRUE(s.materials[2].oneSided);      // Mitsuba's diffuse is black from the back
+    EXPECT_FALSE(s.materials[3].oneSided);     // ... unless twosided
+    ASSERT_EQ(s.textures.size(), 2u);
+    const float v = 128.0f / 255.0f;
+    EXPECT_NEAR(s.textures[static_cast<std::size_t>(s.materials[4].diffuseTexture)].rgba[0],
+                std::pow((v + 0.055f) / 1.055f, 2.4f), 1e-4f);
+    EXPECT_NEAR(s.textures[static_cast<std::size_t>(s.materials[5].diffuseTexture)].rgba[0], v, 1e-6f);
+    // Mitsuba's rectangle has uv = local (x, y) / 2 + 1/2, and its v = 0 is the image's top row as
+    // aamap's is: local (-1, -1) shows the top-left texel, (1, 1) the bottom-right.
+    ASSERT_EQ(s.mesh.uvs.size(), s.mesh.positions.size());
+    int corners = 0;
+    for (std::size_t i = 0; i < s.mesh.positions.size(); ++i) {
+        const glm::vec3 p = s.mesh.positions[i];
+        if (glm::length(p - glm::vec3(-1, -1, 0)) < 1e-6f) expectVec(glm::vec3(s.mesh.uvs[i], 0), {0, 0, 0}), ++corners;
+        if (glm::length(p - glm::vec3(1, 1, 0)) < 1e-6f) expectVec(glm::vec3(s.mesh.uvs[i], 0), {1, 1, 0}), ++corners;
+    }
+    EXPECT_GT(corners, 0);
+}
+
 TEST_F(Mitsuba, EmittersOfEveryKind) {
     const Scene s = load(R"(<emitter type="point"><point name="position" x="1" y="2" z="3"/><rgb name="intensity" value="4"/></emitter>
 <emitter type="spot">

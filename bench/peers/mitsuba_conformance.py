@@ -1,0 +1,212 @@
+#!/usr/bin/env python3
+"""Conformance of aamap's path mode with Mitsuba 3, one scene feature at a time.
+
+Each scene in bench/peers/conformance/ exercises one feature with tiny procedural geometry
+(constant sky, a rotated and scaled envmap, a room lit through an opening, dielectric and
+thindielectric panes, directional, rectangle and sphere emitters, bitmap textures in sRGB and raw,
+a Mitsuba 0.5 file, and the materials of furnished interiors). Both renderers render it at the same
+size, spp and path depth (the file's max_depth) with a box pixel filter: Mitsuba 3 in llvm_ad_rgb,
+aamap with bench_tracer in path mode. One line per scene: the mean linear RGB of each, aamap /
+Mitsuba per channel, the LDR (clamped sRGB, 0-255) mean absolute difference, the LDR-FLIP mean
+(flip-evaluator), and the standard
+error of Mitsuba's mean (from two half renders with different seeds) so that a ratio can be told
+from noise. Not part of the test suite; Mitsuba is a peer, never a dependency.
+
+Setup as bench/peers/mitsuba_throughput.py (libllvm19 from apt, .venv/bin/pip install
+mitsuba==3.6.4), then
+    .venv/bin/python bench/peers/mitsuba_conformance.py [--only c_room_opening,e_room_thindielectric]
+        [--bench build/release/bench/tracer/bench_tracer] [--spp-scale 2] [--keep OUTDIR]
+
+The scenes' maps (sky.exr: a sky gradient, a dark ground and a soft "sun"; checker.png; leaf.png)
+are written next to them on the first run (--make-assets rewrites them).
+"""
+import argparse
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mitsuba_throughput import load_mitsuba, mitsuba_scene_file  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENES_DIR = os.path.join(HERE, "conformance")
+
+# name: (size, spp). spp is a perfect square (aamap renders n x n strata per pixel).
+SCENES = {
+    "a_constant_box": (64, 256),
+    "b_envmap_rotated": (64, 256),
+    "c_room_opening": (64, 1024),
+    "d_room_dielectric": (64, 1024),
+    "d2_room_dielectric_sheet": (64, 1024),
+    "e_room_thindielectric": (64, 1024),
+    "f_directional": (64, 256),
+    "g_area_rectangle": (64, 256),
+    "h_sphere_emitter": (64, 256),
+    "i_bitmap_srgb": (64, 64),
+    "i2_bitmap_raw": (64, 64),
+    "j_room_v05": (64, 1024),
+    "k_roughplastic": (64, 256),
+    "l_roughconductor": (64, 256),
+    "m_mask_leaf": (64, 256),
+    "n_onesided_back": (64, 64),
+    "o_glass_sphere": (64, 1024),
+}
+
+# The sky's sun, in world space: up 38.7 degrees, towards -z (through the rooms' window), and the
+# envmap's to_world in the scenes (a rotation of 70 degrees about +y).
+SUN_WORLD = (0.0, 0.8, -1.0)
+ENV_ROTATE_Y_DEG = 70.0
+
+
+def make_assets(mi, force):
+    import numpy as np
+
+    sky = os.path.join(SCENES_DIR, "sky.exr")
+    if force or not os.path.exists(sky):
+        w, h = 128, 64
+        u = (np.arange(w) + 0.5) / w
+        v = (np.arange(h) + 0.5) / h
+        phi, theta = np.meshgrid(2 * np.pi * u, np.pi * v)
+        # Mitsuba's lat-long convention (envmap.cpp): d = (sin phi sin theta, cos theta, -cos phi sin theta)
+        d = np.stack([np.sin(phi) * np.sin(theta), np.cos(theta), -np.cos(phi) * np.sin(theta)], -1)
+        a = math.radians(ENV_ROTATE_Y_DEG)
+        rot = np.array([[math.cos(a), 0, math.sin(a)], [0, 1, 0], [-math.sin(a), 0, math.cos(a)]])
+        sun_world = np.array(SUN_WORLD) / np.linalg.norm(SUN_WORLD)
+        sun_local = rot.T @ sun_world
+        t = np.clip(d[..., 1], 0, 1)[..., None]
+        horizon, zenith = np.array([0.9, 0.85, 0.75]), np.array([0.25, 0.45, 0.95])
+        sky_rgb = horizon * (1 - t) + zenith * t
+        # an azimuthal variation, so that a turned map shows
+        sky_rgb = sky_rgb * (1.0 + 0.4 * np.cos(phi - 1.0))[..., None]
+        ground = np.array([0.12, 0.10, 0.08])
+        img = np.where(d[..., 1:2] > 0, sky_rgb, ground)
+        ang = np.arccos(np.clip(d @ sun_local, -1, 1))
+        sigma = math.radians(6.0)
+        img = img + 100.0 * np.exp(-0.5 * (ang / sigma) ** 2)[..., None] * np.array([1.0, 0.9, 0.75])
+        mi.Bitmap(img.astype(np.float32)).write(sky)
+    from PIL import Image  # matplotlib's dependency, in the venv
+
+    checker = os.path.join(SCENES_DIR, "checker.png")
+    if force or not os.path.exists(checker):
+        n = 64
+        y, x = np.mgrid[0:n, 0:n]
+        check = ((x // 8 + y // 8) % 2)[..., None]
+        ramp = (x / (n - 1))[..., None]
+        c0 = np.array([200, 80, 40]) * (0.6 + 0.4 * ramp)
+        c1 = np.array([40, 120, 220]) * (1.0 - 0.5 * ramp)
+        Image.fromarray(np.where(check == 1, c0, c1).round().astype(np.uint8), "RGB").save(checker)
+    leaf = os.path.join(SCENES_DIR, "leaf.png")
+    if force or not os.path.exists(leaf):
+        n = 64
+        y, x = (np.mgrid[0:n, 0:n] + 0.5) / n * 2 - 1
+        inside = (x / 0.9) ** 2 + (y / 0.45) ** 2 < 1.0  # an ellipse
+        inside &= ~((np.abs(y) < 0.04) & (x > -0.8))      # a cut along the vein
+        Image.fromarray((inside * 255).astype(np.uint8), "L").save(leaf)
+
+
+def scene_depth(path):
+    integrator = ET.parse(path).getroot().find("integrator")
+    for child in integrator if integrator is not None else []:
+        if child.attrib.get("name") in ("max_depth", "maxDepth"):
+            return int(child.attrib["value"])
+    return 5
+
+
+def ldr_flip(reference_exr, test_exr):
+    """LDR-FLIP mean of two linear EXRs (flip-evaluator, from tools/python-env.sh); nan without it."""
+    try:
+        import flip_evaluator as flip
+    except ImportError:
+        return float("nan")
+    _, mean, _ = flip.evaluate(reference_exr, test_exr, "LDR", applyMagma=False)
+    return float(mean)
+
+
+def ldr(img):
+    import numpy as np
+
+    c = np.clip(img, 0.0, 1.0)
+    return 255.0 * np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1 / 2.4) - 0.055)
+
+
+def main():
+    repo = os.path.dirname(os.path.dirname(HERE))
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", help="comma-separated scene names (default: all)")
+    ap.add_argument("--bench", default=os.path.join(repo, "build", "release", "bench", "tracer", "bench_tracer"))
+    ap.add_argument("--spp-scale", type=int, default=1, help="multiply every scene's spp by this square (1, 4, ...)")
+    ap.add_argument("--make-assets", action="store_true", help="rewrite sky.exr, checker.png and leaf.png")
+    ap.add_argument("--keep", help="write both renders of each scene here (EXR)")
+    args = ap.parse_args()
+    if not os.path.exists(args.bench):
+        sys.exit(f"{args.bench}: build it first (cmake --build --preset release), or pass --bench")
+    names = args.only.split(",") if args.only else list(SCENES)
+    for n in names:
+        if n not in SCENES:
+            sys.exit(f"unknown scene {n} (have: {', '.join(SCENES)})")
+    mi, _ = load_mitsuba(os.path.join(SCENES_DIR, "a_constant_box.xml"))
+    import numpy as np
+
+    make_assets(mi, args.make_assets)
+    if args.keep:
+        os.makedirs(args.keep, exist_ok=True)
+    rows = []
+    print(f"mitsuba {mi.__version__} llvm_ad_rgb vs aamap path mode ({args.bench}); box filter, "
+          f"same size/spp/max_depth", flush=True)
+    header = (f"{'scene':<26} {'size':>4} {'spp':>5} {'dep':>3}  {'mitsuba mean rgb':<26} {'aamap mean rgb':<26} "
+              f"{'aamap/mitsuba':<22} {'LDR |d|':>7} {'FLIP':>6} {'noise %':>7}")
+    for name in names:
+        size, spp = SCENES[name]
+        spp *= args.spp_scale
+        strata = round(math.sqrt(spp))
+        if strata * strata != spp:
+            sys.exit(f"{name}: spp {spp} is not a perfect square")
+        path = os.path.join(SCENES_DIR, name + ".xml")
+        depth = scene_depth(path)
+        with tempfile.TemporaryDirectory() as tmp:
+            t0 = time.perf_counter()
+            scene = mi.load_file(mitsuba_scene_file(path, size, spp, depth, "box", tmp))
+            halves = [np.array(mi.render(scene, spp=spp // 2, seed=seed))[:, :, :3].astype(np.float64)
+                      for seed in (0, 1)]
+            t_mi = time.perf_counter() - t0
+            ref = 0.5 * (halves[0] + halves[1])
+            # Standard error of the image mean: pixels are independent, each half's noise is (a - b) / 2.
+            se = np.sqrt(((halves[0] - halves[1]) ** 2 / 4.0).reshape(-1, 3).mean(0) / (size * size))
+            exr = os.path.join(tmp, "aamap.exr")
+            aamap_scene = path
+            t0 = time.perf_counter()
+            r = subprocess.run([args.bench, "--scene", aamap_scene, "--size", str(size), "--strata", str(strata), "--mode",
+                                "path", "--max-depth", str(depth), "--light-samples", "1", "--repeat", "1",
+                                "--out", exr], capture_output=True, text=True)
+            t_aa = time.perf_counter() - t0
+            if r.returncode != 0:
+                print(f"{name}: bench_tracer failed ({r.returncode}):\n{r.stderr[-2000:]}", file=sys.stderr)
+                continue
+            img = np.array(mi.Bitmap(exr))[:, :, :3].astype(np.float64)
+            ref_exr = os.path.join(tmp, "mitsuba.exr")
+            mi.Bitmap(ref.astype(np.float32)).write(ref_exr)
+            flip_mean = ldr_flip(ref_exr, exr)
+            if args.keep:
+                mi.Bitmap(ref.astype(np.float32)).write(os.path.join(args.keep, f"{name}.mitsuba.exr"))
+                mi.Bitmap(img.astype(np.float32)).write(os.path.join(args.keep, f"{name}.aamap.exr"))
+        m_ref, m_img = ref.reshape(-1, 3).mean(0), img.reshape(-1, 3).mean(0)
+        ratio = m_img / np.maximum(m_ref, 1e-12)
+        dldr = np.abs(ldr(img) - ldr(ref)).mean()
+        noise = 100.0 * (se / np.maximum(m_ref, 1e-12)).max()
+        rows.append((name, size, spp, depth, m_ref, m_img, ratio, dldr, noise, flip_mean))
+        flag = "  <--" if np.any(np.abs(ratio - 1.0) > 0.02) else ""
+        if len(rows) == 1:
+            print(header)
+        print(f"{name:<26} {size:>4} {spp:>5} {depth:>3}  {m_ref[0]:.4f} {m_ref[1]:.4f} {m_ref[2]:.4f}    "
+              f"{m_img[0]:.4f} {m_img[1]:.4f} {m_img[2]:.4f}    {ratio[0]:.3f} {ratio[1]:.3f} {ratio[2]:.3f}   "
+              f"{dldr:7.2f} {flip_mean:6.3f} {noise:7.2f}{flag}   ({t_mi:.0f} s / {t_aa:.0f} s)", flush=True)
+    bad = [r[0] for r in rows if np.any(np.abs(r[6] - 1.0) > 0.02)]
+    print(f"{len(rows)} scenes; off by more than 2 % in a channel: {', '.join(bad) if bad else 'none'}")
+
+
+if __name__ == "__main__":
+    main()
