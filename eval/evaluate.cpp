@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
+
 #include "eval/metrics/flip.h"
 #include "eval/metrics/image_comparison.h"
 #include "eval/metrics/magma.h"
@@ -165,6 +167,50 @@ Json evaluateAgainstRender(const std::string& againstName, const ImageRGB& again
         j["flip_mean"] = c.flip->mean;
         j["pct_error_flip"] = 100.0 * c.flip->fractionAbove;
     }
+    return j;
+}
+
+Json estimateReferenceNoise(const ImageRGB& reference, const ImageRGB& halfDifference, int rpp, const MetricsConfig& m,
+                            float exposure) {
+    const metrics::ComparisonOptions options = comparisonOptions(m, exposure);
+    // The floor a reference of `rays` rays per pixel would have: its noise scales as 1/sqrt(rays).
+    const auto floorAt = [&](int rays, Json* out) {
+        const float scale = 0.5f * std::sqrt(static_cast<float>(rpp) / static_cast<float>(rays));
+        ImageRGB noisy(reference.width(), reference.height());
+        for (std::size_t i = 0; i < noisy.size(); ++i)
+            noisy.pixels()[i] = glm::max(reference.pixels()[i] + scale * halfDifference.pixels()[i], glm::vec3(0.0f));
+        const metrics::Comparison c = metrics::compareImages(reference, noisy, options);
+        if (out != nullptr) {
+            (*out)["mse"] = c.display.mse;
+            (*out)["pct_error_mse"] = 100.0 * c.display.fractionInError;
+            if (c.flip) {
+                (*out)["flip_mean"] = c.flip->mean;
+                (*out)["pct_error_flip"] = 100.0 * c.flip->fractionAbove;
+            }
+        }
+        return 100.0 * (c.flip ? c.flip->fractionAbove : c.display.fractionInError);
+    };
+    Json j;
+    j["method"] = "two half images (strata of even and odd x + y)";
+    j["rpp"] = rpp;
+    const double floor = floorAt(rpp, &j);
+    j["floor_pct"] = floor;
+    j["converged"] = floor <= kConvergedFloorPercent;
+    j["noisy"] = floor > kNoisyFloorPercent;
+    Json suggested = nullptr;
+    if (floor <= kConvergedFloorPercent) {
+        suggested = rpp;
+    } else {  // the floor falls as rays grow: bisect over n for n x n rays
+        int lo = static_cast<int>(std::sqrt(static_cast<double>(rpp))), hi = 64;
+        if (floorAt(hi * hi, nullptr) <= kConvergedFloorPercent) {
+            while (hi - lo > 1) {
+                const int mid = (lo + hi) / 2;
+                (floorAt(mid * mid, nullptr) <= kConvergedFloorPercent ? hi : lo) = mid;
+            }
+            suggested = hi * hi;
+        }
+    }
+    j["suggested_rpp"] = suggested;
     return j;
 }
 

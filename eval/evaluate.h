@@ -32,6 +32,25 @@ nlohmann::ordered_json evaluateRender(const ImageRGB& reference, const ImageRGB&
 nlohmann::ordered_json evaluateAgainstRender(const std::string& againstName, const ImageRGB& against,
                                              const ImageRGB& test, const MetricsConfig& metrics, float exposure);
 
+// How converged a traced reference is, from the difference D of two independent half images of
+// its samples (TraceResult::halfDifference). D / 2 has the spread of the whole reference's own
+// error (noise and antialiasing left), so the reference against reference + D / 2 gives the error
+// pixels its noise alone makes: the floor under every error figure measured against it.
+// {method, rpp, pct_error_flip, flip_mean (FLIP on), pct_error_mse, mse, floor_pct (the FLIP
+// figure, else the MSE one), converged (floor_pct <= kConvergedFloorPercent), noisy (floor_pct >
+// kNoisyFloorPercent), suggested_rpp (the
+// smallest square rpp, up to kMaxSuggestedRpp, whose noise, scaled as 1 / sqrt(rpp), meets that;
+// null past it)}.
+// Converged: its noise puts at most 1 pixel in 1000 in error. Noisy: more than 1 in 100, where
+// the noise, not the renders, decides the error figures (the report leaves them out). Between
+// the two, renders that share the reference's samples (the same seed and strata) still compare
+// with it, which is the paper's comparison; the report shows the floor beside them.
+inline constexpr double kConvergedFloorPercent = 0.1;
+inline constexpr double kNoisyFloorPercent = 1.0;
+inline constexpr int kMaxSuggestedRpp = 64 * 64;
+nlohmann::ordered_json estimateReferenceNoise(const ImageRGB& reference, const ImageRGB& halfDifference, int rpp,
+                                              const MetricsConfig& metrics, float exposure);
+
 // Map quality: true aliasing T = FLIP(oneRay vs reference) > flip_threshold, flagged F = aamap > 0.
 // {threshold, pixels, true_pixels, flagged_pixels, true_positives, recall, precision,
 // flagged_fraction, true_fraction}. Writes aliasing.png: true positives white, misses red (orange

@@ -285,6 +285,7 @@ public:
         out.blockSums = blockSums;
         out.image = tr.image;
         out.primaryRays = tr.primaryRays;
+        out.halfDifference = tr.halfDifference;
         out.rays = {tr.rays.primary, tr.rays.shadow, tr.rays.other};
         out.nonFiniteSamples = tr.nonFiniteSamples;
         out.seconds = tr.seconds;

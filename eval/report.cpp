@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.h"
+#include "eval/evaluate.h"
 #include "eval/metrics/pixel_causes.h"
 
 namespace aamap {
@@ -219,6 +220,41 @@ void addOracleTable(const Json& results, std::vector<Table>& tables) {
     tables.push_back(t);
 }
 
+// A traced reference whose own noise puts more pixels in error than kNoisyFloorPercent
+// (eval/evaluate.h): the error-pixel figures measured against it are not reported.
+bool noisyReference(const Json& results) {
+    if (!results.contains("reference") || !results["reference"].is_object()) return false;
+    const Json& ref = results["reference"];
+    return ref.contains("noise") && ref["noise"].is_object() && ref["noise"].value("noisy", false);
+}
+
+// What every error figure is measured against, and how converged it is.
+void addReferenceTable(const Json& results, std::vector<Table>& tables) {
+    if (!results.contains("reference") || !results["reference"].is_object()) return;
+    const Json& ref = results["reference"];
+    const std::string type = ref.value("type", std::string());
+    if (type.empty() || type == "none") return;
+    Table t{"reference", "The reference", "", {"reference", "noise floor % FLIP", "noise floor % MSE", "converged", "suggested rpp"}, {}};
+    const std::string what = type == "file" ? "the image " + ref.value("path", std::string())
+                                            : fmt::format("uniform {} rpp, {} shading", ref.value("rpp", 0), ref.value("mode", std::string()));
+    if (!ref.contains("noise") || !ref["noise"].is_object()) {
+        t.rows.push_back({what, "—", "—", "not estimated", "—"});
+        t.note = type == "file" ? "an image from elsewhere: its convergence is its maker's to state"
+                                : "not estimated (one ray per pixel, or a cache entry without its half images)";
+    } else {
+        const Json& n = ref["noise"];
+        const Json& suggested = n["suggested_rpp"];
+        t.rows.push_back({what, cell(num(n, "pct_error_flip")), cell(num(n, "pct_error_mse")),
+                          n.value("converged", false) ? "yes" : "no",
+                          suggested.is_number() ? std::to_string(suggested.get<int>()) : "over " + std::to_string(kMaxSuggestedRpp)});
+        t.note = fmt::format("noise floor: the pixels its own noise puts in error (the reference against itself plus half "
+                             "the difference of two half images of its samples); converged: at most {}% by FLIP (else "
+                             "MSE); suggested rpp: the rays per pixel that would make it so",
+                             readableNumber(kConvergedFloorPercent));
+    }
+    tables.push_back(t);
+}
+
 }  // namespace
 
 std::vector<Table> reportTables(const Json& results) {
@@ -271,17 +307,23 @@ std::vector<Table> reportTables(const Json& results) {
         error.header.push_back(s + " FLIP");
         error.header.push_back(s + " MSE");
     }
+    const bool noisy = noisyReference(results);
+    if (noisy)
+        error.note = fmt::format("not reported: the reference is noisy (its own noise puts {}% of pixels in error; see "
+                                 "The reference)",
+                                 readableNumber(num(results["reference"]["noise"], "floor_pct")));
     for (int rpp : rpps) {
         std::vector<std::string> row{std::to_string(rpp)};
         for (const std::string& s : series) {
             const Json* r = find(renders, rpp, s);
             const Json m = r && r->contains("metrics") ? (*r)["metrics"] : Json::object();
-            row.push_back(r ? cell(num(m, "pct_error_flip")) : "");
-            row.push_back(r ? cell(num(m, "pct_error_mse")) : "");
+            row.push_back(!r ? "" : noisy ? "—" : cell(num(m, "pct_error_flip")));
+            row.push_back(!r ? "" : noisy ? "—" : cell(num(m, "pct_error_mse")));
         }
         error.rows.push_back(row);
     }
     tables.push_back(error);
+    addReferenceTable(results, tables);
 
     addGroundTruthTable(results, tables);
 
@@ -294,8 +336,8 @@ std::vector<Table> reportTables(const Json& results) {
                             std::to_string(r["max_rays_per_pixel"].get<int>()), rangeCell(renderTimeRange(r), "{:.3f}"),
                             std::to_string(renderTimeRange(r).runs), cell(num(r, "mean_primary_rpp")), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
                             m.contains("psnr") && m["psnr"].is_null() ? "inf" : cell(num(m, "psnr")),
-                            cell(num(m, "flip_mean"), "{:.4f}"), cell(num(m, "pct_error_flip")),
-                            cell(num(m, "pct_error_mse")), r.value("cached", false) ? "yes" : "no"});
+                            cell(num(m, "flip_mean"), "{:.4f}"), noisy ? "—" : cell(num(m, "pct_error_flip")),
+                            noisy ? "—" : cell(num(m, "pct_error_mse")), r.value("cached", false) ? "yes" : "no"});
     }
     tables.push_back(all);
 

@@ -122,6 +122,7 @@ Json toJson(const ReferenceInfo& r) {
     if (!r.mode.empty()) j["mode"] = r.mode;
     if (!r.path.empty()) j["path"] = r.path;
     if (!r.shadingFloor.empty()) j["shading_floor"] = r.shadingFloor;
+    if (r.noise) j["noise"] = *r.noise;
     return j;
 }
 

@@ -81,6 +81,9 @@ struct ReferenceInfo {
     std::string mode;          // uniform: its shading mode
     std::string path;          // file: the resolved path
     std::string shadingFloor;  // the render whose error is the shading bias alone ("" when none)
+    // A traced reference's own convergence, from two independent half images of its samples
+    // (eval/evaluate.h estimateReferenceNoise); absent for a file, or a reference of 1 ray.
+    std::optional<nlohmann::ordered_json> noise;
 };
 
 // An aamap-driven render traced again on the oracle map: the rays the reference says a pixel

@@ -78,6 +78,7 @@ struct Traced {
     RenderRecord record;  // as cached (name of whichever job computed it first)
     ImageRGB image;
     Image<std::uint16_t> rays;
+    ImageRGB halfDifference;  // empty unless the strategy splits its samples (a uniform render)
 };
 
 ImageGrey raysToGrey(const Image<std::uint16_t>& rays) {
@@ -130,6 +131,7 @@ private:
     void traceFinished(const Job& job, double seconds);
     ImageRGB loadFileReference(const std::vector<Job>& jobs);
     void checkReference(const ImageRGB& reference);
+    void checkConvergence(ReferenceInfo& info, const Traced& reference);
     void addAntialiasingShares(Results& results, const std::vector<Job>& jobs, std::size_t listed,
                                const ImageRGB& reference) const;
     void writeNamedOutputs(const std::string& name, const Traced& t, int rpp, std::vector<std::string>& outputs) const;
@@ -233,6 +235,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
             t.record = readCachedRender(cache_.record(job.key)).record;
             t.image = readExr(entry / "image.exr");
             t.rays = greyToRays(readExrGrey(entry / "rpp.exr"));
+            if (fs::is_regular_file(entry / "halves.exr")) t.halfDifference = readExr(entry / "halves.exr");
             spdlog::info("[{}/{}] {}: reused (cache {})", index, count, job.render.name, job.key);
             reused_[job.key] = true;
             return traced_.emplace(job.key, std::move(t)).first->second;
@@ -298,10 +301,12 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     cache_.commit(job.key, [&](const fs::path& dir) {
         writeExr(dir / "image.exr", out.image);
         writeExr(dir / "rpp.exr", raysToGrey(out.primaryRays));
+        if (!out.halfDifference.empty()) writeExr(dir / "halves.exr", out.halfDifference);
         writeRecord(dir / "record.json", record);  // last: marks the entry complete
     });
     t.image = std::move(out.image);
     t.rays = std::move(out.primaryRays);
+    t.halfDifference = std::move(out.halfDifference);
     reused_[job.key] = false;
     ++tracedNow_;
     return traced_.emplace(job.key, std::move(t)).first->second;
@@ -449,6 +454,31 @@ void Runner::checkReference(const ImageRGB& reference) {
     if (black) warn("the reference image is black everywhere: the error figures compare black images");
 }
 
+// A traced reference's own noise (and antialiasing left) is a floor under every error figure
+// measured against it: estimated from its two half images, and a warning when it is not converged.
+void Runner::checkConvergence(ReferenceInfo& info, const Traced& reference) {
+    if (reference.halfDifference.empty() || reference.halfDifference.width() != reference.image.width() ||
+        reference.halfDifference.height() != reference.image.height())
+        return;  // one ray per pixel, or an entry cached without its halves
+    const int rpp = info.rpp.value_or(c_.reference.rpp);
+    info.noise = estimateReferenceNoise(reference.image, reference.halfDifference, rpp, c_.metrics,
+                                        static_cast<float>(c_.image.exposure));
+    const Json& n = *info.noise;
+    const double floor = n["floor_pct"].get<double>();
+    spdlog::info("reference noise floor: {}% of pixels in error from the reference's own noise", readableNumber(floor));
+    if (!n["noisy"].get<bool>()) return;
+    const std::string advice = n["suggested_rpp"].is_number()
+                                   ? fmt::format("reference.rpp: {} would bring it under {}%", n["suggested_rpp"].get<int>(),
+                                                 readableNumber(kConvergedFloorPercent))
+                                   : fmt::format("even {} rays per pixel would not bring it under {}%: use a converged "
+                                                 "reference image (reference.type: file)",
+                                                 kMaxSuggestedRpp, readableNumber(kConvergedFloorPercent));
+    warn(fmt::format("the reference ({} rpp, {} shading) is noisy: its own noise alone puts {}% of pixels above the "
+                     "error threshold, so the error figures measure the reference, not the renders (the report leaves "
+                     "the error pixels out); {}",
+                     rpp, info.mode, readableNumber(floor), advice));
+}
+
 // metrics.oracle: the map the reference itself asks for (eval/evaluate.h oracleMap), and every
 // aamap-driven render traced again on it. The oracle says where rays are needed, not how many:
 // its pixels get the strategy's full budget, as a map value of 1 does.
@@ -591,6 +621,7 @@ Results Runner::run() {
         results.referenceInfo.path = c_.reference.resolvedPath(c_.file)->string();
     }
     if (reference) checkReference(*reference);
+    if (refJob) checkConvergence(results.referenceInfo, traced_.at(refJob->key));
     if (reference) {
         const float exposure = static_cast<float>(c_.image.exposure);
         // Causes need the 1-ray image's error (map quality) and LDR-FLIP, and a tracer's facts.

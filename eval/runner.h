@@ -40,6 +40,7 @@ struct SnapshotOutput {
 struct TraceOutput {
     ImageRGB image;
     Image<std::uint16_t> primaryRays;
+    ImageRGB halfDifference;  // TraceResult::halfDifference: empty unless the strategy splits its samples
     RayTotals rays;
     std::uint64_t nonFiniteSamples = 0;
     double seconds = 0;

@@ -56,7 +56,13 @@ void PerPixelStrategy::render(const SampleSource& source, const Scheduler& sched
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x) {
                 const int k = stratificationFor(x, y);
-                out.image.at(x, y) = source.pixel(x, y, k);
+                if (!out.halfDifference.empty() && k >= 2) {
+                    const SampleSource::Halves h = source.pixelHalves(x, y, k);
+                    out.image.at(x, y) = h.mean;
+                    out.halfDifference.at(x, y) = h.difference;
+                } else {
+                    out.image.at(x, y) = source.pixel(x, y, k);
+                }
                 out.primaryRays.at(x, y) = static_cast<std::uint16_t>(k * k);
                 out.traced.at(x, y) = 1;
             }

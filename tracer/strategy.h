@@ -75,6 +75,9 @@ struct StrategyDescriptor {
     bool usesAamap = false;       // reads StrategyInputs::aamap (the Snapshot, so the GPU unless cached)
     bool needsBlockSums = false;  // plans from the map's block sums: the Snapshot's GPU pass builds them
     bool marksTraced = false;     // may leave pixels untraced (interpolated): the traced mask is an output
+    // One k x k grid in every pixel: it also returns two independent half images' difference
+    // (TraceResult::halfDifference), from which a reference's own convergence is estimated.
+    bool splitsHalves = false;
     // params: resolved (every parameter present, typed, in range). May keep pointers to inputs.
     std::function<std::unique_ptr<SamplingStrategy>(const StrategyParams& params, const StrategyInputs& inputs)> create;
 

@@ -90,6 +90,25 @@ public:
         return kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
     }
 
+    Halves pixelHalves(int x, int y, int k) const override {
+        ThreadCounters& counters = counters_.local();
+        glm::dvec3 sum(0.0), half[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+        int kept = 0, halfKept[2] = {0, 0}, index = 0;
+        const auto accumulate = [&](const glm::vec3& L) {
+            const int i = index++, side = (i % k + i / k) & 1;
+            if (!isFinite(L)) {
+                ++counters.nonFinite;
+                return;
+            }
+            sum += glm::dvec3(L);  // in pixel()'s order, so the mean is pixel()'s
+            ++kept;
+            half[side] += glm::dvec3(L);
+            ++halfKept[side];
+        };
+        tracePackets(x, y, k, k * k, [](int i) { return i; }, counters, accumulate);
+        return halvesOf(sum, kept, half, halfKept);
+    }
+
     // The same packets for a batch of strata of one pixel (the variance strategy's rounds).
     void samples(int x, int y, const int* strata, int count, int k, PrimarySample* out) const override {
         ThreadCounters& counters = counters_.local();
@@ -260,6 +279,8 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     const EmbreeSource source(camera, integrator, impl_->geometry, impl_->shapes, settings.seed, W, H, filmFilter);
 
     StrategyImages images(W, H);
+    const StrategyDescriptor* descriptor = findStrategy(strategySettings.name);
+    if (descriptor != nullptr && descriptor->splitsHalves && strategySettings.strata >= 2) images.halfDifference = ImageRGB(W, H);
     Scheduler scheduler(W, H, settings.onTileDone);
     scheduler.expectTilePhases(strategy->tilePhases());
     if (settings.onTileFinished)
@@ -290,6 +311,8 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     // Weights are the kernel's alone, not the neighbours' sample counts: a count-weighted splat
     // would let an edge pixel of many rays outweigh its one-ray neighbours.
     result.image = convolve ? filter.convolve(images.image) : std::move(images.image);
+    if (!images.halfDifference.empty())  // linear in the samples: filtered as the image is
+        result.halfDifference = convolve ? filter.convolve(images.halfDifference) : std::move(images.halfDifference);
     result.primaryRays = std::move(images.primaryRays);
     result.traced = std::move(images.traced);
     result.strategy = strategy->describe();

@@ -114,6 +114,9 @@ struct TraceResult {
     ImageRGB image;                    // linear radiance, finite everywhere
     Image<std::uint16_t> primaryRays;  // primary rays traced per pixel
     Image<std::uint8_t> traced;        // 1: estimated from rays at this pixel, 0: interpolated
+    // Strategies that split their samples (StrategyDescriptor::splitsHalves, n >= 2): the
+    // difference of two independent half images (SampleSource::pixelHalves); else empty.
+    ImageRGB halfDifference;
     std::string strategy;              // the strategy with its resolved parameters, one line
     RayCounts rays;
     std::uint64_t nonFiniteSamples = 0;  // NaN/Inf samples dropped (counted, never written)

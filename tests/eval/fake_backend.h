@@ -1,5 +1,6 @@
 #pragma once
 // A RenderBackend without GPU or tracer, for the runner's tests.
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -46,6 +47,13 @@ public:
                 t.image.at(x, y) = glm::vec3(v + (r.shadingMode == "path" ? 0.0f : shadingBias));
                 t.primaryRays.at(x, y) = static_cast<std::uint16_t>(rays);
             }
+        if (halfNoise >= 0.0f && r.strategy == "uniform" && r.rpp >= 4) {
+            // Two half images that differ by +-halfNoise / sqrt(rpp) in a checkerboard: noise.
+            t.halfDifference = ImageRGB(kW, kH);
+            const float a = halfNoise / std::sqrt(static_cast<float>(r.rpp));
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW; ++x) t.halfDifference.at(x, y) = glm::vec3((x + y) % 2 == 0 ? a : -a);
+        }
         t.rays = {static_cast<std::uint64_t>(kW * kH * r.rpp), 0, 0};
         t.seconds = 0.001 * r.rpp;
         progress(1, 1);
@@ -59,6 +67,7 @@ public:
         for (int y = 0; y < kH; ++y) f.at(kW / 2, y) = pixel_fact::Silhouette;
         return f;
     }
+    float halfNoise = -1.0f;   // >= 0: uniform renders of 4+ rays return half images that differ by this / sqrt(rpp)
     float shadingBias = 0.0f;  // added to every pixel outside path mode: a biased shading mode
     bool withFacts = false;
     int factsComputed = 0;

@@ -4,6 +4,8 @@
 // the backend found lacking).
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -18,6 +20,11 @@ namespace aamap {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::string readText(const fs::path& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 class RunnerChecks : public ::testing::Test {
 protected:
@@ -133,6 +140,36 @@ TEST_F(RunnerChecks, RepeatedTimingsWithoutInterleaving) {
     const std::vector<std::string> blocked = {"uniform1", "uniform16", "aamap16", "uniform1", "uniform1",
                                               "uniform16", "uniform16", "aamap16", "aamap16"};
     EXPECT_EQ(three.order, blocked);
+}
+
+// A traced reference carries its own convergence (two half images of its samples): a noisy one
+// is a warning at the top, and the report leaves its error pixels out; a converged one is not.
+TEST_F(RunnerChecks, NoisyReferenceIsAWarningAndItsErrorPixelsAreLeftOut) {
+    FakeBackend backend;
+    backend.halfNoise = 2.0f;  // the reference's halves differ by 0.5: far above FLIP's threshold
+    const Results r = run(backend, "metrics: {map_quality: false}\n");
+    EXPECT_TRUE(hasWarning(r, "is noisy")) << (r.warnings.empty() ? "" : r.warnings.front());
+    ASSERT_TRUE(r.referenceInfo.noise.has_value());
+    const auto& n = *r.referenceInfo.noise;
+    EXPECT_TRUE(n["noisy"].get<bool>());
+    EXPECT_FALSE(n["converged"].get<bool>());
+    EXPECT_GT(n["floor_pct"].get<double>(), 50.0);  // every other pixel at least
+    ASSERT_TRUE(n["suggested_rpp"].is_number());
+    EXPECT_GT(n["suggested_rpp"].get<int>(), 16);
+    const std::string md = readText(out_ / "report.md");
+    EXPECT_NE(md.find("not reported: the reference is noisy"), std::string::npos);
+    EXPECT_NE(md.find("## The reference"), std::string::npos);
+    EXPECT_NE(readText(out_ / "report.html").find("is noisy"), std::string::npos);  // the problems box
+
+    FakeBackend clean;
+    clean.halfNoise = 0.0f;
+    fs::remove_all(out_);
+    const Results ok = run(clean, "metrics: {map_quality: false}\n");
+    EXPECT_FALSE(hasWarning(ok, "noisy"));
+    ASSERT_TRUE(ok.referenceInfo.noise.has_value());
+    EXPECT_TRUE((*ok.referenceInfo.noise)["converged"].get<bool>());
+    EXPECT_EQ((*ok.referenceInfo.noise)["suggested_rpp"].get<int>(), 16);
+    EXPECT_EQ(readText(out_ / "report.md").find("not reported"), std::string::npos);
 }
 
 }  // namespace

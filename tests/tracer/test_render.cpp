@@ -69,6 +69,39 @@ TEST_F(CornellRender, AamapAllOnesEqualsUniform) {
     EXPECT_EQ(a.rays.primary, static_cast<std::uint64_t>(w * h * n * n));
 }
 
+// Uniform renders also return two half images' difference (strata of even and odd x + y): the
+// image stays the one without halves (the aamap strategy's at all-ones, above), the halves are
+// thread-count independent, and their difference shrinks as noise does: at least as 1/sqrt(rays)
+// (independent samples), at most as 1/rays (stratification's best, on smooth integrands).
+TEST_F(CornellRender, UniformHalvesMeasureNoiseThatFallsWithRays) {
+    const int w = 24, h = 16;
+    const ImageGrey ones(w, h, 1.0f);
+    StrategySettings aamap = uniform(4);
+    aamap.name = "aamap";
+    aamap.aamap = &ones;
+    const TraceResult u = tracer_->render(view(), smallSettings(w, h, 1), uniform(4));
+    const TraceResult a = tracer_->render(view(), smallSettings(w, h, 1), aamap);
+    EXPECT_TRUE(u.image == a.image);  // the halves change nothing in the image
+    EXPECT_TRUE(a.halfDifference.empty());
+    ASSERT_EQ(u.halfDifference.width(), w);
+    ASSERT_EQ(u.halfDifference.height(), h);
+    EXPECT_TRUE(u.halfDifference == tracer_->render(view(), smallSettings(w, h, 3), uniform(4)).halfDifference);
+    EXPECT_TRUE(tracer_->render(view(), smallSettings(w, h, 1), uniform(1)).halfDifference.empty());
+
+    const auto rms = [&](int n) {
+        TraceSettings ts = smallSettings(w, h, 2);
+        ts.shading.areaLightSamples = 1;  // noisy shading, so the halves differ everywhere lit
+        const TraceResult r = tracer_->render(view(), ts, uniform(n));
+        double sum = 0.0;
+        for (const glm::vec3& d : r.halfDifference.pixels()) sum += glm::dot(glm::dvec3(d), glm::dvec3(d));
+        return std::sqrt(sum / static_cast<double>(r.halfDifference.size()));
+    };
+    const double at4 = rms(2), at64 = rms(8);  // 4 and 64 rays: noise 4x to 16x smaller
+    EXPECT_GT(at4, 0.0);
+    EXPECT_GT(at4 / at64, 3.5);
+    EXPECT_LT(at4 / at64, 18.0);
+}
+
 TEST_F(CornellRender, AamapZerosTraceOneRayPerPixelAndMapsModulate) {
     const int w = 24, h = 16, n = 4;
     const ImageGrey zeros(w, h, 0.0f);

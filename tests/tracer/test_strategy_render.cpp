@@ -76,6 +76,23 @@ TEST(StrategyRender, FlatColourGivesUniformsImageForEveryStrategy) {
 // A point lamp just above a diffuse floor: a steep smooth hot spot, and an aamap of zeros (no
 // edge anywhere). Traced pixels of aamap-subsample equal uniform n = 1's bit for bit, so the
 // difference to uniform is the interpolation error alone.
+// SampleSource::pixelHalves on a radiance that is 1 on the strata of even x + y and 0 on the
+// others: the mean is pixel()'s, the difference exactly 1.
+TEST(StrategyRender, PixelHalvesSplitTheStrataByParity) {
+    const int k = 4;
+    const testing::SyntheticSource source(3, 2, [&](float fx, float fy) {
+        const int sx = static_cast<int>((fx - std::floor(fx)) * k), sy = static_cast<int>((fy - std::floor(fy)) * k);
+        return glm::vec3((sx + sy) % 2 == 0 ? 1.0f : 0.0f);
+    });
+    for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x) {
+            const SampleSource::Halves h = source.pixelHalves(x, y, k);
+            EXPECT_EQ(h.mean, source.pixel(x, y, k));
+            EXPECT_FLOAT_EQ(h.mean.x, 0.5f);
+            EXPECT_FLOAT_EQ(h.difference.x, 1.0f);
+        }
+}
+
 TEST(StrategyRender, SubsampleGradientRoundsFollowAHotSpotTheMapDoesNotSee) {
     testing::SceneBuilder b;
     const auto floor = b.material("floor", glm::vec3(0.5f));

@@ -21,6 +21,21 @@ glm::vec3 SampleSource::pixel(int x, int y, int k) const {
     return kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
 }
 
+SampleSource::Halves SampleSource::pixelHalves(int x, int y, int k) const {
+    glm::dvec3 sum(0.0), half[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+    int kept = 0, halfKept[2] = {0, 0};
+    for (int sy = 0; sy < k; ++sy)
+        for (int sx = 0; sx < k; ++sx) {
+            const PrimarySample s = sample(x, y, sx, sy, k, false);
+            if (!s.finite) continue;
+            sum += glm::dvec3(s.radiance);
+            ++kept;
+            half[(sx + sy) & 1] += glm::dvec3(s.radiance);
+            ++halfKept[(sx + sy) & 1];
+        }
+    return halvesOf(sum, kept, half, halfKept);
+}
+
 void SampleSource::samples(int x, int y, const int* strata, int count, int k, PrimarySample* out) const {
     for (int i = 0; i < count; ++i) out[i] = sample(x, y, strata[i] % k, strata[i] / k, k, false);
 }

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include <glm/vec3.hpp>
+#include <glm/ext/vector_double3.hpp>
 
 #include "core/image.h"
 
@@ -37,11 +38,29 @@ public:
     // Mean over all k x k strata, non-finite samples dropped (black if none is finite). Sources
     // override it for speed; the result must equal this default's.
     virtual glm::vec3 pixel(int x, int y, int k) const;
+    // pixel(x, y, k), plus the mean of the strata with (sx + sy) even minus the mean of those with
+    // it odd: two independent half estimates of the pixel, whose difference measures how far the
+    // whole estimate is from converged (noise and antialiasing left). k >= 2. Sources override it
+    // for speed; mean must equal pixel()'s bit for bit.
+    struct Halves {
+        glm::vec3 mean{0.0f}, difference{0.0f};
+    };
+    virtual Halves pixelHalves(int x, int y, int k) const;
     // out[i] = sample(x, y, strata[i] % k, strata[i] / k, k, false) for i < count, in that
     // order: a batch of strata of one pixel. Sources override it for speed (the tracer traces the
     // batch as packets); the result must equal this default's.
     virtual void samples(int x, int y, const int* strata, int count, int k, PrimarySample* out) const;
 };
+
+// Halves from the sums pixelHalves() gathers: the whole mean as pixel() forms it, and the
+// difference of the two halves' means (0 when either half has no finite sample).
+inline SampleSource::Halves halvesOf(const glm::dvec3& sum, int kept, const glm::dvec3 half[2], const int halfKept[2]) {
+    SampleSource::Halves h;
+    if (kept > 0) h.mean = glm::vec3(sum / static_cast<double>(kept));
+    if (halfKept[0] > 0 && halfKept[1] > 0)
+        h.difference = glm::vec3(half[0] / static_cast<double>(halfKept[0]) - half[1] / static_cast<double>(halfKept[1]));
+    return h;
+}
 
 // Runs the phases of a strategy. Progress (tilesDone, tilesTotal) is reported per tile of the
 // tiles() phases; tilesTotal = tile count x expectedTilePhases (what the strategy announced).
@@ -76,6 +95,9 @@ struct StrategyImages {
     ImageRGB image;
     Image<std::uint16_t> primaryRays;
     Image<std::uint8_t> traced;
+    // Strategies that render every pixel with one k x k grid fill it with pixelHalves()'s
+    // difference when the caller allocated it (TraceResult::halfDifference); else left empty.
+    ImageRGB halfDifference;
     StrategyImages(int w, int h) : image(w, h, glm::vec3(0.0f)), primaryRays(w, h, 0), traced(w, h, 0) {}
 };
 

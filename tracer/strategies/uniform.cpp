@@ -23,6 +23,7 @@ StrategyDescriptor uniformStrategy() {
     StrategyDescriptor d;
     d.name = "uniform";
     d.doc = "n x n jittered rays in every pixel (the paper's standard render)";
+    d.splitsHalves = true;
     d.create = [](const StrategyParams&, const StrategyInputs& in) {
         return std::make_unique<UniformStrategy>(in.strata);
     };
