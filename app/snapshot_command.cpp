@@ -136,6 +136,9 @@ CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
 int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::string& device) {
     Scene scene = loadScene(o.scene);
     if (!o.lights.empty()) addLights(scene, loadLightFile(o.lights));
+    // What `aamap run` would say about this scene before its Snapshot.
+    if (auto unlit = unlitSceneWarning(scene)) spdlog::warn("{}", *unlit);
+    for (const std::string& note : snapshotLimitations(scene)) spdlog::warn("{}", note);
     // The scene file's image size (a Mitsuba film) where --width/--height are not given.
     const bool sceneSize = o.width == 0 && o.height == 0 && scene.imageWidth > 0;
     const int boxWidth = o.width > 0 ? o.width : sceneSize ? scene.imageWidth : kDefaultSide;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <utility>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -62,6 +64,39 @@ void initLogging(spdlog::level::level_enum level, std::FILE* out) {
     spdlog::set_default_logger(std::move(logger));
     std::lock_guard lock(terminalBar().mutex);
     terminalBar().out = out;
+}
+
+struct WarningCapture::Sink final : spdlog::sinks::base_sink<std::mutex> {
+    std::vector<std::pair<std::string, int>> drain() {
+        std::lock_guard lock(mutex_);
+        return std::exchange(messages, {});
+    }
+
+protected:
+    std::vector<std::pair<std::string, int>> messages;  // in first-seen order, with their counts
+
+    void sink_it_(const spdlog::details::log_msg& msg) override {
+        if (msg.level < spdlog::level::warn) return;
+        std::string text(msg.payload.data(), msg.payload.size());
+        const auto it = std::find_if(messages.begin(), messages.end(), [&](const auto& m) { return m.first == text; });
+        if (it != messages.end()) ++it->second;
+        else messages.emplace_back(std::move(text), 1);
+    }
+    void flush_() override {}
+};
+
+WarningCapture::WarningCapture() : sink_(std::make_shared<Sink>()) { spdlog::default_logger()->sinks().push_back(sink_); }
+
+WarningCapture::~WarningCapture() {
+    auto& sinks = spdlog::default_logger()->sinks();
+    sinks.erase(std::remove(sinks.begin(), sinks.end(), sink_), sinks.end());
+}
+
+std::vector<std::string> WarningCapture::take() {
+    std::vector<std::string> out;
+    auto messages = sink_->drain();
+    for (auto& [text, count] : messages) out.push_back(count > 1 ? fmt::format("{} ({} times)", text, count) : std::move(text));
+    return out;
 }
 
 std::optional<double> secondsLeft(int done, int total, double elapsed) {

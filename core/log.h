@@ -7,7 +7,9 @@
 #include <cstdio>
 #include <mutex>
 #include <optional>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 
@@ -16,6 +18,23 @@ namespace aamap {
 // Installs a logger on `out` (stderr by default) as spdlog's default. Call once at start-up;
 // calling again replaces it (tests).
 void initLogging(spdlog::level::level_enum level = spdlog::level::info, std::FILE* out = stderr);
+
+// Collects the warnings (and errors) logged anywhere while it is alive, in order, each once with
+// how often it came: what a scene loader said, for the report's problems box. They are still
+// logged as usual. One at a time; construct and destroy it on the thread that owns the logger.
+class WarningCapture {
+public:
+    WarningCapture();
+    ~WarningCapture();
+    WarningCapture(const WarningCapture&) = delete;
+    WarningCapture& operator=(const WarningCapture&) = delete;
+    // The messages so far ("message (3 times)" for a repeated one), and forgets them.
+    std::vector<std::string> take();
+
+private:
+    struct Sink;
+    std::shared_ptr<Sink> sink_;
+};
 
 // Seconds left for `done` of `total` items after `elapsed` seconds at the rate so far; nullopt
 // while nothing is done yet (no rate to go by).

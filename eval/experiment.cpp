@@ -135,10 +135,12 @@ public:
 
     SceneInfo prepare() override {
         spdlog::info("loading scene {}", config_.resolvedScene());
+        SceneInfo info;
+        WarningCapture loaderWarnings;
         PreparedScene prepared = prepareScene(config_);
+        info.loaderWarnings = loaderWarnings.take();
         scene_ = std::move(prepared.scene);
         view_ = prepared.view;
-        SceneInfo info;
         effective_ = withSceneRenderSettings(config_, scene_, info.warnings);
         for (const std::string& note : info.warnings) spdlog::info("{}", note);
         info.loadSeconds = prepared.loadSeconds;
@@ -146,14 +148,10 @@ public:
         info.width = prepared.width;
         info.height = prepared.height;
         info.scene = config_.resolvedScene();
-        spdlog::info("scene '{}': {} triangles, {} area + {} point lights; view {} at {}x{} ({:.2f} s)", scene_.name,
-                     scene_.mesh.triangles.size(), scene_.areaLights.size(), scene_.pointLights.size(),
-                     info.viewLabel, info.width, info.height, info.loadSeconds);
-        if (scene_.areaLights.empty() && scene_.pointLights.empty() && scene_.directionalLights.empty() &&
-            !scene_.environment)
-            info.warnings.push_back(fmt::format("scene '{}' has no lights: the renders show emitters only and the "
-                                                "aamap has nothing to find",
-                                                scene_.name));
+        spdlog::info("scene '{}': {} triangles, {}; view {} at {}x{} ({:.2f} s)", scene_.name,
+                     scene_.mesh.triangles.size(), describeLights(scene_), info.viewLabel, info.width, info.height,
+                     info.loadSeconds);
+        if (auto unlit = unlitSceneWarning(scene_)) info.warnings.push_back(std::move(*unlit));
         if (config_.usesAamap())
             for (std::string& note : snapshotLimitations(scene_)) info.warnings.push_back(std::move(note));
         spdlog::info("building BVH");

@@ -109,6 +109,7 @@ private:
     const SceneInfo& scene() {
         if (!scene_) {
             scene_ = backend_.prepare();
+            warnings_.insert(warnings_.end(), scene_->loaderWarnings.begin(), scene_->loaderWarnings.end());
             for (const std::string& w : scene_->warnings) warn(w);
         }
         return *scene_;

@@ -23,6 +23,9 @@ struct SceneInfo {
     std::string viewLabel;
     double loadSeconds = 0, bvhSeconds = 0;
     std::vector<std::string> warnings;  // what the scene lacks for a meaningful run (no lights, ...)
+    // What the loaders warned about (file:line, approximations, missing materials), already in
+    // the log: recorded for the report, not logged again.
+    std::vector<std::string> loaderWarnings;
 };
 
 struct SnapshotOutput {

@@ -122,4 +122,27 @@ std::vector<PointLight> approximateAreaLight(const Scene& scene, const AreaLight
     return points;
 }
 
+std::string describeLights(const Scene& scene) {
+    std::vector<std::string> kinds;
+    const auto add = [&](std::size_t n, const char* kind) {
+        if (n > 0) kinds.push_back(fmt::format("{} {}", n, kind));
+    };
+    add(scene.areaLights.size(), "area");
+    add(scene.pointLights.size(), "point");
+    add(scene.directionalLights.size(), "directional");
+    std::string text;
+    for (std::size_t i = 0; i < kinds.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == kinds.size() ? " and " : ", ") + kinds[i];
+    if (!text.empty()) text += kinds.size() == 1 && text.starts_with("1 ") ? " light" : " lights";
+    if (scene.environment) text += text.empty() ? "an environment map" : " and an environment map";
+    return text.empty() ? "no lights" : text;
+}
+
+std::optional<std::string> unlitSceneWarning(const Scene& scene) {
+    if (!scene.areaLights.empty() || !scene.pointLights.empty() || !scene.directionalLights.empty() || scene.environment)
+        return std::nullopt;
+    return fmt::format("scene '{}' has no lights: the renders show emitters only and the aamap has nothing to find",
+                       scene.name);
+}
+
 }  // namespace aamap

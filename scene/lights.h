@@ -4,6 +4,7 @@
 // and scene bounds.
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -75,5 +76,13 @@ std::vector<AreaLight> buildAreaLights(const Scene& scene, std::span<const std::
 // triangle's normal with intensity radiance * area / k, so the sum of intensities is
 // radiance * area (the light's on-axis intensity). Throws std::invalid_argument for k < 1.
 std::vector<PointLight> approximateAreaLight(const Scene& scene, const AreaLight& light, int k);
+
+// The scene's lights in one phrase for the log: "2 area, 1 point and 1 directional lights and an
+// environment map", "no lights".
+std::string describeLights(const Scene& scene);
+
+// A warning for a scene without any light (area, point, directional or environment): its renders
+// show emitters only and the aamap has nothing to find. Every command that renders says it.
+std::optional<std::string> unlitSceneWarning(const Scene& scene);
 
 }  // namespace aamap

@@ -295,6 +295,30 @@ TEST_F(CliErrors, MissingConfigIsBadInputNamingTheFile) {
     EXPECT_FALSE(fs::exists(dir_ / "out"));  // nothing written for bad input
 }
 
+// A loader's warning (a material the .mtl lacks) reaches results.json and report.html's problems
+// box, not only the log.
+TEST_F(CliErrors, LoaderWarningsReachTheReport) {
+    write("m.mtl", "newmtl floor\nKd 0.5 0.5 0.5\n");
+    write("quad.obj", "mtllib m.mtl\nv -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nusemtl light\nf 1 2 3 4\n");
+    const fs::path config = write("exp.yaml",
+                                  "scene: quad.obj\nimage: {width: 16, height: 16}\n"
+                                  "lights: [{type: point, position: [0, 1, 0], intensity: [1, 1, 1]}]\n"
+                                  "renders: [{strategy: uniform, rpp: [1, 4]}]\nreport: {plots: false}\n");
+    const fs::path out = dir_ / "out";
+    const CommandResult run = aamap("run '" + config.string() + "' -o '" + out.string() + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.stderrText;
+    std::ifstream in(out / "report.html");
+    const std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(html.find("light"), std::string::npos);
+    EXPECT_EQ(html.find("No warnings"), std::string::npos);
+    std::ifstream rin(out / "results.json");
+    const nlohmann::json results = nlohmann::json::parse(rin);
+    bool named = false;
+    for (const auto& w : results["warnings"]) named = named || (w.get<std::string>().find("'light'") != std::string::npos ||
+                                                                 w.get<std::string>().find("[ 'light' ]") != std::string::npos);
+    EXPECT_TRUE(named) << results["warnings"].dump();
+}
+
 TEST_F(CliErrors, MalformedYamlGivesFileAndLine) {
     const fs::path config = write("bad.yaml", "scene: builtin:cornell\nrenders: [{strategy: uniform, rpp: 4}\n");
     const CommandResult run = aamap("run '" + config.string() + "' -o '" + (dir_ / "out").string() + "'");

@@ -87,5 +87,30 @@ TEST(Progress, LogLinesDoNotBreakTheBar) {
     EXPECT_NE(text.find("trace y 100% (1000/1000)"), std::string::npos) << text;
 }
 
+// What a loader warns about while a WarningCapture lives is collected once per message with its
+// count, in order; info lines are not, and nothing is after it is gone.
+TEST(WarningCapture, CollectsWarningsOnceEachWhileAlive) {
+    std::FILE* out = std::tmpfile();
+    ASSERT_NE(out, nullptr);
+    initLogging(spdlog::level::info, out);
+    std::vector<std::string> got;
+    {
+        WarningCapture capture;
+        spdlog::warn("scene.obj:3: material 'light' not found");
+        spdlog::info("loading");
+        spdlog::warn("texture t.png: not found");
+        spdlog::warn("scene.obj:3: material 'light' not found");
+        spdlog::error("a failure");
+        got = capture.take();
+        EXPECT_TRUE(capture.take().empty());  // taken
+    }
+    spdlog::warn("after the capture");
+    std::fclose(out);
+    initLogging(spdlog::level::info);
+    const std::vector<std::string> expected = {"scene.obj:3: material 'light' not found (2 times)",
+                                               "texture t.png: not found", "a failure"};
+    EXPECT_EQ(got, expected);
+}
+
 }  // namespace
 }  // namespace aamap

@@ -311,5 +311,25 @@ TEST(GltfSpotLight, KeepsItsConeAlongTheNodesMinusZ) {
     EXPECT_EQ(emissionFactor(p, glm::normalize(glm::vec3(1, -1, 0))), 0.0f);  // 45 degrees > 0.6 rad
 }
 
+// The log's phrase counts every kind of light, and a scene with none of any kind is a warning.
+TEST(DescribeLights, CountsEveryKindAndWarnsOnlyWithoutAny) {
+    Scene scene;
+    scene.name = "empty";
+    EXPECT_EQ(describeLights(scene), "no lights");
+    ASSERT_TRUE(unlitSceneWarning(scene).has_value());
+    EXPECT_NE(unlitSceneWarning(scene)->find("'empty' has no lights"), std::string::npos);
+    scene.directionalLights.emplace_back();
+    EXPECT_EQ(describeLights(scene), "1 directional light");
+    EXPECT_FALSE(unlitSceneWarning(scene).has_value());
+    scene.pointLights.resize(2);
+    EXPECT_EQ(describeLights(scene), "2 point and 1 directional lights");
+    scene.environment.emplace();
+    EXPECT_EQ(describeLights(scene), "2 point and 1 directional lights and an environment map");
+    Scene sky;
+    sky.environment.emplace();
+    EXPECT_EQ(describeLights(sky), "an environment map");
+    EXPECT_FALSE(unlitSceneWarning(sky).has_value());
+}
+
 }  // namespace
 }  // namespace aamap
