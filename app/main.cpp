@@ -128,6 +128,8 @@ int main(int argc, char** argv) {
     CLI::App* report = app.add_subcommand("report", "Rebuild report.html, report.md, results.csv and the plots from OUTDIR/results.json");
     std::string reportDir;
     report->add_option("OUTDIR", reportDir, "An experiment's output folder")->required();
+    bool reportNoPlots = false;
+    report->add_flag("--no-plots", reportNoPlots, "Skip tools/report_plots.py (the report notes it)");
     aamap::app::SnapshotOptions snapshotOptions;
     CLI::App* snapshot = aamap::app::addSnapshotCommand(app, snapshotOptions);
     const std::unique_ptr<aamap::ViewCommand> view = aamap::addViewCommand(app);
@@ -146,10 +148,10 @@ int main(int argc, char** argv) {
     CLI::App* diff = aamap::app::addDiffCommand(app, diffOptions);
     std::string configPath, outDir, device = envString("AAMAP_DEVICE");
     std::vector<std::string> overrides;
-    bool validation = envFlag("AAMAP_VALIDATION"), listDevices = false, noPlots = false, listWork = false;
+    bool validation = envFlag("AAMAP_VALIDATION"), noPlots = false, listWork = false;
     int threads = -1;
     std::string executor = "local", rayAddress, onlyKey, cacheDir;
-    run->add_option("CONFIG", configPath, "Experiment YAML file");
+    run->add_option("CONFIG", configPath, "Experiment YAML file")->required();
     run->add_option("-o,--out", outDir, "Output folder (default: out/<config stem>)")->type_name("OUTDIR");
     run->add_option("--set", overrides, "Override a config value: key.path=value (repeatable)")
         ->expected(1)
@@ -160,7 +162,19 @@ int main(int argc, char** argv) {
         ->type_name("NAME");
     run->add_flag("--validation", validation, "Enable the Vulkan validation layer; any message fails the run (exit 3)");
     run->add_option("--threads", threads, "Tracer threads (overrides the config; 0 = all)")->check(CLI::NonNegativeNumber);
-    run->add_flag("--list-devices", listDevices, "Print the Vulkan devices and exit");
+    // Needs no CONFIG: it acts while parsing, before CONFIG is found missing.
+    int devicesListed = 0;
+    run->add_flag_callback("--list-devices", [&devicesListed] {
+           std::vector<std::string> devices;
+           try {
+               devices = aamap::VulkanContext::listDevices();
+           } catch (const std::exception& e) {
+               fmt::print(stderr, "aamap: {}\n", e.what());
+           }
+           for (std::size_t i = 0; i < devices.size(); ++i) fmt::print("{}: {}\n", i, devices[i]);
+           devicesListed = devices.empty() ? 1 : 2;
+           throw CLI::Success();
+       })->trigger_on_parse()->description("Print the Vulkan devices and exit");
     run->add_flag("--no-plots", noPlots, "Skip tools/report_plots.py (the report notes it)");
     run->add_option("--executor", executor, "Where the renders run: local (this process) or ray (a Ray cluster; "
                                             "docs/experiments.md)")
@@ -176,14 +190,15 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+        if (devicesListed == 1) return fail(kExitEnvironment, "no Vulkan devices found");
+        if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version, --list-devices
         return fail(kExitInput, fmt::format("{}\nRun 'aamap --help' for usage.", e.what()));
     }
     aamap::initLogging(verbose ? spdlog::level::debug : quiet ? spdlog::level::warn : spdlog::level::info);
 
     try {
         if (report->parsed()) {
-            aamap::rebuildReport(reportDir, true);
+            aamap::rebuildReport(reportDir, !reportNoPlots);
             return 0;
         }
         if (compare->parsed()) {
@@ -204,13 +219,6 @@ int main(int argc, char** argv) {
                 return fail(kExitValidation, "Vulkan validation messages (see above)");
             return 0;
         }
-        if (listDevices) {
-            const std::vector<std::string> devices = aamap::VulkanContext::listDevices();
-            for (std::size_t i = 0; i < devices.size(); ++i) fmt::print("{}: {}\n", i, devices[i]);
-            if (devices.empty()) return fail(kExitEnvironment, "no Vulkan devices found");
-            if (configPath.empty()) return 0;
-        }
-        if (configPath.empty()) return fail(kExitInput, "run: CONFIG is required\nRun 'aamap run --help' for usage.");
         if (executor == "ray" && (listWork || !onlyKey.empty()))
             return fail(kExitInput, "run: --executor ray cannot be combined with --list-work or --only");
         if (!rayAddress.empty() && executor != "ray") return fail(kExitInput, "run: --ray-address needs --executor ray");

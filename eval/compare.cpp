@@ -1,6 +1,7 @@
 #include "eval/compare.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -13,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "eval/report.h"
+#include "eval/strategies.h"
 
 namespace aamap {
 namespace fs = std::filesystem;
@@ -172,12 +174,219 @@ std::vector<ComparedRun> loadComparedRuns(const std::vector<fs::path>& given) {
             runs[i].differs.emplace_back(k, it == flat[i].end() ? std::string("-") : it->second);
         }
     }
+    // Short values: a path's last two parts; a list or a mapping by its order of appearance.
+    std::map<std::string, std::vector<std::string>> seen;  // key -> its distinct structured values
     for (ComparedRun& run : runs) {
+        for (const auto& [k, v] : run.differs) {
+            std::string shortValue = v;
+            if (!v.empty() && (v.front() == '[' || v.front() == '{')) {
+                auto& values = seen[k];
+                auto it = std::find(values.begin(), values.end(), v);
+                if (it == values.end()) it = values.insert(values.end(), v);
+                shortValue = fmt::format("#{}", it - values.begin() + 1);
+            } else if (v.find('/') != std::string::npos) {
+                shortValue = sceneTitle(v);
+            }
+            run.shortDiffers.emplace_back(k, std::move(shortValue));
+        }
+        const bool others = std::any_of(run.differs.begin(), run.differs.end(), [](const auto& d) { return d.first != "scene"; });
         std::vector<std::string> parts;
-        for (const auto& [k, v] : run.differs) parts.push_back(k + "=" + v);
+        for (const auto& [k, v] : run.shortDiffers)
+            if (k != "scene" || !others) parts.push_back(k + "=" + v);
         run.label = parts.empty() ? run.dir.filename().string() : fmt::format("{}", fmt::join(parts, ", "));
     }
     return runs;
+}
+
+namespace {
+
+// A run's headline: per series that is not the baseline, at the largest rpp it shares with the
+// baseline, its speedup and error; the baseline's error there.
+struct Headline {
+    std::string series;
+    int rpp = 0;
+    double speedup = NAN, error = NAN, baselineError = NAN;
+};
+
+double metricOf(const Json& render, const std::string& key) {
+    if (!render.contains("metrics") || !render["metrics"].contains(key) || !render["metrics"][key].is_number()) return NAN;
+    return render["metrics"][key].get<double>();
+}
+
+bool noisyReference(const ComparedRun& run) {
+    const Json& results = run.results;
+    return results.contains("reference") && results["reference"].is_object() && results["reference"].contains("noise") &&
+           results["reference"]["noise"].value("noisy", false);
+}
+
+std::vector<Headline> headlines(const ComparedRun& run, const std::string& errorMetric) {
+    const Json& renders = run.results["renders"];
+    std::string base;
+    for (const Json& r : renders)
+        if (r.value("strategy", std::string()) == baselineStrategyName()) {
+            base = r.value("series", std::string());
+            break;
+        }
+    std::vector<Headline> out;
+    if (base.empty()) return out;
+    const auto at = [&](const std::string& series, int rpp) -> const Json* {
+        for (const Json& r : renders)
+            if (r.value("series", std::string()) == series && r.value("max_rays_per_pixel", 0) == rpp) return &r;
+        return nullptr;
+    };
+    const bool noisy = noisyReference(run);
+    for (const Json& r : renders) {
+        const std::string series = r.value("series", std::string());
+        if (series == base || std::any_of(out.begin(), out.end(), [&](const Headline& h) { return h.series == series; }))
+            continue;
+        Headline h{series};
+        for (const Json& other : renders)
+            if (other.value("series", std::string()) == series && at(base, other.value("max_rays_per_pixel", 0)))
+                h.rpp = std::max(h.rpp, other.value("max_rays_per_pixel", 0));
+        if (h.rpp == 0) continue;
+        const Json& s = *at(series, h.rpp);
+        const Json& b = *at(base, h.rpp);
+        if (renderSeconds(s) > 0) h.speedup = renderSeconds(b) / renderSeconds(s);
+        if (!noisy) {
+            h.error = metricOf(s, errorMetric);
+            h.baselineError = metricOf(b, errorMetric);
+        }
+        out.push_back(h);
+    }
+    return out;
+}
+
+std::string errorMetricOf(const std::vector<const ComparedRun*>& runs) { return errorKey(runs); }
+
+}  // namespace
+
+Table summaryTable(const std::vector<ComparedRun>& runs) {
+    std::vector<const ComparedRun*> all;
+    for (const ComparedRun& r : runs) all.push_back(&r);
+    const std::string metric = errorMetricOf(all);
+    const std::string errorName = metric == "pct_error_flip" ? "% error (FLIP)" : "% error (MSE)";
+    Table t{"summary", "Summary: one row per run",
+            fmt::format("speedup: the baseline's time over the series' at the largest rpp both have (time = trace + "
+                        "Snapshot); {}: pixels in error against the run's reference there; recall, precision, "
+                        "flagged: the aamap against true aliasing; time: all the run's renders. Bold: the best of the "
+                        "column among the runs of one scene",
+                        errorName),
+            {}, {}};
+    for (const auto& [k, v] : runs.front().shortDiffers) t.header.push_back(k);
+    // The columns: every series any run has, in order of appearance.
+    std::vector<std::pair<std::string, int>> series;  // name, rpp (0 when it differs between runs)
+    std::string baseline;
+    for (const ComparedRun& run : runs)
+        for (const Headline& h : headlines(run, metric)) {
+            const auto it = std::find_if(series.begin(), series.end(), [&](const auto& s) { return s.first == h.series; });
+            if (it == series.end()) series.emplace_back(h.series, h.rpp);
+            else if (it->second != h.rpp) it->second = 0;
+        }
+    for (const ComparedRun& run : runs)
+        for (const Json& r : run.results["renders"])
+            if (baseline.empty() && r.value("strategy", std::string()) == baselineStrategyName())
+                baseline = r.value("series", std::string());
+    for (const auto& [name, rpp] : series) {
+        const std::string at = rpp > 0 ? fmt::format(" @{}", rpp) : "";
+        t.header.push_back(fmt::format("{} speedup{}", name, at));
+        t.header.push_back(fmt::format("{} {}", name, errorName));
+    }
+    if (!series.empty()) t.header.push_back(fmt::format("{} {}", baseline.empty() ? "baseline" : baseline, errorName));
+    const std::vector<std::string> mapKeys = {"recall", "precision", "flagged_fraction"};
+    const bool map = std::any_of(runs.begin(), runs.end(), [](const ComparedRun& r) { return r.results.contains("map_quality"); });
+    if (map)
+        for (const char* h : {"recall", "precision", "flagged %"}) t.header.push_back(h);
+    t.header.push_back("time (s)");
+
+    std::vector<std::vector<double>> values(runs.size());  // the figures, for the best of each column
+    std::vector<bool> higherIsBetter;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        const ComparedRun& run = runs[i];
+        std::vector<std::string> row;
+        for (const auto& [k, v] : run.shortDiffers) row.push_back(v);
+        const std::vector<Headline> hs = headlines(run, metric);
+        double baselineError = NAN;
+        std::vector<double>& vals = values[i];
+        higherIsBetter.clear();
+        for (const auto& [name, rpp] : series) {
+            const auto h = std::find_if(hs.begin(), hs.end(), [&](const Headline& x) { return x.series == name; });
+            vals.push_back(h != hs.end() ? h->speedup : NAN);
+            vals.push_back(h != hs.end() ? h->error : NAN);
+            higherIsBetter.insert(higherIsBetter.end(), {true, false});
+            if (h != hs.end() && std::isfinite(h->baselineError)) baselineError = h->baselineError;
+        }
+        if (!series.empty()) {
+            vals.push_back(baselineError);
+            higherIsBetter.push_back(false);
+        }
+        if (map) {
+            const Json& m = run.results.contains("map_quality") ? run.results["map_quality"] : Json::object();
+            for (const std::string& k : mapKeys) {
+                const double v = m.contains(k) && m[k].is_number() ? m[k].get<double>() : NAN;
+                vals.push_back(k == "flagged_fraction" ? 100.0 * v : v);
+                higherIsBetter.push_back(k != "flagged_fraction");
+            }
+        }
+        double seconds = 0;
+        for (const Json& r : run.results["renders"]) seconds += renderSeconds(r);
+        vals.push_back(seconds);
+        higherIsBetter.push_back(false);
+        t.rows.push_back(std::move(row));
+    }
+    const std::size_t keyColumns = runs.front().shortDiffers.size();
+    for (std::size_t c = 0; c < higherIsBetter.size(); ++c) {
+        // The best of the column among the runs of one scene: figures of other scenes do not compare.
+        std::map<std::string, double> best;
+        for (std::size_t i = 0; i < runs.size(); ++i) {
+            const double v = c < values[i].size() ? values[i][c] : NAN;
+            if (!std::isfinite(v)) continue;
+            const auto [it, added] = best.emplace(sceneOf(runs[i]), v);
+            if (!added && (higherIsBetter[c] ? v > it->second : v < it->second)) it->second = v;
+        }
+        for (std::size_t i = 0; i < runs.size(); ++i) {
+            const double v = c < values[i].size() ? values[i][c] : NAN;
+            std::string text = readableNumber(v);
+            if (higherIsBetter[c] && c + 1 < higherIsBetter.size() && t.header[keyColumns + c].find("speedup") != std::string::npos &&
+                std::isfinite(v))
+                text += "x";
+            const auto sameScene = std::count_if(runs.begin(), runs.end(), [&](const ComparedRun& r) { return sceneOf(r) == sceneOf(runs[i]); });
+            const bool isBest = sameScene > 1 && std::isfinite(v) && v == best[sceneOf(runs[i])];
+            t.rows[i].push_back(isBest ? "**" + text + "**" : text);
+        }
+    }
+    return t;
+}
+
+std::vector<std::string> winners(const std::vector<const ComparedRun*>& sceneRuns) {
+    std::vector<std::string> lines;
+    if (sceneRuns.size() < 2) return lines;
+    const std::string metric = errorMetricOf(sceneRuns);
+    std::vector<std::string> names;
+    for (const ComparedRun* run : sceneRuns)
+        for (const Headline& h : headlines(*run, metric))
+            if (std::find(names.begin(), names.end(), h.series) == names.end()) names.push_back(h.series);
+    for (const std::string& name : names) {
+        double lowest = NAN;
+        for (const ComparedRun* run : sceneRuns)
+            for (const Headline& h : headlines(*run, metric))
+                if (h.series == name && std::isfinite(h.error) && !(h.error >= lowest)) lowest = h.error;
+        if (!std::isfinite(lowest)) continue;
+        const ComparedRun* best = nullptr;
+        Headline bestH;
+        for (const ComparedRun* run : sceneRuns)
+            for (const Headline& h : headlines(*run, metric))
+                if (h.series == name && std::isfinite(h.speedup) && h.error <= lowest + kEqualErrorPoints &&
+                    (best == nullptr || h.speedup > bestH.speedup)) {
+                    best = run;
+                    bestH = h;
+                }
+        if (best == nullptr) continue;
+        lines.push_back(fmt::format("{}: **{}** is the fastest within {} points of the lowest error: {}x at {}% "
+                                    "error pixels ({} rpp)",
+                                    name, best->label, readableNumber(kEqualErrorPoints), readableNumber(bestH.speedup),
+                                    readableNumber(bestH.error), bestH.rpp));
+    }
+    return lines;
 }
 
 std::string compareCsv(const std::vector<ComparedRun>& runs) {
@@ -199,16 +408,21 @@ std::string compareCsv(const std::vector<ComparedRun>& runs) {
 std::string compareMarkdown(const std::vector<ComparedRun>& runs, const std::vector<std::string>& scenePlots) {
     std::string md = fmt::format("# aamap comparison of {} run(s)\n\n", runs.size());
     if (runs.front().differs.empty()) md += "The runs' settings are the same.\n\n";
+    md += markdownTable(summaryTable(runs));
     const auto groups = byScene(runs);
     for (std::size_t g = 0; g < groups.size(); ++g) {
         const auto& group = groups[g];
         md += fmt::format("## Scene {}\n\n", sceneOf(*group.front()));
+        for (const std::string& line : winners(group)) md += "* " + line + "\n";
         if (group.size() > 1) {
-            md += markdownTable(paretoTable(group, g), "###");
+            md += "\n";
             if (g < scenePlots.size() && !scenePlots[g].empty()) md += fmt::format("![error against time]({})\n\n", scenePlots[g]);
+            md += markdownTable(paretoTable(group, g), "###");
         }
         for (const ComparedRun* run : group) {
-            md += fmt::format("### {} ({})\n\n", run->label, run->dir.string());
+            // Each run's own tables, folded: the summary above answers the comparison.
+            md += fmt::format("<details><summary><b>{}</b> ({})</summary>\n\n", run->label, run->dir.string());
+            md += fmt::format("### {}\n\n", run->label);
             for (const Json& w : run->results["warnings"]) md += fmt::format("> **warning:** {}\n\n", w.get<std::string>());
             std::string body = markdownReport(run->results, reportTables(run->results));
             body = body.substr(body.find("\n## ") + 1);  // without the run's own title
@@ -218,7 +432,7 @@ std::string compareMarkdown(const std::vector<ComparedRun>& runs, const std::vec
                 const std::string line = body.substr(start, end - start);
                 demoted += (line.rfind("## ", 0) == 0 ? "##" + line : line) + "\n";
             }
-            md += demoted;
+            md += demoted + "\n</details>\n\n";
         }
     }
     return md;
@@ -233,29 +447,35 @@ std::string compareHtml(const std::vector<ComparedRun>& runs, const fs::path& ou
         ".note{{color:#555;font-size:90%}}.warn{{background:#fff3cd;border:1px solid #e0b400;padding:.6em}}"
         "</style></head><body>\n<h1>aamap comparison of {} run(s)</h1>\n",
         runs.size());
-    Table overview{"runs", "Runs", "what tells the runs apart; each links to its own report", {"run"}, {}};
-    for (const auto& [k, v] : runs.front().differs) overview.header.push_back(k);
-    overview.header.push_back("report");
-    for (const ComparedRun& run : runs) {
-        std::vector<std::string> row = {run.dir.string()};
-        for (const auto& [k, v] : run.differs) row.push_back(v);
-        row.push_back(fs::relative(run.dir / "report.html", outDir).string());
-        overview.rows.push_back(std::move(row));
-    }
-    h += htmlTable(overview);
+    Table summary = summaryTable(runs);
+    summary.header.push_back("report");
+    for (std::size_t i = 0; i < runs.size(); ++i)
+        summary.rows[i].push_back(fs::relative(runs[i].dir / "report.html", outDir).string());
+    h += htmlTable(summary);
     const auto groups = byScene(runs);
     for (std::size_t g = 0; g < groups.size(); ++g) {
         const auto& group = groups[g];
         h += fmt::format("<h2>Scene {}</h2>\n", htmlEscape(sceneOf(*group.front())));
+        const std::vector<std::string> won = winners(group);
+        if (!won.empty()) {
+            h += "<ul>\n";
+            for (std::string line : won) {
+                line = htmlEscape(line);
+                for (int open = 1; line.find("**") != std::string::npos; open ^= 1)  // **x** -> <b>x</b>
+                    line.replace(line.find("**"), 2, open ? "<b>" : "</b>");
+                h += "<li>" + line + "</li>\n";
+            }
+            h += "</ul>\n";
+        }
         if (group.size() > 1) {
-            h += htmlTable(paretoTable(group, g));
             if (g < scenePlots.size() && !scenePlots[g].empty())
                 h += fmt::format("<figure><a href=\"{0}\"><img src=\"{0}\" alt=\"error against time\" style=\"max-width:100%\"></a>"
                                  "<figcaption>Error against time, every run's series (labels: rpp)</figcaption></figure>\n",
                                  htmlEscape(scenePlots[g]));
+            h += htmlTable(paretoTable(group, g));
         }
         for (const ComparedRun* run : group) {
-            h += fmt::format("<h3>{} (<a href=\"{}\">report</a>)</h3>\n", htmlEscape(run->label),
+            h += fmt::format("<details><summary><b>{}</b> (<a href=\"{}\">report</a>)</summary>\n", htmlEscape(run->label),
                              htmlEscape(fs::relative(run->dir / "report.html", outDir).string()));
             for (const Json& w : run->results["warnings"])
                 h += "<p class=\"warn\">" + htmlEscape(w.get<std::string>()) + "</p>\n";
@@ -263,6 +483,7 @@ std::string compareHtml(const std::vector<ComparedRun>& runs, const fs::path& ou
                 t.id = fmt::format("{}-{}", t.id, static_cast<std::size_t>(run - runs.data()));
                 h += htmlTable(t);
             }
+            h += "</details>\n";
         }
     }
     return h + "</body></html>\n";

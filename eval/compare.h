@@ -19,8 +19,13 @@ namespace aamap {
 struct ComparedRun {
     std::filesystem::path dir;
     nlohmann::ordered_json results;
-    std::vector<std::pair<std::string, std::string>> differs;  // key -> this run's value
-    std::string label;  // "snapshot.blur_radius=2", or the folder's name when nothing differs
+    std::vector<std::pair<std::string, std::string>> differs;  // key -> this run's value, in full
+    // The same values short: a path's last two parts, a list or mapping (inline lights) as #1, #2
+    // in order of first appearance.
+    std::vector<std::pair<std::string, std::string>> shortDiffers;
+    // "snapshot.blur_radius=2": the short values of the keys that differ, the scene left out where
+    // other keys differ too (the report groups runs by scene); the folder's name when none does.
+    std::string label;
 };
 
 // The experiment folders `dir` stands for: a sweep's output folder (it holds sweep.json) stands for
@@ -37,6 +42,18 @@ std::vector<ComparedRun> loadComparedRuns(const std::vector<std::filesystem::pat
 // the FLIP threshold, else above the MSE threshold), fastest first: the best setting at each error
 // level, whatever run, shading mode or strategy it comes from. Time = trace + Snapshot.
 Table paretoTable(const std::vector<const ComparedRun*>& sceneRuns, std::size_t sceneIndex = 0);
+
+// The first table of a comparison (a sweep's report): a row per run, a column per key that
+// differs (short values), then its headline figures: per series that is not the baseline, its
+// speedup over the baseline and its % error pixels at the largest rpp both have, the baseline's
+// error there, the map's recall, precision and flagged share, and the time of all its renders.
+Table summaryTable(const std::vector<ComparedRun>& runs);
+
+// Which run won, per series that is not the baseline, among one scene's runs: the fastest whose
+// error at that rpp is within kEqualErrorPoints of the lowest any of them reaches. One sentence
+// per series; none without a baseline or an error figure.
+inline constexpr double kEqualErrorPoints = 0.1;
+std::vector<std::string> winners(const std::vector<const ComparedRun*>& sceneRuns);
 
 std::string compareCsv(const std::vector<ComparedRun>& runs);
 // Per scene with several runs: the Pareto front of time against error over all their renders, and

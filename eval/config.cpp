@@ -442,6 +442,7 @@ Experiment parseExperiment(const std::string& text, const std::filesystem::path&
     for (const std::string& o : overrides) yaml::applyOverride(root, o, settable, ctx);
 
     const std::vector<detail::ConfigSweep> sweeps = detail::findConfigSweeps(ctx, root);
+    const std::vector<std::vector<std::size_t>> groups = detail::takeZipGroups(ctx, root, sweeps);
     Experiment e;
     for (const detail::ConfigSweep& s : sweeps) {
         e.sweptKeys.push_back(s.key);
@@ -458,7 +459,7 @@ Experiment parseExperiment(const std::string& text, const std::filesystem::path&
         std::replace(name.begin(), name.end(), '.', '_');
         shortKeys.push_back(name);
     }
-    detail::forEachConfigVariant(ctx, root, sweeps, kMaxConfigVariants, [&](const YAML::Node& doc,
+    detail::forEachConfigVariant(ctx, root, sweeps, groups, kMaxConfigVariants, [&](const YAML::Node& doc,
                                                                              const std::vector<std::size_t>& choice) {
         e.variants.push_back(readConfig(ctx, doc));
         std::vector<std::string> values, pieces;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 namespace aamap::detail {
 namespace {
@@ -84,23 +85,69 @@ std::vector<ConfigSweep> findConfigSweeps(const yaml::Context& ctx, const YAML::
     return sweeps;
 }
 
+std::vector<std::vector<std::size_t>> takeZipGroups(const yaml::Context& ctx, YAML::Node& root,
+                                                    const std::vector<ConfigSweep>& sweeps) {
+    std::vector<std::vector<std::size_t>> groups;
+    std::vector<bool> zipped(sweeps.size(), false);
+    if (root.IsMap() && root["zip"]) {
+        const YAML::Node zip = root["zip"];
+        if (!zip.IsSequence()) ctx.fail(zip, "zip", "zip: expected a list of lists of swept keys ([[a.b, c.d], ...])");
+        for (const YAML::Node& group : zip) {
+            if (!group.IsSequence() || group.size() < 2)
+                ctx.fail(group, "zip", "zip: each entry lists two or more swept keys that vary together");
+            std::vector<std::size_t> members;
+            for (const YAML::Node& key : group) {
+                const std::string name = key.IsScalar() ? key.Scalar() : std::string();
+                const auto it = std::find_if(sweeps.begin(), sweeps.end(), [&](const ConfigSweep& s) { return s.key == name; });
+                if (it == sweeps.end()) {
+                    std::vector<std::string> swept;
+                    for (const ConfigSweep& s : sweeps) swept.push_back(s.key);
+                    ctx.fail(key, "zip", fmt::format("zip: '{}' is not a swept key (swept: {})", name,
+                                                     swept.empty() ? std::string("none") : fmt::format("{}", fmt::join(swept, ", "))));
+                }
+                const auto i = static_cast<std::size_t>(it - sweeps.begin());
+                if (zipped[i]) ctx.fail(key, "zip", fmt::format("zip: '{}' is zipped twice", name));
+                if (!members.empty() && sweeps[members.front()].values.size() != it->values.size())
+                    ctx.fail(key, "zip",
+                             fmt::format("zip: '{}' lists {} values and '{}' {}: zipped lists vary together, so their "
+                                         "lengths must be equal",
+                                         name, it->values.size(), sweeps[members.front()].key,
+                                         sweeps[members.front()].values.size()));
+                zipped[i] = true;
+                members.push_back(i);
+            }
+            groups.push_back(std::move(members));
+        }
+        root.remove("zip");
+    }
+    for (std::size_t i = 0; i < sweeps.size(); ++i)
+        if (!zipped[i]) groups.push_back({i});
+    std::sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) {
+        return *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end());
+    });
+    return groups;
+}
+
 void forEachConfigVariant(const yaml::Context& ctx, YAML::Node& root, const std::vector<ConfigSweep>& sweeps,
-                          std::size_t maxVariants,
+                          const std::vector<std::vector<std::size_t>>& groups, std::size_t maxVariants,
                           const std::function<void(const YAML::Node& doc, const std::vector<std::size_t>& choice)>& variant) {
     std::size_t count = 1;
-    for (const ConfigSweep& s : sweeps) {
+    for (const auto& group : groups) {
+        const ConfigSweep& s = sweeps[group.front()];
         count *= s.values.size();
         if (count > maxVariants)
             ctx.fail(s.values.front(), s.key,
                      fmt::format("{}: the sweeps expand to more than {} variants of the experiment", s.key, maxVariants));
     }
     for (std::size_t index = 0; index < count; ++index) {
-        std::vector<std::size_t> choice;
+        std::vector<std::size_t> choice(sweeps.size(), 0);
         std::size_t rest = index, stride = count;
-        for (const ConfigSweep& s : sweeps) {
-            stride /= s.values.size();
-            choice.push_back(rest / stride);
-            setAt(root, s.key, s.values[rest / stride]);
+        for (const auto& group : groups) {
+            stride /= sweeps[group.front()].values.size();
+            for (std::size_t i : group) {
+                choice[i] = rest / stride;
+                setAt(root, sweeps[i].key, sweeps[i].values[rest / stride]);
+            }
             rest %= stride;
         }
         variant(root, choice);

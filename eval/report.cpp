@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.h"
 #include "eval/evaluate.h"
+#include "tracer/strategy.h"
 #include "eval/metrics/pixel_causes.h"
 
 namespace aamap {
@@ -96,7 +97,7 @@ const Json* find(const Json& renders, int rpp, const std::string& series) {
 // The baseline of speedups: the first uniform series (the paper's "standard" render).
 std::string baselineSeries(const Json& renders) {
     for (const Json& r : renders)
-        if (r["strategy"] == "uniform") return r.value("series", std::string("uniform"));
+        if (r["strategy"] == baselineStrategyName()) return r.value("series", baselineStrategyName());
     return "";
 }
 
@@ -491,8 +492,17 @@ void writeReport(const fs::path& outDir, const Json& results, bool plots) {
 std::string readableNumber(double v) {
     if (!std::isfinite(v)) return "—";
     // A float held in a double (a threshold the metrics stored) reads best as the float's shortest form.
+    // Only a short one (a threshold as written: 0.1, 0.025), not a measured float (5.151367).
     const float f = static_cast<float>(v);
-    if (static_cast<double>(f) == v && fmt::format("{}", f).size() <= 8) return fmt::format("{}", f);
+    if (static_cast<double>(f) == v) {
+        const std::string text = fmt::format("{}", f);
+        const std::string mantissa = text.substr(0, text.find_first_of("eE"));
+        const auto first = mantissa.find_first_of("123456789");
+        int digits = 0;
+        if (first != std::string::npos)
+            for (std::size_t i = first; i < mantissa.size(); ++i) digits += mantissa[i] >= '0' && mantissa[i] <= '9';
+        if (digits <= 4 && text.size() <= 8) return text;
+    }
     const double a = std::fabs(v);
     if (a >= 1e6 || (a > 0 && a < 1e-3)) return fmt::format("{:.3g}", v);
     return fmt::format("{}", std::stod(fmt::format("{:.3g}", v)));  // 3 digits, no trailing zeros, no exponent

@@ -46,7 +46,10 @@ std::string tableHtml(const Table& t, const char* heading = "h2") {
     h += "</tr>\n";
     for (const auto& row : t.rows) {
         h += "<tr>";
-        for (const std::string& c : row) h += "<td>" + escape(c) + "</td>";
+        for (const std::string& c : row) {  // a cell in Markdown's bold (**x**, the best of a column) is bold here too
+            const bool strong = c.size() > 4 && c.starts_with("**") && c.ends_with("**");
+            h += strong ? "<td><b>" + escape(c.substr(2, c.size() - 4)) + "</b></td>" : "<td>" + escape(c) + "</td>";
+        }
         h += "</tr>\n";
     }
     return h + fmt::format("</table>\n<p class=\"note\">{}</p>\n", escape(t.note));

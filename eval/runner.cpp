@@ -150,7 +150,9 @@ private:
     std::map<std::string, Traced> traced_;  // by key
     std::map<std::string, bool> reused_;    // by key: came from the cache
     int tracedNow_ = 0;
-    WorkEstimate estimate_;  // the whole run's time left, logged after each trace
+    WorkEstimate ownEstimate_;  // the whole run's time left, logged after each trace
+    // A sweep's estimate over all its variants (RunnerOptions::estimate), else ownEstimate_.
+    WorkEstimate& estimate() { return options_.estimate != nullptr ? *options_.estimate : ownEstimate_; }
     std::vector<std::string> warnings_;  // for the top of the report
 };
 
@@ -237,7 +239,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
             t.image = readExr(entry / "image.exr");
             t.rays = greyToRays(readExrGrey(entry / "rpp.exr"));
             if (fs::is_regular_file(entry / "halves.exr")) t.halfDifference = readExr(entry / "halves.exr");
-            spdlog::info("[{}/{}] {}: reused (cache {})", index, count, job.render.name, job.key);
+            spdlog::info("[job {}/{}] {}: reused (cache {})", index, count, job.render.name, job.key);
             reused_[job.key] = true;
             return traced_.emplace(job.key, std::move(t)).first->second;
         } catch (const std::exception& e) {  // damaged by hand or by a full disk: trace it again
@@ -247,7 +249,7 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
         }
     }
     const SceneInfo& s = scene();
-    Progress progress(fmt::format("[{}/{}] trace {}", index, count, job.render.name));
+    Progress progress(fmt::format("[job {}/{}] trace {}", index, count, job.render.name));
     TraceOutput out = backend_.trace(job.render, mapFor(job),
                                      [&progress](int done, int total) { progress.update(done, total); });
     progress.finish();
@@ -318,28 +320,34 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
 // the mix once they have run.
 double traceUnits(const Job& job) { return std::max(1, job.render.rpp); }
 
-// Counts the traces the run will do: every job missing from the cache once, plus the timed runs
-// timing.repeats asks for that its record does not have yet.
-void Runner::planTraces(const std::vector<Job>& jobs) {
-    std::set<std::string> seen;
+// Plans into `estimate` the timed traces `jobs` still lack in the cache (keys in `seen` once).
+void planMissingTraces(const ExperimentConfig& c, const RenderCache& cache, const std::vector<Job>& jobs,
+                       WorkEstimate& estimate, std::set<std::string>& seen) {
     for (const Job& job : jobs) {
         if (!seen.insert(job.key).second) continue;
         int runs = 0;
-        if (cache_.has(job.key)) {
+        if (cache.has(job.key)) {
             try {
-                runs = std::max<int>(1, static_cast<int>(readCachedRender(cache_.record(job.key)).record.times.traceRuns.size()));
+                runs = std::max<int>(1, static_cast<int>(readCachedRender(cache.record(job.key)).record.times.traceRuns.size()));
             } catch (const std::exception&) {
                 runs = 0;  // unreadable: loadOrTrace traces it again
             }
         }
-        const int missing = std::max(0, std::max(1, c_.timing.repeats) - runs);
-        if (missing > 0) estimate_.plan(missing * traceUnits(job), missing);
+        const int missing = std::max(0, std::max(1, c.timing.repeats) - runs);
+        if (missing > 0) estimate.plan(missing * traceUnits(job), missing);
     }
 }
 
+// Counts the traces the run will do: every job missing from the cache once, plus the timed runs
+// timing.repeats asks for that its record does not have yet.
+void Runner::planTraces(const std::vector<Job>& jobs) {
+    std::set<std::string> seen;
+    planMissingTraces(c_, cache_, jobs, estimate(), seen);
+}
+
 void Runner::traceFinished(const Job& job, double seconds) {
-    estimate_.finished(traceUnits(job), seconds);
-    spdlog::info("{}", estimate_.text());
+    estimate().finished(traceUnits(job), seconds);
+    spdlog::info("{}", estimate().text());
 }
 
 double median(std::vector<double> v) {
@@ -586,7 +594,7 @@ Results Runner::run() {
     else spdlog::info("no render uses the aamap: snapshot skipped");
     results.snapshot = snapshotRecord_;
 
-    planTraces(jobs);
+    if (options_.estimate == nullptr) planTraces(jobs);  // a sweep planned every variant's already
     const int count = static_cast<int>(jobs.size());
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         const Job& job = jobs[i];
@@ -717,6 +725,11 @@ std::vector<WorkItem> missingWork(const ExperimentConfig& config, const fs::path
         items.push_back(std::move(w));
     }
     return items;
+}
+
+void planWork(const ExperimentConfig& config, const fs::path& cacheDir, WorkEstimate& estimate,
+              std::set<std::string>& planned) {
+    planMissingTraces(config, RenderCache(cacheDir), jobsOf(config).jobs, estimate, planned);
 }
 
 bool hasWorkItem(const ExperimentConfig& config, const std::string& key) {

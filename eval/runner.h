@@ -6,11 +6,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/image.h"
+#include "core/log.h"
 #include "core/pixel_facts.h"
 #include "eval/config.h"
 #include "eval/results.h"
@@ -71,7 +73,16 @@ struct RunnerOptions {
     bool plots = true;  // ANDed with config.report.plots
     // The render cache; empty: OUTDIR/cache. The variants of a swept experiment share one.
     std::filesystem::path cacheDir;
+    // A sweep's time left over all its variants, their traces planned already (planWork); null:
+    // the run plans and estimates its own.
+    WorkEstimate* estimate = nullptr;
 };
+
+// Plans into `estimate` the traces a run of `config` still lacks in cacheDir (the oracle's
+// renders, known only once the reference is, are planned by the run itself). Keys in `planned`
+// are skipped, and the new ones added: variants of a sweep share renders.
+void planWork(const ExperimentConfig& config, const std::filesystem::path& cacheDir, WorkEstimate& estimate,
+              std::set<std::string>& planned);
 
 // Throws InputError, EnvironmentError, or whatever the backend throws. results.json is rewritten
 // after every render; report.html, report.md and results.csv at the end.

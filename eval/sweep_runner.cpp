@@ -1,6 +1,7 @@
 #include "eval/sweep_runner.h"
 
 #include <fstream>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -36,6 +37,11 @@ void runSweepWith(const Experiment& experiment, const fs::path& outDir, const Ba
     RunnerOptions ro = options;
     if (ro.cacheDir.empty()) ro.cacheDir = outDir / "cache";
     Json sweep = {{"format", "aamap-sweep-1"}, {"swept_keys", experiment.sweptKeys}, {"variants", Json::array()}};
+    // One time-left estimate over the whole sweep: every variant's missing traces planned first.
+    WorkEstimate estimate;
+    std::set<std::string> planned;
+    for (const ExperimentConfig& variant : experiment.variants) planWork(variant, ro.cacheDir, estimate, planned);
+    if (experiment.variants.size() > 1) ro.estimate = &estimate;
     std::vector<fs::path> dirs;
     for (std::size_t i = 0; i < experiment.variants.size(); ++i) {
         std::vector<std::string> parts;

@@ -97,6 +97,11 @@ void require(bool ok, const std::string& message) {
 
 const std::deque<StrategyDescriptor>& strategyRegistry() { return registry(); }
 
+const std::string& baselineStrategyName() {
+    static const std::string name = uniformStrategy().name;  // not registry().front(): tests may replace it
+    return name;
+}
+
 const StrategyDescriptor* findStrategy(const std::string& name) {
     for (const StrategyDescriptor& s : registry())
         if (s.name == name) return &s;

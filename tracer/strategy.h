@@ -87,6 +87,8 @@ struct StrategyDescriptor {
 // Every strategy, in documentation order; the first ("uniform") is the baseline of speedups.
 const std::deque<StrategyDescriptor>& strategyRegistry();
 const StrategyDescriptor* findStrategy(const std::string& name);  // null for an unknown name
+// The baseline of speedups (the registry's first, "uniform"): one name for every comparison.
+const std::string& baselineStrategyName();
 std::vector<std::string> strategyNames();
 // Adds (or replaces) a strategy at run time: for tests and for custom RenderBackends. Not
 // thread-safe; call before parsing configs.

@@ -13,6 +13,7 @@
 #include "eval/compare.h"
 #include "eval/sweep_runner.h"
 #include "tests/eval/fake_backend.h"
+#include "tests/common/read_text.h"
 
 namespace aamap {
 namespace {
@@ -85,6 +86,66 @@ TEST(ConfigSweeps, BadListsNameTheirLine) {
     for (int i = 1; i <= 17; ++i) many += std::to_string(i) + (i < 17 ? ", " : "]}\n");
     many += "renders: [{strategy: uniform, rpp: 1}]\n";
     EXPECT_GT(lineOf(many), 0);
+}
+
+// zip: lists of equal length that vary together, in a product with the other sweeps.
+TEST(ConfigSweeps, ZippedListsVaryTogether) {
+    const char* yaml = "scene: [builtin:cornell, builtin:spheres-plane]\n"
+                       "snapshot: {blur_radius: [0, 1, 2], gain: [1, 2, 4]}\n"
+                       "zip: [[snapshot.blur_radius, snapshot.gain]]\n"
+                       "renders: [{strategy: uniform, rpp: 1}]\n";
+    const Experiment e = parseExperiment(yaml, "exp.yaml");
+    ASSERT_EQ(e.variants.size(), 6u);  // 2 scenes x 3 pairs, not 2 x 3 x 3
+    const int radius[] = {0, 1, 2}, gain[] = {1, 2, 4};
+    for (std::size_t i = 0; i < 6; ++i) {
+        EXPECT_EQ(e.variants[i].scene, i < 3 ? "builtin:cornell" : "builtin:spheres-plane");
+        EXPECT_EQ(e.variants[i].snapshot.blurRadius, radius[i % 3]);
+        EXPECT_DOUBLE_EQ(e.variants[i].snapshot.gain, gain[i % 3]);
+    }
+    const auto lineOf = [](const std::string& text) {
+        try {
+            parseExperiment(text, "exp.yaml");
+        } catch (const InputError& err) {
+            return err.line();
+        }
+        return -1;
+    };
+    const std::string body = "scene: builtin:cornell\nsnapshot: {blur_radius: [0, 1], gain: [1, 2, 4]}\n";
+    EXPECT_EQ(lineOf(body + "zip: [[snapshot.blur_radius, snapshot.gain]]\nrenders: [{strategy: uniform, rpp: 1}]\n"), 3);
+    EXPECT_EQ(lineOf(body + "zip: [[snapshot.blur_radius, seed]]\nrenders: [{strategy: uniform, rpp: 1}]\n"), 3);
+    EXPECT_EQ(lineOf(body + "zip: [[snapshot.gain]]\nrenders: [{strategy: uniform, rpp: 1}]\n"), 3);
+}
+
+// A sweep's report opens with one table: a row per variant, a column per swept key, then the
+// headline figures; the variants' own tables follow, folded.
+TEST(ConfigSweeps, SweepSummaryHasARowPerVariantAndAColumnPerKey) {
+    const fs::path out = fs::path(::testing::TempDir()) / "config_sweeps_summary";
+    fs::remove_all(out);
+    const char* yaml = "scene: [builtin:cornell, builtin:spheres-plane]\nimage: {width: 48, height: 32}\n"
+                       "snapshot: {blur_radius: [0, 1, 2]}\n"
+                       "renders:\n  - {strategy: uniform, rpp: [1, 4], series: Standard}\n"
+                       "  - {strategy: aamap, rpp: 4, series: Selective}\nreport: {plots: false}\n";
+    const Experiment e = parseExperiment(yaml, "exp.yaml");
+    runSweepWith(e, out,
+                 [](const ExperimentConfig&) { return std::unique_ptr<RenderBackend>(std::make_unique<FakeBackend>()); },
+                 RunnerOptions{"test-rev", false});
+    const std::vector<ComparedRun> runs = loadComparedRuns({out});
+    const Table t = summaryTable(runs);
+    ASSERT_EQ(t.rows.size(), 6u);
+    ASSERT_GE(t.header.size(), 2u);
+    EXPECT_EQ(t.header[0], "scene");
+    EXPECT_EQ(t.header[1], "snapshot.blur_radius");
+    EXPECT_NE(t.header[2].find("Selective speedup @4"), std::string::npos) << t.header[2];
+    EXPECT_EQ(t.rows[4][0], "builtin:spheres-plane");
+    EXPECT_EQ(t.rows[4][1], "1");
+    EXPECT_EQ(runs[4].label, "snapshot.blur_radius=1");  // the scene is the section's, not the label's
+    for (const auto& row : t.rows) EXPECT_EQ(row.size(), t.header.size());
+    const std::string md = test::readText(out / "report.md");
+    const std::size_t summary = md.find("## Summary"), detail = md.find("<details>");
+    ASSERT_NE(summary, std::string::npos);
+    ASSERT_NE(detail, std::string::npos);
+    EXPECT_LT(summary, detail);  // the summary first, each variant's own tables folded below
+    EXPECT_NE(md.find("is the fastest within"), std::string::npos) << md.substr(0, 2000);
 }
 
 TEST(ConfigSweeps, VariantsShareOneCacheAndOneReport) {

@@ -348,6 +348,8 @@ TEST_F(Runner, AFailedPlotScriptLinksNoStalePlots) {
 TEST(ReadableNumber, ShortestFormForFloatsThreeDigitsOtherwise) {
     EXPECT_EQ(readableNumber(static_cast<double>(0.1f)), "0.1");  // not 0.10000000149011612
     EXPECT_EQ(readableNumber(0.1), "0.1");
+    EXPECT_EQ(readableNumber(static_cast<double>(5.151367f)), "5.15");  // a measured float: 3 digits
+    EXPECT_EQ(readableNumber(static_cast<double>(0.025f)), "0.025");
     EXPECT_EQ(readableNumber(36.0), "36");
     EXPECT_EQ(readableNumber(0.123456789), "0.123");
     EXPECT_EQ(readableNumber(12.3456789), "12.3");
