@@ -181,6 +181,9 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"local", "ray"}));
     run->add_option("--ray-address", rayAddress, "--executor ray: the cluster to join (default: start a local one)")
         ->type_name("ADDR");
+    bool planOnly = false;
+    run->add_flag("--plan", planOnly, "Print the variants, renders, what is cached, the rays and the time of each "
+                                      "render, and exit: nothing is traced or written");
     run->add_flag("--list-work", listWork, "Print the Snapshots and renders the cache lacks as JSON and exit");
     run->add_option("--only", onlyKey, "Compute exactly the one Snapshot or render with this cache key, then exit")
         ->type_name("KEY");
@@ -236,6 +239,10 @@ int main(int argc, char** argv) {
         options.gitRevision = AAMAP_GIT_REVISION;
         options.plots = !noPlots;
         options.cacheDir = cacheDir;
+        if (planOnly) {
+            fmt::print("{}", aamap::planText(experiment, out, cacheDir));
+            return 0;
+        }
         if (listWork) {
             fmt::print("{}", aamap::app::workListJson(experiment, out, options, {configPath, overrides, threads, validation}));
             return 0;

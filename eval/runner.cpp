@@ -732,6 +732,41 @@ void planWork(const ExperimentConfig& config, const fs::path& cacheDir, WorkEsti
     planMissingTraces(config, RenderCache(cacheDir), jobsOf(config).jobs, estimate, planned);
 }
 
+RunPlan planRun(const ExperimentConfig& config, const fs::path& cacheDir) {
+    RunPlan plan;
+    plan.repeats = std::max(1, config.timing.repeats);
+    plan.pixels = config.image.width * config.image.height;
+    const auto record = [&](const std::string& key) -> std::optional<RenderRecord> {
+        const fs::path file = cacheDir / key / "record.json";
+        if (!fs::is_regular_file(file)) return std::nullopt;
+        try {
+            return readCachedRender(file).record;
+        } catch (const std::exception&) {
+            return std::nullopt;  // unreadable: the run traces it again
+        }
+    };
+    plan.usesSnapshot = config.usesAamap();
+    if (plan.usesSnapshot) {
+        plan.snapshotKey = snapshotKey(config);
+        plan.snapshotCached = fs::is_regular_file(cacheDir / plan.snapshotKey / "record.json");
+    }
+    std::vector<double> rates;
+    for (const Job& job : jobsOf(config).jobs) {
+        PlannedRender p{job.render.name, job.key, job.render.strategy, job.render.rpp, false, usesAamap(job.render), {}};
+        if (const std::optional<RenderRecord> r = record(job.key)) {
+            p.cached = static_cast<int>(r->times.traceRuns.size()) >= plan.repeats || plan.repeats <= 1;
+            p.seconds = r->times.trace;
+            const double units = static_cast<double>(r->maxRaysPerPixel) * r->width * r->height;
+            if (units > 0 && r->times.trace > 0 && job.render.shadingMode.empty()) rates.push_back(r->times.trace / units);
+        }
+        plan.renders.push_back(std::move(p));
+    }
+    if (!rates.empty()) plan.secondsPerRayUnit = median(rates);
+    for (PlannedRender& p : plan.renders)
+        if (!p.seconds && plan.secondsPerRayUnit) p.seconds = *plan.secondsPerRayUnit * p.rpp * plan.pixels;
+    return plan;
+}
+
 bool hasWorkItem(const ExperimentConfig& config, const std::string& key) {
     if (config.usesAamap() && key == snapshotKey(config)) return true;
     const JobList list = jobsOf(config);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -105,6 +106,27 @@ struct WorkItem {
 // What runExperimentWith would compute: every missing item, the Snapshot first, each key once.
 // threads >= 0 overrides the config's. Reads the cache only; loads no scene.
 std::vector<WorkItem> missingWork(const ExperimentConfig& config, const std::filesystem::path& cacheDir, int threads);
+
+// `aamap run --plan`: what a run of `config` would do, from the cache alone (nothing is loaded,
+// traced or written; the cache folder is not even created).
+struct PlannedRender {
+    std::string name, key, strategy;
+    int rpp = 1;
+    bool cached = false;       // complete in the cache, timed runs included
+    bool usesSnapshot = false;
+    std::optional<double> seconds;  // cached: its median time; else estimated from the rate below
+};
+struct RunPlan {
+    bool usesSnapshot = false, snapshotCached = false;
+    std::string snapshotKey;
+    std::vector<PlannedRender> renders;  // the listed renders, then the reference and the 1-ray probe
+    int repeats = 1;
+    // Seconds per ray budget unit (rpp x pixel) from the cached renders of this config in the same
+    // shading mode; unknown without one.
+    std::optional<double> secondsPerRayUnit;
+    int pixels = 0;  // the image box's (the view's aspect may make the render smaller)
+};
+RunPlan planRun(const ExperimentConfig& config, const std::filesystem::path& cacheDir);
 
 // Whether KEY is the Snapshot or a render of this config.
 bool hasWorkItem(const ExperimentConfig& config, const std::string& key);

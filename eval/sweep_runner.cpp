@@ -1,14 +1,17 @@
 #include "eval/sweep_runner.h"
 
+#include <cstdint>
 #include <fstream>
 #include <set>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/log.h"
 #include "eval/compare.h"
 #include "eval/report.h"
 
@@ -56,6 +59,51 @@ void runSweepWith(const Experiment& experiment, const fs::path& outDir, const Ba
         writeTextAtomically(outDir / "sweep.json", sweep.dump(2) + "\n");  // the finished ones so far
     }
     writeComparison(dirs, outDir, kSweepFiles, ro.plots && experiment.variants.front().report.plots);
+}
+
+std::string planText(const Experiment& experiment, const fs::path& outDir, const fs::path& cacheDir) {
+    const fs::path cache = cacheDir.empty() ? outDir / "cache" : cacheDir;
+    const auto duration = [](const std::optional<double>& s) { return s ? formatDuration(*s) : std::string("unknown"); };
+    std::string text = fmt::format("plan: {} variant(s) into {}, cache {} (nothing is traced or written)\n",
+                                   experiment.variants.size(), outDir.string(), cache.string());
+    std::set<std::string> counted;  // renders that variants share are traced once
+    int toTrace = 0, unknown = 0;
+    double seconds = 0, rays = 0;
+    for (std::size_t i = 0; i < experiment.variants.size(); ++i) {
+        const ExperimentConfig& c = experiment.variants[i];
+        const RunPlan plan = planRun(c, cache);
+        std::vector<std::string> parts;
+        for (std::size_t k = 0; k < experiment.sweptKeys.size(); ++k)
+            parts.push_back(experiment.sweptKeys[k] + "=" + experiment.sweptValues[i][k]);
+        text += fmt::format("\nvariant {}/{}{}: scene {}, {}x{}, {} shading{}\n", i + 1, experiment.variants.size(),
+                            parts.empty() ? "" : fmt::format(" ({})", fmt::join(parts, ", ")), c.scene, c.image.width,
+                            c.image.height, c.shading.mode,
+                            plan.repeats > 1 ? fmt::format(", {} timed runs each", plan.repeats) : "");
+        if (plan.usesSnapshot)
+            text += fmt::format("  {:<24} {:<16} {:>5}  {:>14}  {:<6}  {}\n", "snapshot", "", "", "",
+                                plan.snapshotCached ? "cached" : "to run", plan.snapshotKey);
+        text += fmt::format("  {:<24} {:<16} {:>5}  {:>14}  {:<6}  {}\n", "render", "strategy", "rpp", "rays (at most)",
+                            "cache", "time");
+        for (const PlannedRender& r : plan.renders) {
+            const double budget = static_cast<double>(r.rpp) * plan.pixels;
+            text += fmt::format("  {:<24} {:<16} {:>5}  {:>14}  {:<6}  {}{}\n", r.name, r.strategy, r.rpp,
+                                static_cast<std::uint64_t>(budget), r.cached ? "cached" : "trace",
+                                r.cached || !r.seconds ? "" : "about ", duration(r.seconds));
+            if (r.cached || !counted.insert(r.key).second) continue;
+            ++toTrace;
+            rays += budget * plan.repeats;
+            if (r.seconds) seconds += *r.seconds * plan.repeats;
+            else ++unknown;
+        }
+        if (!plan.secondsPerRayUnit)
+            text += "  (no render of this variant is cached yet: its times are unknown until one is)\n";
+    }
+    text += fmt::format("\n{} trace(s) to do, {} primary rays at most", toTrace, static_cast<std::uint64_t>(rays));
+    if (toTrace > 0)
+        text += unknown == 0 ? fmt::format(", about {}", formatDuration(seconds))
+                             : fmt::format(", {} of them of unknown time{}", unknown,
+                                           seconds > 0 ? fmt::format(" (the others about {})", formatDuration(seconds)) : "");
+    return text + "\n";
 }
 
 void rebuildReport(const fs::path& outDir, bool plots) {

@@ -319,6 +319,27 @@ TEST_F(CliErrors, LoaderWarningsReachTheReport) {
     EXPECT_TRUE(named) << results["warnings"].dump();
 }
 
+// --plan says what a run would do and writes nothing, not even the output folder.
+TEST_F(CliErrors, PlanPrintsTheWorkAndWritesNothing) {
+    const fs::path config = write("exp.yaml", "scene: builtin:cornell\nimage: {width: 16, height: 16}\n"
+                                              "snapshot: {blur_radius: [1, 2]}\n"
+                                              "renders: [{strategy: uniform, rpp: [1, 4]}, {strategy: aamap, rpp: 4}]\n");
+    const fs::path out = dir_ / "out";
+    const std::string exe = env("AAMAP_EXE");
+    const std::string command = fmt::format("'{}' run '{}' -o '{}' --plan 2>&1", exe, config.string(), out.string());
+    FILE* pipe = ::popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string text;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) text.append(buffer, n);
+    const int status = ::pclose(pipe);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text;
+    EXPECT_NE(text.find("variant 2/2 (snapshot.blur_radius=2)"), std::string::npos) << text;
+    EXPECT_NE(text.find("aamap4"), std::string::npos) << text;
+    EXPECT_NE(text.find("trace(s) to do"), std::string::npos) << text;
+    EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(CliErrors, MalformedYamlGivesFileAndLine) {
     const fs::path config = write("bad.yaml", "scene: builtin:cornell\nrenders: [{strategy: uniform, rpp: 4}\n");
     const CommandResult run = aamap("run '" + config.string() + "' -o '" + (dir_ / "out").string() + "'");

@@ -160,5 +160,38 @@ TEST(TimingMachines, WarnsOnlyWhenASpeedupDividesTimesFromTwoMachines) {
     EXPECT_EQ(mixedMachineWarnings(results).size(), 1u);
 }
 
+// --plan's view of a run: nothing cached before it (and the cache folder not created by asking),
+// everything cached after it, with the rate of the cached renders estimating a new render's time.
+TEST_F(WorkItems, PlanReadsTheCacheOnly) {
+    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml");
+    const RunPlan before = planRun(c, dir_ / "out" / "cache");
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+    ASSERT_EQ(before.renders.size(), 7u);  // 5 listed, the reference, the 1-ray probe
+    EXPECT_TRUE(before.usesSnapshot);
+    EXPECT_FALSE(before.snapshotCached);
+    for (const PlannedRender& r : before.renders) {
+        EXPECT_FALSE(r.cached) << r.name;
+        EXPECT_FALSE(r.seconds.has_value()) << r.name;  // no rate to go by yet
+    }
+    EXPECT_FALSE(before.secondsPerRayUnit.has_value());
+
+    FakeBackend backend;
+    runExperimentWith(c, dir_ / "out", backend, RunnerOptions{"test-rev", false});
+    const RunPlan after = planRun(c, dir_ / "out" / "cache");
+    EXPECT_TRUE(after.snapshotCached);
+    for (const PlannedRender& r : after.renders) {
+        EXPECT_TRUE(r.cached) << r.name;
+        ASSERT_TRUE(r.seconds.has_value()) << r.name;
+    }
+    ASSERT_TRUE(after.secondsPerRayUnit.has_value());
+    // The fake backend takes 1 ms per rpp: the rate is that over the pixels.
+    EXPECT_NEAR(*after.secondsPerRayUnit * FakeBackend::kW * FakeBackend::kH, 0.001, 1e-9);
+    const RunPlan bigger = planRun(parseConfig(kConfig, "exp.yaml", {"renders.0.rpp=[1, 4, 36]"}), dir_ / "out" / "cache");
+    ASSERT_EQ(bigger.renders[2].name, "uniform36");
+    EXPECT_FALSE(bigger.renders[2].cached);
+    ASSERT_TRUE(bigger.renders[2].seconds.has_value());
+    EXPECT_NEAR(*bigger.renders[2].seconds, *after.secondsPerRayUnit * 36 * 48 * 32, 1e-9);
+}
+
 }  // namespace
 }  // namespace aamap
