@@ -113,6 +113,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.image.height = iv.integer("height");
     c.image.exposure = iv.real("exposure");
     c.image.filter = iv.choice("filter");
+    c.image.filterGiven = image.has("filter");
     c.image.filterRadius = iv.real("filter_radius");
     c.image.filterStddev = iv.real("filter_stddev");
     c.image.filterMode = iv.choice("filter_mode");
@@ -320,6 +321,7 @@ Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     j["rpp"] = r.rpp;
     j["params"] = paramsJson(r);
     if (!c.image.defaultFilter()) j["filter"] = filterJson(c.image);  // only then: other configs keep their keys
+    if (!c.image.filterGiven && sceneDecidesRendering(c)) j["filter"] = "scene";  // the film's, as the file says
     const StrategyDescriptor* s = findStrategy(r.strategy);
     if (s != nullptr && s->usesAamap) j["snapshot"] = snapshotJson(c);
     return j;

@@ -36,6 +36,7 @@ struct ImageConfig {
     double filterStddev = 0.5;   // gaussian only
     std::string filterMode = "convolution";  // convolution | importance
     bool defaultFilter() const { return filter == "box" && (filterRadius == 0.0 || filterRadius == 0.5); }
+    bool filterGiven = false;  // image.filter written: else a Mitsuba film's rfilter type wins
 };
 
 // `camera`: a view written in the config instead of a .vf file (scene/framing.h, lookAtView).

@@ -141,6 +141,10 @@ public:
         info.loaderWarnings = loaderWarnings.take();
         scene_ = std::move(prepared.scene);
         view_ = prepared.view;
+        if (!config_.image.sizeGiven && scene_.imageWidth > 0)
+            info.warnings.push_back(fmt::format("image size {}x{} from the scene file's film (the config's own "
+                                                "image.width/height win)",
+                                                scene_.imageWidth, scene_.imageHeight));
         effective_ = withSceneRenderSettings(config_, scene_, info.warnings);
         for (const std::string& note : info.warnings) spdlog::info("{}", note);
         info.loadSeconds = prepared.loadSeconds;
@@ -318,7 +322,6 @@ PreparedScene prepareScene(const ExperimentConfig& config) {
     if (!config.image.sizeGiven && p.scene.imageWidth > 0) {
         width = p.scene.imageWidth;
         height = p.scene.imageHeight;
-        spdlog::info("image size {}x{} from the scene file (set image.width/height to change it)", width, height);
     }
     p.view = pickView(config, p.scene, p.viewLabel, width, height);
     std::tie(p.width, p.height) = fitResolution(p.view, width, height);
@@ -347,15 +350,34 @@ ExperimentConfig withSceneRenderSettings(const ExperimentConfig& config, const S
         if (r.hideEmitters)
             notes.push_back(fmt::format("{} hides directly visible emitters; aamap shows them", from));
     }
-    if (r.sampleCount)
-        notes.push_back(fmt::format("the scene file's sampler asks {} samples per pixel; each render's rays per pixel "
-                                    "come from the config (renders[].rpp)",
-                                    *r.sampleCount));
-    const bool filterAsFile = r.filter.empty() || r.filter == c.image.filter;
-    if (!filterAsFile)
-        notes.push_back(fmt::format("the scene file's film filters pixels with a '{}' filter; the renders use "
-                                    "image.filter {} (set image.filter to match it)",
-                                    r.filter, c.image.filter));
+    if (r.sampleCount) {
+        // Its author's converged sample count: a reference with fewer rays is noisier than meant.
+        const bool fewer = c.reference.type == "uniform" && c.reference.rpp < *r.sampleCount;
+        const int n = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(*r.sampleCount))));
+        notes.push_back(fmt::format("the scene file's sampler asks {} samples per pixel; the renders' rays per pixel "
+                                    "come from the config (renders[].rpp){}",
+                                    *r.sampleCount,
+                                    fewer ? fmt::format(", and its reference traces {} (reference.rpp: {} would "
+                                                        "match the file)",
+                                                        c.reference.rpp, n * n)
+                                          : ""));
+    }
+    if (!r.filter.empty() && r.filter != c.image.filter) {
+        PixelFilterSettings known;
+        if (!c.image.filterGiven && parse(r.filter, known.type)) {
+            // The film's filter with its default size (Mitsuba's and aamap's defaults agree).
+            c.image.filter = r.filter;
+            c.image.filterRadius = 0.0;
+            notes.push_back(fmt::format("image.filter {} from the scene file's film (the config's own image.filter "
+                                        "wins)",
+                                        r.filter));
+        } else {
+            notes.push_back(fmt::format("the scene file's film filters pixels with a '{}' filter; the renders use "
+                                        "image.filter {}{}",
+                                        r.filter, c.image.filter,
+                                        c.image.filterGiven ? " as the config says" : " (aamap has no such filter)"));
+        }
+    }
     return c;
 }
 

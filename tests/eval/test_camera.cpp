@@ -151,7 +151,16 @@ TEST_F(Files, MitsubaIntegratorDecidesTheDepthsTheConfigLeavesOut) {
                       "type=\"path\">"));
     EXPECT_TRUE(noted("hides directly visible emitters"));
     EXPECT_TRUE(noted("asks 64 samples per pixel"));
-    EXPECT_TRUE(noted("'gaussian' filter"));
+    EXPECT_TRUE(noted("reference.rpp: 64 would match the file"));  // the reference traces the renders' 1
+    // The film's filter where the config names none, said so; the key follows the file.
+    EXPECT_EQ(effective.image.filter, "gaussian");
+    EXPECT_TRUE(noted("image.filter gaussian from the scene file's film"));
+    const ExperimentConfig boxGiven = loadConfig(cfg, {"image.filter=box"});
+    EXPECT_NE(renderKey(silent, silent.renders[0]), renderKey(boxGiven, boxGiven.renders[0]));
+    notes.clear();
+    EXPECT_EQ(withSceneRenderSettings(boxGiven, p.scene, notes).image.filter, "box");
+    EXPECT_TRUE(noted("'gaussian' filter; the renders use image.filter box as the config says"));
+    notes.clear();
 
     // The config's own values win, and only what the config leaves out is noted as applied.
     const ExperimentConfig given = loadConfig(cfg, {"shading.max_depth=7", "image.filter=gaussian"});
