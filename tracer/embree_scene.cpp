@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
+#include "tracer/bsdf.h"
 
 namespace aamap {
 namespace {
@@ -79,6 +80,42 @@ void validate(const Scene& scene) {
 bool positive(const glm::vec3& c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// Mitsuba's conductor and plastic: the Snapshot's kind, kd, ks, ns give way to the model's own
+// parameters. Smooth ones become Mirror (their delta lobe takes the mirror paths), rough ones
+// Diffuse with a glossy lobe.
+void convertModel(const Material& mat, ShadingMaterial& s) {
+    s.model = mat.model;
+    s.distribution = mat.distribution;
+    s.alphaU = std::max(mat.alphaU, 0.0f);
+    s.alphaV = std::max(mat.alphaV, 0.0f);
+    s.rough = s.alphaU > 0.0f && s.alphaV > 0.0f;
+    s.eta = mat.eta;
+    s.k = mat.k;
+    s.specularTint = glm::max(mat.specularReflectance, glm::vec3(0.0f));
+    s.nonlinear = mat.nonlinear;
+    s.ior = mat.ior > 0.0f && mat.ior != 1.0f ? mat.ior : 1.49f;
+    s.kind = s.rough ? MaterialKind::Diffuse : MaterialKind::Mirror;
+    s.glossy = s.rough;
+    s.ns = 0.0f;
+    if (mat.model == BsdfModel::Conductor) {
+        s.kd = s.kdOverPi = glm::vec3(0.0f);
+        s.diffuse = false;
+        s.texture = -1;
+        s.ks = s.specularTint;  // for the specular branch cutoffs: the most the lobe reflects
+    } else {
+        s.kd = mat.kd;  // unscaled: the coating model conserves energy itself
+        s.kdOverPi = s.kd * std::numbers::inv_pi_v<float>;
+        s.diffuse = s.kd.x != 0.0f || s.kd.y != 0.0f || s.kd.z != 0.0f;
+        s.ks = s.specularTint;
+        // Mitsuba steers by the mean specular and diffuse reflectances (a texture counts as kd).
+        const float sm = (s.specularTint.x + s.specularTint.y + s.specularTint.z) / 3.0f;
+        const float dm = (s.kd.x + s.kd.y + s.kd.z) / 3.0f;
+        s.specularWeight = sm + dm > 0.0f ? sm / (sm + dm) : 0.5f;
+    }
+    s.diffuseWeight = 0.0f;
+    bsdf::prepareModel(s);
+}
+
 ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
     ShadingMaterial s;
     s.kind = mat.kind;
@@ -118,6 +155,7 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
         const float d = luminance(kd), g = luminance(ks);
         s.diffuseWeight = d + g > 0.0f ? d / (d + g) : 0.0f;
     }
+    if (mat.model == BsdfModel::Conductor || mat.model == BsdfModel::Plastic) convertModel(mat, s);
     return s;
 }
 

@@ -173,16 +173,14 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
         s.beta *= m.ks;
         s.specularBefore = true;
     } else {
-        // Mirror: the delta lobe with probability by reflectance, else its Lambert part.
-        float specularPick = 0.0f;
-        if (m.kind == MaterialKind::Mirror) {
-            const float sp = bsdf::luminance(m.ks), dl = m.diffuse ? bsdf::luminance(m.kd) : 0.0f;
-            specularPick = sp + dl > 0.0f ? sp / (sp + dl) : 1.0f;
-        }
+        // Mirror (and the smooth Mitsuba models): the delta lobe with its probability, else the
+        // non-delta part.
+        const float cosO = std::clamp(glm::dot(hit.wo, hit.shading), 0.0f, 1.0f);
+        const float specularPick = m.kind == MaterialKind::Mirror ? bsdf::deltaPick(m, cosO) : 0.0f;
         if (lobeU < specularPick) {
             dir = bsdf::reflect(hit.wo, hit.shading);
             if (glm::dot(dir, hit.geometric) <= 0.0f) return;
-            s.beta *= m.ks * (1.0f / specularPick);
+            s.beta *= bsdf::deltaReflectance(m, cosO) * (1.0f / specularPick);
             s.specularBefore = true;
         } else {
             const float diffusePick = m.kind == MaterialKind::Mirror ? 1.0f - specularPick
