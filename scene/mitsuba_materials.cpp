@@ -117,6 +117,9 @@ const std::set<std::string>& knownParameters(const std::string& type) {
         {"roughplastic",
          {"int_ior", "ext_ior", "diffuse_reflectance", "specular_reflectance", "nonlinear", "distribution", "alpha",
           "sample_visible"}},
+        {"roughdielectric",
+         {"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance", "distribution", "alpha", "alpha_u",
+          "alpha_v", "sample_visible"}},
     };
     static const std::set<std::string> none;
     const auto it = table.find(type);
@@ -336,10 +339,19 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
             m.ns = phongExponent(alpha);
         }
     } else if (type == "dielectric" || type == "thindielectric" || type == "roughdielectric") {
-        if (type == "roughdielectric") approximated("roughdielectric is approximated by a smooth solid dielectric");
         m.kind = MaterialKind::Glass;
         m.thin = type == "thindielectric";
-        m.ior = iorProperty(bsdf, "int_ior", 1.5046f) / iorProperty(bsdf, "ext_ior", 1.000277f);
+        if (type == "roughdielectric") {
+            // Path mode samples the microfacet interface; the Snapshot and the direct and cache
+            // modes' specular branches see it smooth.
+            warnUnknownParameters(bsdf, type);
+            m.model = BsdfModel::Dielectric;
+            m.ior = relativeIor(bsdf, 1.5046f);
+            microfacetParameters(bsdf, m, true);
+            m.specularReflectance = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
+        } else {
+            m.ior = iorProperty(bsdf, "int_ior", 1.5046f) / iorProperty(bsdf, "ext_ior", 1.000277f);
+        }
         m.ks = colourProperty(bsdf, "specular_transmittance", glm::vec3(1.0f), warnings_);
         m.kd = glm::vec3(0.0f);
     } else if (type == "phong" || type == "ward") {

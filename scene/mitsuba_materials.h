@@ -5,8 +5,9 @@
 // roughconductor, plastic and roughplastic (Material::model, docs/tracer.md "BSDFs"; the Snapshot
 // shows them through kd, ks, ns: Lambert plus a Phong lobe, ns = 2 / alpha^2 - 2, ks = F0).
 // Their unknown parameters are warnings, out-of-range roughness or indices errors (file:line).
+// roughdielectric is a Glass with a microfacet interface that path mode samples (the direct and
+// cache modes and the Snapshot see it smooth); thindielectric is exact (a thin Glass sheet).
 // What it approximates (one warning per kind, naming the approximation):
-// - roughdielectric: a smooth solid dielectric (thindielectric is exact: a thin Glass sheet);
 // - bumpmap/normalmap: ignored (the nested BSDF is used); twosided: the nested BSDF (aamap shades
 //   both sides); coating/roughcoating and blendbsdf: the (first) nested BSDF; null: fully cut out;
 // - phong/ward: kd plus a Phong lobe.

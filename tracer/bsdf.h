@@ -250,6 +250,64 @@ inline void prepareModel(ShadingMaterial& m) {
     m.meanExitTransmittance = static_cast<float>(2.0 * outside / res);
 }
 
+// ---- Rough dielectric (Mitsuba's roughdielectric): microfacet reflection and refraction ----
+// In the frame of n on the viewer's side (so wo.z > 0); etaRel is the index across the surface
+// over the index on wo's side (ior from the front, 1 / ior from the back).
+
+// Samples a direction as Mitsuba's sampler does: a visible normal m, then reflection with the
+// Fresnel probability F(wo.m), else refraction through m. weight = f cos / pdf: G1(wi, m) times
+// the lobe's tint, and 1 / etaRel^2 on refraction (radiance is compressed into the denser medium,
+// as the smooth dielectric). Returns false where the direction is lost (below / above the surface).
+inline bool sampleRoughDielectric(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float etaRel,
+                                  float lobeU, glm::vec2 u, glm::vec3& wi, glm::vec3& weight, bool& refracted) {
+    const Frame frame(n);
+    const glm::vec3 lo = frame.toLocal(wo);
+    if (!(lo.z > 0.0f)) return false;
+    const microfacet::Distribution dist = distributionOf(m);
+    const glm::vec3 h = dist.sampleVisible(lo, u);
+    const float c = glm::dot(lo, h);
+    float cosT = 0.0f;
+    const float F = microfacet::fresnelDielectricSigned(c, etaRel, cosT);
+    glm::vec3 li;
+    refracted = !(lobeU < F);
+    if (!refracted) {
+        li = (2.0f * c) * h - lo;
+        if (!(li.z > 0.0f)) return false;
+        weight = m.specularTint * dist.G1(li, h);
+    } else {
+        const float e = 1.0f / etaRel;
+        li = h * (c * e + cosT) - lo * e;
+        if (!(li.z < 0.0f)) return false;
+        weight = m.ks * (dist.G1(li, h) / (etaRel * etaRel));
+    }
+    wi = frame.toWorld(glm::normalize(li));
+    return true;
+}
+
+// The density of sampleRoughDielectric choosing wi (solid angle), in the same frame.
+inline float pdfRoughDielectric(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float etaRel,
+                                const glm::vec3& wi) {
+    const Frame frame(n);
+    const glm::vec3 lo = frame.toLocal(wo), li = frame.toLocal(wi);
+    if (!(lo.z > 0.0f) || li.z == 0.0f) return 0.0f;
+    const microfacet::Distribution dist = distributionOf(m);
+    const bool reflected = li.z > 0.0f;
+    // The (generalised) half vector, on the viewer's side.
+    glm::vec3 h = reflected ? lo + li : lo + etaRel * li;
+    const float len = glm::length(h);
+    if (!(len > 0.0f)) return 0.0f;
+    h /= len;
+    if (h.z < 0.0f) h = -h;
+    const float co = glm::dot(lo, h), ci = glm::dot(li, h);
+    if (!(co > 0.0f) || (reflected ? !(ci > 0.0f) : !(ci < 0.0f))) return 0.0f;
+    float cosT = 0.0f;
+    const float F = microfacet::fresnelDielectricSigned(co, etaRel, cosT);
+    const float visible = dist.D(h) * dist.G1(lo, h) * co / lo.z;
+    if (reflected) return F * visible / (4.0f * ci);
+    const float d = co + etaRel * ci;
+    return (1.0f - F) * visible * etaRel * etaRel * std::abs(ci) / (d * d);
+}
+
 // BRDF of the non-delta lobes (Lambert with `albedo`, plus Phong for glossy materials; the
 // Mitsuba models' own lobes) and the pdf of sampleSmooth choosing wi, for MIS. cosI = dot(n, wi)
 // must be > 0.

@@ -156,6 +156,16 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
         s.diffuseWeight = d + g > 0.0f ? d / (d + g) : 0.0f;
     }
     if (mat.model == BsdfModel::Conductor || mat.model == BsdfModel::Plastic) convertModel(mat, s);
+    if (mat.model == BsdfModel::Dielectric && mat.kind == MaterialKind::Glass && !mat.thin) {
+        // roughdielectric: a Glass whose interface has microfacets (path mode samples them; the
+        // direct and cache modes' specular branches see the smooth interface).
+        s.model = BsdfModel::Dielectric;
+        s.distribution = mat.distribution;
+        s.alphaU = std::max(mat.alphaU, 0.0f);
+        s.alphaV = std::max(mat.alphaV, 0.0f);
+        s.rough = s.alphaU > 0.0f && s.alphaV > 0.0f;
+        s.specularTint = glm::max(mat.specularReflectance, glm::vec3(0.0f));
+    }
     return s;
 }
 

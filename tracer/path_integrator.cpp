@@ -148,7 +148,19 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
 
     const float lobeU = sampler.get1D(dims::path(depth, dims::PathSlot::Lobe));
     glm::vec3 dir;
-    if (m.kind == MaterialKind::Glass) {
+    if (m.kind == MaterialKind::Glass && m.rough) {
+        // Mitsuba's roughdielectric: BSDF sampling only (no light sampling through it yet), so
+        // whatever the path hits next counts in full, as after a delta lobe.
+        const float eta = hit.front ? m.ior : 1.0f / m.ior;
+        glm::vec3 weight;
+        bool refracted = false;
+        const glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Bsdf));
+        if (!bsdf::sampleRoughDielectric(m, hit.shading, hit.wo, eta, lobeU, u, dir, weight, refracted)) return;
+        if (refracted ? glm::dot(dir, hit.geometric) >= 0.0f : glm::dot(dir, hit.geometric) <= 0.0f) return;
+        s.beta *= weight;
+        if (refracted) s.etaScale *= eta * eta;
+        s.specularBefore = true;
+    } else if (m.kind == MaterialKind::Glass) {
         // One branch, chosen with the Fresnel probability: weight ks either way.
         const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
         if (!(cosI > 0.0f)) return;

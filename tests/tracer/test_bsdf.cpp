@@ -422,6 +422,72 @@ TEST(Bsdf, PdfIntegratesToAtMostOne) {
         }
 }
 
+ShadingMaterial roughGlass(MicrofacetType type, float au, float av, float ior) {
+    ShadingMaterial m;
+    m.kind = MaterialKind::Glass;
+    m.model = BsdfModel::Dielectric;
+    m.distribution = type;
+    m.alphaU = au;
+    m.alphaV = av;
+    m.rough = true;
+    m.ior = ior;
+    m.ks = glm::vec3(1.0f);
+    return m;
+}
+
+// Reflection and refraction through sampled microfacets against their density, entering
+// (relative index ior) and leaving (1 / ior, with total internal reflection).
+TEST(Bsdf, RoughDielectricSamplingMatchesItsPdf) {
+    const Rough cases[] = {{MicrofacetType::GGX, 0.3f, 0.3f}, {MicrofacetType::Beckmann, 0.2f, 0.5f}};
+    for (const Rough& r : cases)
+        for (float eta : {1.5f, 1.0f / 1.5f}) {
+            const ShadingMaterial m = roughGlass(r.type, r.au, r.av, 1.5f);
+            for (float theta : {10.0f, 60.0f}) {
+                const glm::vec3 wo = viewAt(theta, 0.7f);
+                expectChiSquareFits(
+                    [&](Rng& rng, glm::vec3& wi) {
+                        glm::vec3 weight;
+                        bool refracted = false;
+                        const float lobe = rng.next();
+                        const glm::vec2 u(rng.next(), rng.next());
+                        return bsdf::sampleRoughDielectric(m, kUp, wo, eta, lobe, u, wi, weight, refracted);
+                    },
+                    [&](const glm::vec3& wi) { return bsdf::pdfRoughDielectric(m, kUp, wo, eta, wi); },
+                    fmt::format("roughdielectric {} {}/{} eta {} theta {}", name(r.type), r.au, r.av, eta, theta),
+                    200000);
+            }
+        }
+}
+
+// White furnace for the rough dielectric: reflected plus refracted energy (the 1 / eta^2 radiance
+// scaling undone) is at most 1, and close to the smooth interface's R + T = 1 when nearly smooth.
+TEST(Bsdf, RoughDielectricConservesEnergy) {
+    for (MicrofacetType t : {MicrofacetType::GGX, MicrofacetType::Beckmann})
+        for (float alpha : {0.02f, 0.3f, 0.7f})
+            for (float eta : {1.5f, 1.0f / 1.5f})
+                for (float theta : {0.0f, 40.0f, 75.0f}) {
+                    const ShadingMaterial m = roughGlass(t, alpha, alpha, 1.5f);
+                    const glm::vec3 wo = viewAt(theta);
+                    Rng rng(5);
+                    double sum = 0.0;
+                    const int n = 50000;
+                    for (int i = 0; i < n; ++i) {
+                        glm::vec3 wi, weight;
+                        bool refracted = false;
+                        const float lobe = rng.next();
+                        const glm::vec2 u(rng.next(), rng.next());
+                        if (!bsdf::sampleRoughDielectric(m, kUp, wo, eta, lobe, u, wi, weight, refracted)) continue;
+                        sum += static_cast<double>(weight.x * (refracted ? eta * eta : 1.0f));
+                    }
+                    const double e = sum / n;
+                    EXPECT_LE(e, 1.0 + 1e-3) << name(t) << " alpha " << alpha << " eta " << eta << " theta " << theta;
+                    if (alpha <= 0.02f) {
+                        EXPECT_GT(e, 0.99) << name(t) << " eta " << eta << " theta " << theta;
+                    }
+                    EXPECT_GT(e, 0.3) << name(t) << " alpha " << alpha << " eta " << eta << " theta " << theta;
+                }
+}
+
 // Gold at normal incidence: the complex Fresnel term reduces to ((n-1)^2 + k^2) / ((n+1)^2 + k^2),
 // reflects red more than blue, and every conductor reflects everything at grazing incidence.
 TEST(Bsdf, ConductorFresnelKnownAnswers) {
