@@ -126,15 +126,17 @@ inline glm::vec3 plasticBase(const ShadingMaterial& m, const glm::vec3& albedo) 
     return m.nonlinear ? albedo / (1.0f - albedo * m.internalReflectance) : albedo / (1.0f - m.internalReflectance);
 }
 
-// Non-delta lobes of the Mitsuba models and the pdf of sampleModel choosing wi.
+// Non-delta lobes of the Mitsuba models and the pdf of sampleModel choosing wi. A smooth
+// plastic's only non-delta lobe is its base: its pdf is diffusePick cos / pi, diffusePick the
+// caller's probability of sampling it (path mode: 1 - deltaPick; direct mode samples it alone).
 inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
-                      const glm::vec3& wi) {
+                      const glm::vec3& wi, float diffusePick = 1.0f) {
     const Frame frame(n);
     const glm::vec3 lo = frame.toLocal(wo), li = frame.toLocal(wi);
     Eval e{glm::vec3(0.0f), 0.0f};
     if (!(lo.z > 0.0f) || !(li.z > 0.0f)) return e;
     const bool plastic = m.model == BsdfModel::Plastic;
-    const float pickSpecular = plastic ? plasticSpecularPick(m, lo.z) : 1.0f;
+    const float pickSpecular = !plastic ? 1.0f : m.rough ? plasticSpecularPick(m, lo.z) : 1.0f - diffusePick;
     if (m.rough) {
         const microfacet::Distribution dist = distributionOf(m);
         const glm::vec3 h = glm::normalize(lo + li);
@@ -313,7 +315,7 @@ inline float pdfRoughDielectric(const ShadingMaterial& m, const glm::vec3& n, co
 // must be > 0.
 inline Eval evalSmooth(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
                        const glm::vec3& wi, float cosI, float diffusePick) {
-    if (m.model != BsdfModel::Classic) return evalModel(m, albedo, n, wo, wi);
+    if (m.model != BsdfModel::Classic) return evalModel(m, albedo, n, wo, wi, diffusePick);
     Eval e{albedo * kInvPi, diffusePick * cosI * kInvPi};
     if (m.glossy) {
         const float lobe = phongLobe(m, wo, n, wi);

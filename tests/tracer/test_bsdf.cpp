@@ -174,6 +174,13 @@ ShadingMaterial plastic(MicrofacetType type, float alpha, float ior, glm::vec3 k
     return m;
 }
 
+// evalSmooth as the path integrator calls it: a smooth (Mirror) model's non-delta lobe is
+// sampled with probability 1 - deltaPick.
+bsdf::Eval evalAsPath(const ShadingMaterial& m, const glm::vec3& wo, const glm::vec3& wi) {
+    const float diffusePick = m.kind == MaterialKind::Mirror ? 1.0f - bsdf::deltaPick(m, wo.z) : 1.0f;
+    return bsdf::evalSmooth(m, m.kd, kUp, wo, wi, wi.z, diffusePick);
+}
+
 const char* name(MicrofacetType t) { return t == MicrofacetType::GGX ? "ggx" : "beckmann"; }
 
 struct Rough {
@@ -225,7 +232,6 @@ TEST(Microfacet, VisibleNormalSamplingMatchesItsPdf) {
 
 // The sampler a path takes (sampleSmooth) against the pdf MIS uses (evalSmooth), BSDF by BSDF.
 void expectBsdfSamplingMatchesPdf(const ShadingMaterial& m, const std::string& what) {
-    const glm::vec3 albedo = m.kd;
     for (float theta : {5.0f, 45.0f, 75.0f}) {
         const glm::vec3 wo = viewAt(theta, 1.1f);
         expectChiSquareFits(
@@ -235,7 +241,7 @@ void expectBsdfSamplingMatchesPdf(const ShadingMaterial& m, const std::string& w
                 return bsdf::sampleSmooth(m, kUp, wo, lobe, u, wi) && wi.z > 0.0f;
             },
             [&](const glm::vec3& wi) {
-                return wi.z > 0.0f ? bsdf::evalSmooth(m, albedo, kUp, wo, wi, wi.z, 0.0f).pdf : 0.0f;
+                return wi.z > 0.0f ? evalAsPath(m, wo, wi).pdf : 0.0f;
             },
             fmt::format("{} theta {}", what, theta), 200000);
     }
@@ -264,7 +270,7 @@ TEST(Bsdf, SmoothPlasticDiffuseSamplingMatchesItsPdf) {
         expectChiSquareFits(
             [&](Rng& rng, glm::vec3& wi) { return bsdf::sampleSmooth(m, kUp, wo, rng.next(), {rng.next(), rng.next()}, wi); },
             [&](const glm::vec3& wi) {
-                return wi.z > 0.0f ? bsdf::evalSmooth(m, m.kd, kUp, wo, wi, wi.z, 0.0f).pdf / pick : 0.0f;
+                return wi.z > 0.0f ? evalAsPath(m, wo, wi).pdf / pick : 0.0f;
             },
             fmt::format("plastic theta {}", theta), 100000);
     }
@@ -278,7 +284,7 @@ glm::vec3 albedo(const ShadingMaterial& m, const glm::vec3& wo, int n = 400) {
         const float c = (static_cast<float>(i) + 0.5f) / static_cast<float>(n);
         for (int j = 0; j < 2 * n; ++j) {
             const glm::vec3 wi = fromAngles(c, 2.0f * kPi * (static_cast<float>(j) + 0.5f) / static_cast<float>(2 * n));
-            sum += glm::dvec3(bsdf::evalSmooth(m, m.kd, kUp, wo, wi, wi.z, 0.0f).f * wi.z);
+            sum += glm::dvec3(evalAsPath(m, wo, wi).f * wi.z);
         }
     }
     return glm::vec3(sum * (2.0 * std::numbers::pi / (2.0 * n * n)));
@@ -293,7 +299,7 @@ glm::vec3 albedoSampled(const ShadingMaterial& m, const glm::vec3& wo, int n = 2
         const float lobe = rng.next();
         const glm::vec2 u(rng.next(), rng.next());
         if (!bsdf::sampleSmooth(m, kUp, wo, lobe, u, wi) || wi.z <= 0.0f) continue;
-        const bsdf::Eval e = bsdf::evalSmooth(m, m.kd, kUp, wo, wi, wi.z, 0.0f);
+        const bsdf::Eval e = evalAsPath(m, wo, wi);
         if (e.pdf > 0.0f) sum += e.f * (wi.z / e.pdf);
     }
     return sum / static_cast<float>(n);
@@ -395,8 +401,8 @@ TEST(Bsdf, ReflectionIsReciprocal) {
             const glm::vec3 a = fromAngles(rng.next(), 2.0f * kPi * rng.next());
             const glm::vec3 b = fromAngles(rng.next(), 2.0f * kPi * rng.next());
             if (a.z < 0.02f || b.z < 0.02f) continue;
-            const glm::vec3 fab = bsdf::evalSmooth(m, m.kd, kUp, a, b, b.z, 0.0f).f;
-            const glm::vec3 fba = bsdf::evalSmooth(m, m.kd, kUp, b, a, a.z, 0.0f).f;
+            const glm::vec3 fab = evalAsPath(m, a, b).f;
+            const glm::vec3 fba = evalAsPath(m, b, a).f;
             for (int c = 0; c < 3; ++c)
                 ASSERT_NEAR(fab[c], fba[c], 1e-4f * std::max(1.0f, fab[c])) << "model " << static_cast<int>(m.model);
         }
@@ -414,7 +420,7 @@ TEST(Bsdf, PdfIntegratesToAtMostOne) {
             const glm::vec3 wo = viewAt(theta);
             const double mass = integrateSphere(
                 [&](const glm::vec3& wi) {
-                    return wi.z > 0.0f ? bsdf::evalSmooth(m, m.kd, kUp, wo, wi, wi.z, 0.0f).pdf : 0.0f;
+                    return wi.z > 0.0f ? evalAsPath(m, wo, wi).pdf : 0.0f;
                 },
                 600, 600);
             EXPECT_LE(mass, 1.0 + 5e-3) << "model " << static_cast<int>(m.model) << " theta " << theta;
