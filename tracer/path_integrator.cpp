@@ -189,22 +189,27 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
         // non-delta part.
         const float cosO = std::clamp(glm::dot(hit.wo, hit.shading), 0.0f, 1.0f);
         const float specularPick = m.kind == MaterialKind::Mirror ? bsdf::deltaPick(m, cosO) : 0.0f;
+        const float diffusePick = m.kind == MaterialKind::Mirror ? 1.0f - specularPick
+                                  : m.glossy                      ? m.diffuseWeight
+                                                                  : 1.0f;
+        const bool nonDelta = (m.diffuse || m.glossy) && (m.kind != MaterialKind::Mirror || diffusePick > 0.0f);
+        if (nonDelta) {
+            // Next-event estimation of the non-delta lobes at every such vertex, whichever lobe the
+            // path goes on with (light sampling does not depend on that choice), weighted by the
+            // throughput before this vertex's scattering.
+            out.nextEvent = true;
+            out.neeBeta = s.beta;
+            out.shadow = prepareNextEventFinite(hit, sampler, depth, diffusePick, out.finite, out.segment);
+            out.infiniteLights = !lights_.directionals.empty() || lights_.environment.has_value();
+            if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays);
+        }
         if (lobeU < specularPick) {
             dir = bsdf::reflect(hit.wo, hit.shading);
             if (glm::dot(dir, hit.geometric) <= 0.0f) return;
             s.beta *= bsdf::deltaReflectance(m, cosO) * (1.0f / specularPick);
             s.specularBefore = true;
         } else {
-            const float diffusePick = m.kind == MaterialKind::Mirror ? 1.0f - specularPick
-                                      : m.glossy                      ? m.diffuseWeight
-                                                                      : 1.0f;
-            if (!m.diffuse && !m.glossy) return;  // black
-            // Next-event estimation, weighted by the throughput before this vertex's scattering.
-            out.nextEvent = true;
-            out.neeBeta = s.beta;
-            out.shadow = prepareNextEventFinite(hit, sampler, depth, diffusePick, out.finite, out.segment);
-            out.infiniteLights = !lights_.directionals.empty() || lights_.environment.has_value();
-            if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays);
+            if (!nonDelta) return;  // black
             const glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Bsdf));
             if (!bsdf::sampleSmooth(m, hit.shading, hit.wo, lobeU, u, dir)) return;
             const float cosI = glm::dot(hit.shading, dir);

@@ -308,7 +308,7 @@ TEST_F(Mitsuba, MicrofacetBsdfsReadTheirParameters) {
     EXPECT_EQ(none.distribution, MicrofacetType::Beckmann);
     // The unknown parameter is named with its file and line.
     ASSERT_EQ(report.warnings.size(), 1u);
-    EXPECT_NE(report.warnings[0].find("scene.xml:3"), std::string::npos) << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("scene.xml:4"), std::string::npos) << report.warnings[0];  // <scene> is line 1
     EXPECT_NE(report.warnings[0].find("'colour'"), std::string::npos) << report.warnings[0];
 }
 
