@@ -76,13 +76,17 @@ TEST(PathMode, RouletteDepthIsTheFirstSegmentRouletteMayEnd) {
 // per-pixel differences. Lambert, and Lambert + Phong (the glossy sampling/eval pair); the area
 // light sampled by solid angle or by area in each mode, so the MIS pdfs of both are checked
 // against the other estimator.
+void pathMatchesDirect(const Material& plane, LightSampling pathSampling, LightSampling directSampling);
 void pathMatchesDirect(float ks, float ns, LightSampling pathSampling, LightSampling directSampling) {
-    testing::SceneBuilder b;
     Material plane;
     plane.name = "plane";
     plane.kd = glm::vec3(0.5f);
     plane.ks = glm::vec3(ks);
     plane.ns = ns;
+    pathMatchesDirect(plane, pathSampling, directSampling);
+}
+void pathMatchesDirect(const Material& plane, LightSampling pathSampling, LightSampling directSampling) {
+    testing::SceneBuilder b;
     b.quad({-20, 0, -20}, {0, 0, 40}, {40, 0, 0}, testing::addMaterial(b, plane));
     b.areaLightQuad({-0.6f, 1.2f, -0.4f}, {1.2f, 0, 0}, {0, 0, 0.8f}, glm::vec3(3.0f, 2.0f, 1.0f));  // faces down
     b.pointLight({0.8f, 1.5f, 0.6f}, glm::vec3(1.0f, 2.0f, 3.0f));
@@ -122,6 +126,47 @@ TEST(PathMode, AgreesWithDirectWithoutIndirectLightGlossy) {
 }
 TEST(PathMode, AgreesWithDirectWithoutIndirectLightByArea) {
     pathMatchesDirect(0.4f, 30.0f, LightSampling::Area, LightSampling::SolidAngle);
+}
+
+// Mitsuba's BSDFs (tracer/bsdf.h) through the same check: their sampling and pdf in path mode's
+// MIS against direct mode's light sampling alone, and a delta lobe (smooth plastic, a mirror with
+// a Lambert part) whose vertex must still sample the lights for the non-delta part.
+Material modelPlane(BsdfModel model, MicrofacetType type, float au, float av) {
+    Material m;
+    m.name = "plane";
+    m.model = model;
+    m.distribution = type;
+    m.alphaU = au;
+    m.alphaV = av;
+    m.kd = glm::vec3(0.6f, 0.4f, 0.2f);
+    m.ior = 1.5f;
+    m.eta = glm::vec3(0.2f, 0.9f, 1.1f);  // copper-like
+    m.k = glm::vec3(3.9f, 2.4f, 2.1f);
+    return m;
+}
+TEST(PathMode, AgreesWithDirectRoughConductorGgxAnisotropic) {
+    pathMatchesDirect(modelPlane(BsdfModel::Conductor, MicrofacetType::GGX, 0.25f, 0.5f), LightSampling::SolidAngle,
+                      LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectRoughConductorBeckmann) {
+    pathMatchesDirect(modelPlane(BsdfModel::Conductor, MicrofacetType::Beckmann, 0.3f, 0.3f), LightSampling::Area,
+                      LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectRoughPlastic) {
+    pathMatchesDirect(modelPlane(BsdfModel::Plastic, MicrofacetType::GGX, 0.2f, 0.2f), LightSampling::SolidAngle,
+                      LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectSmoothPlastic) {
+    pathMatchesDirect(modelPlane(BsdfModel::Plastic, MicrofacetType::Beckmann, 0.0f, 0.0f), LightSampling::SolidAngle,
+                      LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectMirrorWithLambertPart) {
+    Material m;
+    m.name = "plane";
+    m.kind = MaterialKind::Mirror;
+    m.kd = glm::vec3(0.5f);
+    m.ks = glm::vec3(0.3f);
+    pathMatchesDirect(m, LightSampling::SolidAngle, LightSampling::SolidAngle);
 }
 
 // Many lights (more than LightSet::kFewLights) switch Direct mode to power-CDF selection: by
