@@ -200,6 +200,7 @@ inline glm::vec3 deltaReflectance(const ShadingMaterial& m, float cosO) {
 // the coating at wo and, averaged, at arrival. Classic: the albedo itself.
 inline glm::vec3 lambertEquivalent(const ShadingMaterial& m, const glm::vec3& albedo, float cosO) {
     if (m.model != BsdfModel::Plastic) return albedo;
+    cosO = std::clamp(cosO, 0.0f, 1.0f);  // an interpolated normal may face slightly away
     const float tO = m.rough ? coatingTransmittance(m, cosO) : 1.0f - dielectricReflectance(cosO, m.ior);
     return plasticBase(m, albedo) * (tO * m.meanExitTransmittance / (m.ior * m.ior));
 }
