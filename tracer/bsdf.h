@@ -311,6 +311,39 @@ inline float pdfRoughDielectric(const ShadingMaterial& m, const glm::vec3& n, co
     return (1.0f - F) * visible * etaRel * etaRel * std::abs(ci) / (d * d);
 }
 
+// The rough dielectric's BSDF (reflection for wi on wo's side, refraction through it, the
+// latter with the 1 / etaRel^2 radiance scaling) and pdfRoughDielectric, so that
+// f |cos_i| / pdf is sampleRoughDielectric's weight.
+inline Eval evalRoughDielectric(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float etaRel,
+                                const glm::vec3& wi) {
+    const Frame frame(n);
+    const glm::vec3 lo = frame.toLocal(wo), li = frame.toLocal(wi);
+    Eval e{glm::vec3(0.0f), 0.0f};
+    if (!(lo.z > 0.0f) || li.z == 0.0f) return e;
+    const microfacet::Distribution dist = distributionOf(m);
+    const bool reflected = li.z > 0.0f;
+    glm::vec3 h = reflected ? lo + li : lo + etaRel * li;
+    const float len = glm::length(h);
+    if (!(len > 0.0f)) return e;
+    h /= len;
+    if (h.z < 0.0f) h = -h;
+    const float co = glm::dot(lo, h), ci = glm::dot(li, h);
+    if (!(co > 0.0f) || (reflected ? !(ci > 0.0f) : !(ci < 0.0f))) return e;
+    float cosT = 0.0f;
+    const float F = microfacet::fresnelDielectricSigned(co, etaRel, cosT);
+    const float D = dist.D(h), g1o = dist.G1(lo, h), G = g1o * dist.G1(li, h);
+    const float visible = D * g1o * co / lo.z;
+    if (reflected) {
+        e.f = m.specularTint * (F * D * G / (4.0f * lo.z * li.z));
+        e.pdf = F * visible / (4.0f * ci);
+    } else {
+        const float d = co + etaRel * ci;
+        e.f = m.ks * ((1.0f - F) * D * G * co * std::abs(ci) / (d * d * lo.z * std::abs(li.z)));
+        e.pdf = (1.0f - F) * visible * etaRel * etaRel * std::abs(ci) / (d * d);
+    }
+    return e;
+}
+
 // BRDF of the non-delta lobes (Lambert with `albedo`, plus Phong for glossy materials; the
 // Mitsuba models' own lobes) and the pdf of sampleSmooth choosing wi, for MIS. cosI = dot(n, wi)
 // must be > 0.

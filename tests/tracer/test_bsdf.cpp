@@ -494,6 +494,38 @@ TEST(Bsdf, RoughDielectricConservesEnergy) {
                 }
 }
 
+// The rough dielectric's BSDF against its sampler: f |cos| / pdf is the sample's weight, the pdf
+// is the sampler's density, reflection is reciprocal, and refraction (with radiance's 1 / eta^2
+// in f) obeys the generalised reciprocity f(wo, wi; eta) eta^2 = f(wi, wo; 1 / eta).
+TEST(Bsdf, RoughDielectricEvalMatchesItsSampler) {
+    const ShadingMaterial m = roughGlass(MicrofacetType::GGX, 0.3f, 0.2f, 1.5f);
+    Rng rng(11);
+    int checked = 0;
+    for (float eta : {1.5f, 1.0f / 1.5f})
+        for (int i = 0; i < 4000; ++i) {
+            const glm::vec3 wo = fromAngles(0.05f + 0.95f * rng.next(), 2.0f * kPi * rng.next());
+            glm::vec3 wi, weight;
+            bool refracted = false;
+            const float lobe = rng.next();
+            const glm::vec2 u(rng.next(), rng.next());
+            if (!bsdf::sampleRoughDielectric(m, kUp, wo, eta, lobe, u, wi, weight, refracted)) continue;
+            if (std::abs(wi.z) < 0.02f) continue;
+            const bsdf::Eval e = bsdf::evalRoughDielectric(m, kUp, wo, eta, wi);
+            ASSERT_GT(e.pdf, 0.0f);
+            EXPECT_NEAR(e.pdf, bsdf::pdfRoughDielectric(m, kUp, wo, eta, wi), 1e-4f * e.pdf);
+            EXPECT_NEAR(e.f.x * std::abs(wi.z) / e.pdf, weight.x, 2e-3f * std::max(1.0f, weight.x)) << refracted;
+            if (refracted) {
+                // wi lies below; seen from there (flip the frame), wo is the refracted direction.
+                const bsdf::Eval back = bsdf::evalRoughDielectric(m, -kUp, wi, 1.0f / eta, wo);
+                EXPECT_NEAR(e.f.x * eta * eta, back.f.x, 2e-3f * std::max(1.0f, back.f.x));
+            } else {
+                EXPECT_NEAR(e.f.x, bsdf::evalRoughDielectric(m, kUp, wi, eta, wo).f.x, 2e-3f * std::max(1.0f, e.f.x));
+            }
+            ++checked;
+        }
+    EXPECT_GT(checked, 5000);
+}
+
 // Gold at normal incidence: the complex Fresnel term reduces to ((n-1)^2 + k^2) / ((n+1)^2 + k^2),
 // reflects red more than blue, and every conductor reflects everything at grazing incidence.
 TEST(Bsdf, ConductorFresnelKnownAnswers) {
