@@ -283,8 +283,17 @@ TEST_F(Mitsuba, MicrofacetBsdfsReadTheirParameters) {
 <boolean name="nonlinear" value="true"/><float name="alpha" value="0.2"/></bsdf></shape>
 <shape type="rectangle"><bsdf type="plastic"/></shape>
 <shape type="rectangle"><bsdf type="roughconductor"/></shape>
+<shape type="rectangle"><bsdf type="roughdielectric"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/>
+<rgb name="specular_transmittance" value="0.9, 0.8, 0.7"/></bsdf></shape>
 )", &report);
-    ASSERT_EQ(s.materials.size(), 4u);
+    ASSERT_EQ(s.materials.size(), 5u);
+    const Material& glass = s.materials[4];
+    EXPECT_EQ(glass.kind, MaterialKind::Glass);
+    EXPECT_EQ(glass.model, BsdfModel::Dielectric);
+    EXPECT_EQ(glass.distribution, MicrofacetType::GGX);
+    EXPECT_EQ(glass.alphaU, 0.3f);
+    EXPECT_NEAR(glass.ior, 1.5046f / 1.000277f, 1e-5f);  // bk7 in air, Mitsuba's defaults
+    expectVec(glass.ks, {0.9f, 0.8f, 0.7f});
     const Material& gold = s.materials[0];
     EXPECT_EQ(gold.model, BsdfModel::Conductor);
     EXPECT_EQ(gold.distribution, MicrofacetType::GGX);
