@@ -242,6 +242,18 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             for (std::size_t k = 0; k < texels; ++k) rgb[k] = {t.rgba[4 * k], t.rgba[4 * k + 1], t.rgba[4 * k + 2]};
             d.rgb = buildMipChain(t.width, t.height, std::move(rgb));
         }
+        // A textured plastic steers its samples by the base's mean albedo, as Mitsuba does: kd
+        // times the texture's mean (the 1 x 1 top of its mip chain).
+        for (ShadingMaterial& sm : materials_) {
+            if (sm.model != BsdfModel::Plastic || sm.texture < 0 || static_cast<std::size_t>(sm.texture) >= textures_.size())
+                continue;
+            const TextureData& d = textures_[static_cast<std::size_t>(sm.texture)];
+            if (d.rgb.empty()) continue;
+            const glm::vec3 mean = sm.kd * d.rgb.back().rgb.front();
+            const float sm3 = (sm.specularTint.x + sm.specularTint.y + sm.specularTint.z) / 3.0f;
+            const float dm = (mean.x + mean.y + mean.z) / 3.0f;
+            sm.specularWeight = sm3 + dm > 0.0f ? sm3 / (sm3 + dm) : 0.5f;
+        }
     }
     spdlog::info("tracer features: {}", features_.describe());
 
