@@ -313,7 +313,7 @@ std::string fnv1a64Hex(const std::string& text) {
 
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-9";  // bump when the image for the same settings and files changes (tracer or loader)
+    j["format"] = "aamap-render-10";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);

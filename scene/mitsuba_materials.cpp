@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -44,33 +45,142 @@ glm::vec3 conductorF0(glm::vec3 eta, glm::vec3 k) {
     return ((eta - 1.0f) * (eta - 1.0f) + k * k) / ((eta + 1.0f) * (eta + 1.0f) + k * k);
 }
 
-// Normal-incidence reflectance of Mitsuba's named conductors (a common subset).
-std::optional<glm::vec3> namedConductor(const std::string& name) {
-    static const std::map<std::string, glm::vec3> table = {
-        {"none", {1.0f, 1.0f, 1.0f}},        {"ag", {0.972f, 0.960f, 0.915f}}, {"al", {0.913f, 0.922f, 0.924f}},
-        {"au", {1.000f, 0.766f, 0.336f}},    {"cu", {0.955f, 0.638f, 0.538f}}, {"cr", {0.549f, 0.556f, 0.554f}},
-        {"fe", {0.562f, 0.565f, 0.578f}},    {"ti", {0.542f, 0.497f, 0.449f}}, {"ni", {0.660f, 0.609f, 0.526f}},
-        {"pt", {0.673f, 0.637f, 0.585f}},    {"w", {0.504f, 0.498f, 0.478f}},
+// Mitsuba's named conductors as its RGB variants see them: each material's measured spectral eta
+// and k (Mitsuba's data/ior/<name>.eta.spd, .k.spd) reduced to one linear sRGB value per channel
+// the way Mitsuba 3 does when an rgb variant loads them (spectrum_list_to_srgb: the spectrum
+// integrated against the CIE 1931 matching functions, XYZ to linear sRGB, negative channels
+// clamped to 0). The values were read back from Mitsuba 3.6's llvm_ad_rgb variant (the BSDF's
+// eta and k parameters after loading material=<name>); "none" is eta 0, k 1, a perfect mirror.
+struct ComplexIor {
+    glm::vec3 eta, k;
+};
+std::optional<ComplexIor> namedConductor(const std::string& name) {
+    static const std::map<std::string, ComplexIor> table = {
+        {"none", {{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}}},
+        {"a-C", {{2.944046f, 2.227136f, 1.968162f}, {0.887465f, 0.799299f, 0.815290f}}},
+        {"Ag", {{0.155276f, 0.116728f, 0.138388f}, {4.828354f, 3.122222f, 2.146901f}}},
+        {"Al", {{1.657501f, 0.880405f, 0.521244f}, {9.223811f, 6.269502f, 4.837004f}}},
+        {"AlAs", {{3.605296f, 3.232938f, 2.216319f}, {0.000679f, 0.000000f, 0.007513f}}},
+        {"AlSb", {{0.000000f, 4.139375f, 4.669254f}, {0.000000f, 0.094009f, 1.300570f}}},
+        {"Au", {{0.143036f, 0.375307f, 1.442045f}, {3.982997f, 2.385556f, 1.603359f}}},
+        {"Be", {{4.185012f, 3.185029f, 2.784061f}, {3.835466f, 3.010122f, 2.868994f}}},
+        {"Cr", {{4.369668f, 2.916505f, 1.654905f}, {5.206547f, 4.231306f, 3.754699f}}},
+        {"Cu", {{0.201005f, 0.923750f, 1.102215f}, {3.913262f, 2.453045f, 2.142090f}}},
+        {"Cu2O", {{3.551773f, 2.949870f, 2.751875f}, {0.114207f, 0.193897f, 0.606134f}}},
+        {"CuO", {{3.247541f, 2.447805f, 2.210220f}, {0.521090f, 0.570031f, 0.722179f}}},
+        {"Hg", {{2.398939f, 1.440028f, 0.909570f}, {6.327587f, 4.371925f, 3.421764f}}},
+        {"HgTe", {{4.779040f, 3.231196f, 2.659901f}, {1.631613f, 1.580810f, 1.729287f}}},
+        {"Ir", {{3.086300f, 2.082191f, 1.617915f}, {5.592153f, 4.067088f, 3.267312f}}},
+        {"K", {{0.064043f, 0.046410f, 0.038185f}, {2.104200f, 1.348940f, 0.913126f}}},
+        {"Li", {{0.265791f, 0.195618f, 0.220949f}, {3.540155f, 2.311123f, 1.668607f}}},
+        {"MgO", {{2.089584f, 1.650723f, 1.594879f}, {0.000000f, 0.000000f, 0.000000f}}},
+        {"Mo", {{4.483974f, 3.525131f, 2.776310f}, {4.111437f, 3.420827f, 3.150607f}}},
+        {"Na_palik", {{0.060269f, 0.056141f, 0.061988f}, {3.179273f, 2.112490f, 1.579041f}}},
+        {"Nb", {{3.420074f, 2.790093f, 2.395629f}, {3.441395f, 2.737666f, 2.579746f}}},
+        {"Ni_palik", {{2.367305f, 1.663373f, 1.467078f}, {4.498812f, 3.050153f, 2.345439f}}},
+        {"Rh", {{2.585793f, 1.860216f, 1.554263f}, {6.782260f, 4.702987f, 3.976073f}}},
+        {"Se", {{4.058311f, 2.842935f, 2.820853f}, {0.754050f, 0.638444f, 0.521808f}}},
+        {"Se-e", {{5.722849f, 4.165736f, 4.081338f}, {0.871136f, 1.105157f, 1.565320f}}},
+        {"SiC", {{3.172342f, 2.525972f, 2.479371f}, {0.000001f, 0.000000f, 0.000010f}}},
+        {"Ta", {{2.062721f, 2.392939f, 2.627929f}, {2.408360f, 1.741486f, 1.947028f}}},
+        {"Te", {{7.390234f, 4.482105f, 2.637106f}, {3.256022f, 3.527059f, 3.292054f}}},
+        {"Te-e", {{7.508907f, 4.296429f, 2.369988f}, {5.583929f, 4.947205f, 3.997592f}}},
+        {"TiC", {{3.700528f, 2.837422f, 2.582287f}, {3.265635f, 2.351589f, 2.172791f}}},
+        {"TiN", {{1.648450f, 1.150516f, 1.379823f}, {3.368328f, 1.943498f, 1.102068f}}},
+        {"TiO2", {{3.456610f, 2.801736f, 2.905175f}, {0.000105f, 0.000000f, 0.000653f}}},
+        {"TiO2-e", {{3.106565f, 2.513168f, 2.582444f}, {0.000030f, 0.000000f, 0.000183f}}},
+        {"V_palik", {{4.277582f, 3.512949f, 2.761071f}, {3.491301f, 2.889455f, 3.111522f}}},
+        {"VC", {{3.657566f, 2.752736f, 2.532672f}, {3.068301f, 2.198687f, 1.963193f}}},
+        {"VN", {{2.865602f, 2.119189f, 1.940091f}, {3.032243f, 2.056116f, 1.616306f}}},
+        {"W", {{4.370817f, 3.300246f, 2.998407f}, {3.500641f, 2.604874f, 2.273233f}}},
     };
-    const auto it = table.find(text::toLower(name));
-    if (it == table.end()) return std::nullopt;
-    return it->second;
+    // Mitsuba's names are case-sensitive file names; accept any case, as the rest of the loader does.
+    for (const auto& [key, value] : table)
+        if (text::toLower(key) == text::toLower(name)) return value;
+    return std::nullopt;
 }
 
-// GGX/Beckmann roughness alpha -> a Phong exponent with a similar highlight.
+// GGX/Beckmann roughness alpha -> a Phong exponent with a similar highlight (the Snapshot's stand-in).
 float phongExponent(float alpha) {
     const float a = std::max(alpha, 1e-3f);
     return std::max(2.0f / (a * a) - 2.0f, 0.0f);
 }
 
-float roughness(const Element& bsdf) {
-    if (bsdf.property("alpha_u") != nullptr || bsdf.property("alpha_v") != nullptr) {
-        return 0.5f * (floatProperty(bsdf, "alpha_u", 0.1f) + floatProperty(bsdf, "alpha_v", 0.1f));
-    }
-    return floatProperty(bsdf, "alpha", 0.1f);
+// Each microfacet BSDF's parameters (Mitsuba 3's names); others are ignored with a warning.
+const std::set<std::string>& knownParameters(const std::string& type) {
+    static const std::map<std::string, std::set<std::string>> table = {
+        {"conductor", {"material", "eta", "k", "specular_reflectance"}},
+        {"roughconductor",
+         {"material", "eta", "k", "specular_reflectance", "distribution", "alpha", "alpha_u", "alpha_v",
+          "sample_visible"}},
+        {"plastic", {"int_ior", "ext_ior", "diffuse_reflectance", "specular_reflectance", "nonlinear"}},
+        {"roughplastic",
+         {"int_ior", "ext_ior", "diffuse_reflectance", "specular_reflectance", "nonlinear", "distribution", "alpha",
+          "sample_visible"}},
+        {"roughdielectric",
+         {"int_ior", "ext_ior", "specular_reflectance", "specular_transmittance", "distribution", "alpha", "alpha_u",
+          "alpha_v", "sample_visible"}},
+    };
+    static const std::set<std::string> none;
+    const auto it = table.find(type);
+    return it == table.end() ? none : it->second;
 }
 
 }  // namespace
+
+void MaterialBuilder::warnUnknownParameters(const Element& bsdf, const std::string& type) {
+    const std::set<std::string>& known = knownParameters(type);
+    for (const Element& c : bsdf.children) {
+        const std::string name = c.name();
+        if (name.empty() || c.tag == "bsdf" || known.count(name) != 0) continue;
+        warnings_.once(type + "-parameter-" + name,
+                       fmt::format("{}: {} has no parameter '{}'; it is ignored", at(c), type, name));
+    }
+}
+
+// The microfacet distribution and roughness of a rough BSDF, with Mitsuba's rules: beckmann by
+// default, alpha 0.1; alpha_u and alpha_v come together and exclude alpha.
+void MaterialBuilder::microfacetParameters(const Element& bsdf, Material& m, bool anisotropic) {
+    const std::string distribution = text::toLower(stringProperty(bsdf, "distribution", "beckmann"));
+    if (distribution == "ggx") {
+        m.distribution = MicrofacetType::GGX;
+    } else if (distribution == "beckmann") {
+        m.distribution = MicrofacetType::Beckmann;
+    } else {
+        fail(*bsdf.property("distribution"),
+             fmt::format("unknown microfacet distribution '{}' (beckmann or ggx)", distribution));
+    }
+    const bool hasU = bsdf.property("alpha_u") != nullptr, hasV = bsdf.property("alpha_v") != nullptr;
+    if (hasU || hasV) {
+        if (!anisotropic) fail(bsdf, fmt::format("{} is isotropic: alpha_u / alpha_v are not supported", bsdf.type()));
+        if (!hasU || !hasV) fail(bsdf, "alpha_u and alpha_v must both be given");
+        if (bsdf.property("alpha") != nullptr) fail(bsdf, "give either alpha or alpha_u / alpha_v, not both");
+        m.alphaU = floatProperty(bsdf, "alpha_u", 0.1f);
+        m.alphaV = floatProperty(bsdf, "alpha_v", 0.1f);
+    } else {
+        m.alphaU = m.alphaV = floatProperty(bsdf, "alpha", 0.1f);
+    }
+    for (const char* name : {"alpha", "alpha_u", "alpha_v"}) {
+        const Element* p = bsdf.property(name);
+        const float value = name[5] == 'u' ? m.alphaU : name[5] == 'v' ? m.alphaV : m.alphaU;
+        if (p != nullptr && !(std::isfinite(value) && value >= 0.0f))
+            fail(*p, fmt::format("roughness {} = {} is out of range (a finite alpha >= 0)", name, value));
+    }
+    if (!booleanProperty(bsdf, "sample_visible", true))
+        warnings_.once("sample_visible", fmt::format("{}: sample_visible=false is ignored: visible normals are always "
+                                                     "sampled (the image is the same, the noise differs)", at(bsdf)));
+}
+
+// int_ior / ext_ior (numbers or Mitsuba's names): their ratio, checked as Mitsuba does.
+float MaterialBuilder::relativeIor(const Element& bsdf, float interior) {
+    const float in = iorProperty(bsdf, "int_ior", interior), out = iorProperty(bsdf, "ext_ior", 1.000277f);
+    if (!(std::isfinite(in) && std::isfinite(out) && in > 0.0f && out > 0.0f) || in == out) {
+        const Element* p = bsdf.property("int_ior");
+        fail(p != nullptr ? *p : bsdf,
+             fmt::format("int_ior {} and ext_ior {} must be positive and differ", in, out));
+    }
+    return in / out;
+}
 
 const Element& MaterialBuilder::resolve(const Element& e) const {
     if (e.tag != "ref") return e;
@@ -182,30 +292,46 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
         m.alphaMode = AlphaMode::Mask;
         m.alpha = 0.0f;
     } else if (type == "plastic" || type == "roughplastic") {
-        const float eta = iorProperty(bsdf, "int_ior", 1.49f) / iorProperty(bsdf, "ext_ior", 1.000277f);
-        approximated(fmt::format("{}: the coating is approximated by Lambert plus a Phong lobe "
-                                 "(ks = specular x F0, ns = 2/alpha^2 - 2)", type));
+        // The tracer shades Mitsuba's model (BsdfModel::Plastic); kd, ks, ns are the Snapshot's
+        // Lambert + Phong stand-in (ks = specular x F0, ns = 2 / alpha^2 - 2).
+        warnUnknownParameters(bsdf, type);
+        const float eta = relativeIor(bsdf, 1.49f);
+        m.model = BsdfModel::Plastic;
+        m.ior = eta;
+        m.nonlinear = booleanProperty(bsdf, "nonlinear", false);
+        if (type == "roughplastic") microfacetParameters(bsdf, m, false);
         m.kd = colourOrTexture(bsdf, "diffuse_reflectance", glm::vec3(0.5f), &m.diffuseTexture);
-        m.ks = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_) * fresnelF0(eta);
-        m.ns = phongExponent(type == "plastic" ? 0.01f : roughness(bsdf));
+        m.specularReflectance = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
+        m.ks = m.specularReflectance * fresnelF0(eta);
+        m.ns = phongExponent(type == "plastic" ? 0.01f : 0.5f * (m.alphaU + m.alphaV));
     } else if (type == "conductor" || type == "roughconductor") {
-        glm::vec3 f0;
-        if (bsdf.property("eta") != nullptr || bsdf.property("k") != nullptr) {
-            f0 = conductorF0(colourProperty(bsdf, "eta", glm::vec3(0.0f), warnings_),
-                             colourProperty(bsdf, "k", glm::vec3(1.0f), warnings_));
+        // The tracer shades Mitsuba's model (BsdfModel::Conductor); ks = F0 and ns are the
+        // Snapshot's stand-in (a mirror when alpha <= 0.05).
+        warnUnknownParameters(bsdf, type);
+        const bool hasEtaK = bsdf.property("eta") != nullptr || bsdf.property("k") != nullptr;
+        const Element* material = bsdf.property("material");
+        if (hasEtaK) {
+            if (material != nullptr && text::toLower(stringProperty(bsdf, "material", "none")) != "none")
+                fail(*material, "give either eta / k or material, not both");
+            m.eta = colourProperty(bsdf, "eta", glm::vec3(0.0f), warnings_);
+            m.k = colourProperty(bsdf, "k", glm::vec3(1.0f), warnings_);
+            for (int c = 0; c < 3; ++c)
+                if (!(std::isfinite(m.eta[c]) && std::isfinite(m.k[c]) && m.eta[c] >= 0.0f && m.k[c] >= 0.0f))
+                    fail(*bsdf.property(bsdf.property("eta") != nullptr ? "eta" : "k"),
+                         fmt::format("conductor index eta = {}, k = {} is out of range (finite, >= 0)", m.eta[c], m.k[c]));
         } else {
-            // 0.5's default material is copper, 2/3's a perfect mirror.
+            // 0.5's default material is copper, 3's a perfect mirror.
             const std::string name = stringProperty(bsdf, "material", doc_.majorVersion == 0 ? "Cu" : "none");
             const auto named = namedConductor(name);
-            if (!named) fail(bsdf, fmt::format("unknown conductor material '{}'", name));
-            f0 = *named;
+            if (!named) fail(material != nullptr ? *material : bsdf, fmt::format("unknown conductor material '{}'", name));
+            m.eta = named->eta;
+            m.k = named->k;
         }
-        f0 *= colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
-        const float alpha = type == "conductor" ? 0.0f : roughness(bsdf);
-        approximated(fmt::format("{}: Fresnel reflectance is taken at normal incidence (F0){}", type,
-                                 type == "roughconductor" ? "; roughness alpha -> a Phong lobe (ns = 2/alpha^2 - 2), "
-                                                            "a mirror for alpha <= 0.05" : ""));
-        m.ks = f0;
+        m.model = BsdfModel::Conductor;
+        if (type == "roughconductor") microfacetParameters(bsdf, m, true);
+        m.specularReflectance = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
+        m.ks = conductorF0(m.eta, m.k) * m.specularReflectance;
+        const float alpha = 0.5f * (m.alphaU + m.alphaV);
         if (alpha <= 0.05f) {
             m.kind = MaterialKind::Mirror;
         } else {
@@ -213,10 +339,19 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
             m.ns = phongExponent(alpha);
         }
     } else if (type == "dielectric" || type == "thindielectric" || type == "roughdielectric") {
-        if (type == "roughdielectric") approximated("roughdielectric is approximated by a smooth solid dielectric");
         m.kind = MaterialKind::Glass;
         m.thin = type == "thindielectric";
-        m.ior = iorProperty(bsdf, "int_ior", 1.5046f) / iorProperty(bsdf, "ext_ior", 1.000277f);
+        if (type == "roughdielectric") {
+            // Path mode samples the microfacet interface; the Snapshot and the direct and cache
+            // modes' specular branches see it smooth.
+            warnUnknownParameters(bsdf, type);
+            m.model = BsdfModel::Dielectric;
+            m.ior = relativeIor(bsdf, 1.5046f);
+            microfacetParameters(bsdf, m, true);
+            m.specularReflectance = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
+        } else {
+            m.ior = iorProperty(bsdf, "int_ior", 1.5046f) / iorProperty(bsdf, "ext_ior", 1.000277f);
+        }
         m.ks = colourProperty(bsdf, "specular_transmittance", glm::vec3(1.0f), warnings_);
         m.kd = glm::vec3(0.0f);
     } else if (type == "phong" || type == "ward") {

@@ -1,13 +1,13 @@
 #pragma once
 // Mitsuba BSDFs to aamap materials. What aamap represents exactly: diffuse (constant or bitmap
-// reflectance), smooth conductors as mirrors, smooth and thin dielectrics as glass, mask as an alpha
-// cut-out, and one-sidedness (a BSDF outside twosided is black from the back).
+// reflectance), smooth and thin dielectrics as glass, mask as an alpha cut-out, one-sidedness (a
+// BSDF outside twosided is black from the back), and for the tracer Mitsuba's conductor,
+// roughconductor, plastic and roughplastic (Material::model, docs/tracer.md "BSDFs"; the Snapshot
+// shows them through kd, ks, ns: Lambert plus a Phong lobe, ns = 2 / alpha^2 - 2, ks = F0).
+// Their unknown parameters are warnings, out-of-range roughness or indices errors (file:line).
+// roughdielectric is a Glass with a microfacet interface that path mode samples (the direct and
+// cache modes and the Snapshot see it smooth); thindielectric is exact (a thin Glass sheet).
 // What it approximates (one warning per kind, naming the approximation):
-// - plastic/roughplastic: Lambert kd = diffuse_reflectance plus a Phong lobe ks =
-//   specular_reflectance * F0(int_ior / ext_ior), ns = 2 / alpha^2 - 2 (smooth: alpha 0.01);
-// - roughconductor: a Phong lobe ks = F0(eta, k) * specular_reflectance, ns = 2 / alpha^2 - 2
-//   (a mirror when alpha <= 0.05); conductor: a mirror of tint F0;
-// - roughdielectric: a smooth solid dielectric (thindielectric is exact: a thin Glass sheet);
 // - bumpmap/normalmap: ignored (the nested BSDF is used); twosided: the nested BSDF (aamap shades
 //   both sides); coating/roughcoating and blendbsdf: the (first) nested BSDF; null: fully cut out;
 // - phong/ward: kd plus a Phong lobe.
@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "scene/mitsuba_xml.h"
@@ -41,6 +42,12 @@ private:
     // A colour or a bitmap texture property: sets kd (or ks) and, for a texture, the texture index.
     glm::vec3 colourOrTexture(const Element& bsdf, const char* name, glm::vec3 fallback, int* texture);
     int bitmap(const Element& texture, bool coverage);
+    // Microfacet BSDFs: warn (file:line) for each parameter the type does not have.
+    void warnUnknownParameters(const Element& bsdf, const std::string& type);
+    // distribution, alpha or alpha_u / alpha_v (anisotropic types only) into m; errors at file:line.
+    void microfacetParameters(const Element& bsdf, Material& m, bool anisotropic);
+    // int_ior / ext_ior: positive and different, or an error at file:line.
+    float relativeIor(const Element& bsdf, float interior);
 
     const Document& doc_;
     Scene& scene_;

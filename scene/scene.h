@@ -24,6 +24,19 @@ enum class MaterialKind : std::uint8_t {
 
 enum class AlphaMode : std::uint8_t { Opaque, Mask, Blend };
 
+// How the tracer scatters at a material (docs/tracer.md, "BSDFs"). Classic reads kind, kd, ks, ns,
+// ior; the others are Mitsuba's BSDFs of the same names and read the fields after `model`, while
+// kind, kd, ks, ns stay the Snapshot's approximation of them.
+enum class BsdfModel : std::uint8_t {
+    Classic,    // Lambert + modified Phong, ideal mirror, Fresnel dielectric
+    Conductor,  // conductor / roughconductor: complex-IOR Fresnel, optional microfacet roughness
+    Plastic,    // plastic / roughplastic: dielectric coating over a diffuse base
+    Dielectric, // roughdielectric: microfacet reflection and refraction (kind Glass)
+};
+
+// Microfacet normal distributions (tracer/microfacet.h).
+enum class MicrofacetType : std::uint8_t { Beckmann, GGX };
+
 struct Material {
     std::string name;
     MaterialKind kind = MaterialKind::Diffuse;
@@ -47,6 +60,14 @@ struct Material {
     float alpha = 1.0f;        // glTF baseColorFactor.a, MTL d (or 1 - Tr)
     float alphaCutoff = 0.5f;  // glTF alphaCutoff
     int alphaTexture = -1;     // glTF: the baseColorTexture; MTL: map_d (coverage in alpha)
+
+    BsdfModel model = BsdfModel::Classic;
+    MicrofacetType distribution = MicrofacetType::Beckmann;
+    float alphaU = 0.0f, alphaV = 0.0f;  // microfacet roughness along tangent / bitangent; 0: smooth
+    glm::vec3 eta{0.0f}, k{1.0f};        // Conductor: complex index of refraction per channel
+    glm::vec3 specularReflectance{1.0f}; // Conductor, Plastic, Dielectric: tint of the specular lobes
+    bool nonlinear = false;              // Plastic: the diffuse base's colour shifts with internal scattering
+    // Plastic and Dielectric use `ior` (interior over exterior) and Plastic `kd` / `diffuseTexture`.
 };
 
 // Whether a material can cut holes: Mask, or Blend (treated as a mask at 0.5).

@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
+#include "tracer/bsdf.h"
 
 namespace aamap {
 namespace {
@@ -79,6 +80,42 @@ void validate(const Scene& scene) {
 bool positive(const glm::vec3& c) { return c.x > 0.0f || c.y > 0.0f || c.z > 0.0f; }
 float luminance(const glm::vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
+// Mitsuba's conductor and plastic: the Snapshot's kind, kd, ks, ns give way to the model's own
+// parameters. Smooth ones become Mirror (their delta lobe takes the mirror paths), rough ones
+// Diffuse with a glossy lobe.
+void convertModel(const Material& mat, ShadingMaterial& s) {
+    s.model = mat.model;
+    s.distribution = mat.distribution;
+    s.alphaU = std::max(mat.alphaU, 0.0f);
+    s.alphaV = std::max(mat.alphaV, 0.0f);
+    s.rough = s.alphaU > 0.0f && s.alphaV > 0.0f;
+    s.eta = mat.eta;
+    s.k = mat.k;
+    s.specularTint = glm::max(mat.specularReflectance, glm::vec3(0.0f));
+    s.nonlinear = mat.nonlinear;
+    s.ior = mat.ior > 0.0f && mat.ior != 1.0f ? mat.ior : 1.49f;
+    s.kind = s.rough ? MaterialKind::Diffuse : MaterialKind::Mirror;
+    s.glossy = s.rough;
+    s.ns = 0.0f;
+    if (mat.model == BsdfModel::Conductor) {
+        s.kd = s.kdOverPi = glm::vec3(0.0f);
+        s.diffuse = false;
+        s.texture = -1;
+        s.ks = s.specularTint;  // for the specular branch cutoffs: the most the lobe reflects
+    } else {
+        s.kd = mat.kd;  // unscaled: the coating model conserves energy itself
+        s.kdOverPi = s.kd * std::numbers::inv_pi_v<float>;
+        s.diffuse = s.kd.x != 0.0f || s.kd.y != 0.0f || s.kd.z != 0.0f;
+        s.ks = s.specularTint;
+        // Mitsuba steers by the mean specular and diffuse reflectances (a texture counts as kd).
+        const float sm = (s.specularTint.x + s.specularTint.y + s.specularTint.z) / 3.0f;
+        const float dm = (s.kd.x + s.kd.y + s.kd.z) / 3.0f;
+        s.specularWeight = sm + dm > 0.0f ? sm / (sm + dm) : 0.5f;
+    }
+    s.diffuseWeight = 0.0f;
+    bsdf::prepareModel(s);
+}
+
 ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
     ShadingMaterial s;
     s.kind = mat.kind;
@@ -117,6 +154,17 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
     if (s.glossy) {
         const float d = luminance(kd), g = luminance(ks);
         s.diffuseWeight = d + g > 0.0f ? d / (d + g) : 0.0f;
+    }
+    if (mat.model == BsdfModel::Conductor || mat.model == BsdfModel::Plastic) convertModel(mat, s);
+    if (mat.model == BsdfModel::Dielectric && mat.kind == MaterialKind::Glass && !mat.thin) {
+        // roughdielectric: a Glass whose interface has microfacets (path mode samples them; the
+        // direct and cache modes' specular branches see the smooth interface).
+        s.model = BsdfModel::Dielectric;
+        s.distribution = mat.distribution;
+        s.alphaU = std::max(mat.alphaU, 0.0f);
+        s.alphaV = std::max(mat.alphaV, 0.0f);
+        s.rough = s.alphaU > 0.0f && s.alphaV > 0.0f;
+        s.specularTint = glm::max(mat.specularReflectance, glm::vec3(0.0f));
     }
     return s;
 }
@@ -193,6 +241,18 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             std::vector<glm::vec3> rgb(texels);
             for (std::size_t k = 0; k < texels; ++k) rgb[k] = {t.rgba[4 * k], t.rgba[4 * k + 1], t.rgba[4 * k + 2]};
             d.rgb = buildMipChain(t.width, t.height, std::move(rgb));
+        }
+        // A textured plastic steers its samples by the base's mean albedo, as Mitsuba does: kd
+        // times the texture's mean (the 1 x 1 top of its mip chain).
+        for (ShadingMaterial& sm : materials_) {
+            if (sm.model != BsdfModel::Plastic || sm.texture < 0 || static_cast<std::size_t>(sm.texture) >= textures_.size())
+                continue;
+            const TextureData& d = textures_[static_cast<std::size_t>(sm.texture)];
+            if (d.rgb.empty()) continue;
+            const glm::vec3 mean = sm.kd * d.rgb.back().rgb.front();
+            const float sm3 = (sm.specularTint.x + sm.specularTint.y + sm.specularTint.z) / 3.0f;
+            const float dm = (mean.x + mean.y + mean.z) / 3.0f;
+            sm.specularWeight = sm3 + dm > 0.0f ? sm3 / (sm3 + dm) : 0.5f;
         }
     }
     spdlog::info("tracer features: {}", features_.describe());

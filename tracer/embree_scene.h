@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <array>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -43,6 +44,22 @@ struct ShadingMaterial {
     bool alphaTested = false;
     float alpha = 1.0f, alphaCutoff = 0.5f;
     int alphaTexture = -1;  // index into the scene's textures, -1: constant alpha
+
+    // Mitsuba's BSDFs (model != Classic; tracer/bsdf.h). kind is Mirror for the smooth conductor and
+    // plastic (their delta lobe goes through the mirror paths), Diffuse for the rough ones.
+    BsdfModel model = BsdfModel::Classic;
+    bool rough = false;  // a microfacet lobe (alpha > 0)
+    MicrofacetType distribution = MicrofacetType::Beckmann;
+    float alphaU = 0.0f, alphaV = 0.0f;
+    glm::vec3 eta{0.0f}, k{1.0f};         // Conductor
+    glm::vec3 specularTint{1.0f};         // specular_reflectance
+    bool nonlinear = false;               // Plastic
+    float specularWeight = 0.5f;          // Plastic: share of samples for the coating, by albedo
+    float internalReflectance = 0.0f;     // Plastic: the coating's reflectance seen from below, averaged
+    float meanExitTransmittance = 1.0f;   // Plastic: the coating's transmittance averaged over the hemisphere
+    // Rough plastic: the coating's transmittance (1 - its directional albedo) at cos = i / (N - 1).
+    static constexpr int kTransmittanceRes = 64;
+    std::array<float, kTransmittanceRes> transmittance{};
 };
 
 struct Triangle {

@@ -130,7 +130,8 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
     if (m.oneSided && !hit.front) return L;  // a one-sided BSDF's back reflects nothing
     if (m.diffuse || m.glossy) L += directLight(hit, sampler, depth, rays);
     if (m.diffuse && weight > 0.0f && indirect_ && shading_.mode == ShadingMode::Cache)
-        L += hit.albedo * bsdf::kInvPi * indirect_->indirectIrradiance(*this, hit, sampler, depth, rays);
+        L += bsdf::lambertEquivalent(m, hit.albedo, glm::dot(hit.wo, hit.shading)) * bsdf::kInvPi *
+             indirect_->indirectIrradiance(*this, hit, sampler, depth, rays);
     if (specular >= shading_.maxSpecularDepth || m.kind == MaterialKind::Diffuse) return L;
     // Branch weights only cut off specular trees; under radianceDirect (weight 0) use the
     // reflectance alone so the same cutoff applies.
@@ -143,8 +144,12 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
                                            weight > 0.0f ? next : 0.0f, rays);
         return tint * branch * Li;
     };
-    // Mirror: one branch; glass: the Fresnel-reflected and refracted branches, deterministically.
-    L += sumSpecularBranches(hit, [&](const glm::vec3& dir, float branch) { return follow(dir, m.ks, branch); });
+    // Mirror: one branch (its reflectance may depend on the angle); glass: the Fresnel-reflected
+    // and refracted branches, deterministically.
+    const glm::vec3 tint = m.kind == MaterialKind::Mirror
+                               ? bsdf::deltaReflectance(m, std::clamp(glm::dot(hit.wo, hit.shading), 0.0f, 1.0f))
+                               : m.ks;
+    L += sumSpecularBranches(hit, [&](const glm::vec3& dir, float branch) { return follow(dir, tint, branch); });
     return L;
 }
 
@@ -158,6 +163,7 @@ glm::vec3 Integrator::directLight(const SurfaceHit& hit, const Sampler& sampler,
 
 glm::vec3 Integrator::smoothBrdf(const SurfaceHit& hit, const glm::vec3& wi) const {
     const ShadingMaterial& mat = *hit.material;
+    if (mat.model != BsdfModel::Classic) return bsdf::evalModel(mat, hit.albedo, hit.shading, hit.wo, wi).f;
     glm::vec3 f = hit.albedo * bsdf::kInvPi;
     if (mat.glossy) f += mat.ks * (mat.phongNorm * bsdf::phongLobe(mat, hit.wo, hit.shading, wi));
     return f;
@@ -223,6 +229,9 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
     const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
     glm::vec3 irradiance(0.0f);  // sum of E_i = L_i cos / d^2 (point: I cos / d^2), for the Lambert lobe
     glm::vec3 glossy(0.0f);      // sum of the Phong lobe times the same terms
+    // Mitsuba's models: the whole BRDF per direction (it does not split into albedo times a lobe).
+    const bool model = mat.model != BsdfModel::Classic;
+    glm::vec3 modelL(0.0f);
 
     for (const PointLightSource& light : lights_.points) {
         // Geometry from the true hit point; the shadow ray leaves from the offset origin.
@@ -239,6 +248,10 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
         if (lobe <= 0.0f) continue;
         if (!unoccluded(origin, light.position, 1.0f, rays)) continue;  // a point: nothing to stop short of
         const glm::vec3 E = light.intensity * (lobe * cosSurface / d2);
+        if (model) {
+            modelL += E * bsdf::evalModel(mat, hit.albedo, hit.shading, hit.wo, l).f;
+            continue;
+        }
         irradiance += E;
         if (mat.glossy) glossy += E * bsdf::phongLobe(mat, hit.wo, hit.shading, l);
     }
@@ -265,7 +278,15 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
             batch.padFrom(lanes);
             batch.prepare(lanes, hit.position, origin, hit.geometric, hit.shading, light.vertexScale(), bySolidAngle);
             sum += batch.trace(scene_, lanes, rays);
-            if (mat.glossy)
+            if (model) {
+                glm::vec3 f(0.0f);
+                for (int i = 0; i < lanes; ++i)
+                    if (batch.visible(i)) {
+                        const glm::vec3 l = glm::normalize(glm::vec3(batch.qx[i], batch.qy[i], batch.qz[i]) - hit.position);
+                        f += batch.weight[i] * bsdf::evalModel(mat, hit.albedo, hit.shading, hit.wo, l).f;
+                    }
+                modelL += light.radiance() * f * ((bySolidAngle ? view.solidAngle : light.area()) * invCount);
+            } else if (mat.glossy)
                 for (int i = 0; i < lanes; ++i)
                     if (batch.visible(i)) {
                         const glm::vec3 l = glm::normalize(glm::vec3(batch.qx[i], batch.qy[i], batch.qz[i]) - hit.position);
@@ -277,6 +298,7 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
         irradiance += light.radiance() * (sum * scale);
         if (mat.glossy) glossy += light.radiance() * (sumGlossy * scale);
     }
+    if (model) return modelL;
     glm::vec3 L = hit.albedo * bsdf::kInvPi * irradiance;
     if (mat.glossy) L += mat.ks * mat.phongNorm * glossy;
     return L;
@@ -395,8 +417,13 @@ bool Integrator::prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::v
     if (glm::dot(hit.geometric, l3) <= 0.0f) return false;
     const float cosSurface = glm::dot(hit.shading, l3);
     if (cosSurface <= 0.0f || !(tfar > 0.0f)) return false;
-    glm::vec3 f = hit.albedo * bsdf::kInvPi;
-    if (mat.glossy) f += mat.ks * (mat.phongNorm * bsdf::phongLobe(mat, hit.wo, hit.shading, l3));
+    glm::vec3 f;
+    if (mat.model != BsdfModel::Classic) {
+        f = bsdf::evalModel(mat, hit.albedo, hit.shading, hit.wo, l3).f;
+    } else {
+        f = hit.albedo * bsdf::kInvPi;
+        if (mat.glossy) f += mat.ks * (mat.phongNorm * bsdf::phongLobe(mat, hit.wo, hit.shading, l3));
+    }
     out = {target, f * Le * (geometry * cosSurface / pick), tfar};
     return true;
 }

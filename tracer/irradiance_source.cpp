@@ -84,7 +84,8 @@ RadianceSample IrradianceSource::radiance(const glm::vec3& origin, const glm::ve
     if (m.kind != MaterialKind::Diffuse) L += specular(hit, sampler, depth, rays);
     else if (m.diffuse || m.glossy) L += integrator_->directLight(hit, sampler, depth, rays);
     if (m.diffuse && depth < cache_.settings().bounces)
-        L += hit.albedo * bsdf::kInvPi * cache_.irradiance(hit.position, hit.shading, depth);
+        L += bsdf::lambertEquivalent(m, hit.albedo, glm::dot(hit.wo, hit.shading)) * bsdf::kInvPi *
+             cache_.irradiance(hit.position, hit.shading, depth);
     s.radiance = L;
     return s;
 }
@@ -98,9 +99,12 @@ glm::vec3 IrradianceSource::specular(const SurfaceHit& hit, const Sampler& sampl
     glm::vec3 L(0.0f);
     if (m.diffuse) L += integrator_->directLight(hit, sampler, depth, rays);
     if (integrator_->settings().maxSpecularDepth < 1) return L;
+    const glm::vec3 tint = m.kind == MaterialKind::Mirror
+                               ? bsdf::deltaReflectance(m, std::clamp(glm::dot(hit.wo, hit.shading), 0.0f, 1.0f))
+                               : m.ks;
     const auto follow = [&](const glm::vec3& d, float branch) {
-        if (branch * bsdf::maxComponent(m.ks) < 1e-3f) return glm::vec3(0.0f);  // shadeDirect's cutoff
-        return m.ks * branch * integrator_->radianceDirect(hit.originFor(d), d, sampler, depth + 1, rays);
+        if (branch * bsdf::maxComponent(tint) < 1e-3f) return glm::vec3(0.0f);  // shadeDirect's cutoff
+        return tint * branch * integrator_->radianceDirect(hit.originFor(d), d, sampler, depth + 1, rays);
     };
     L += sumSpecularBranches(hit, follow);
     return L;

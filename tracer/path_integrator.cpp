@@ -19,26 +19,48 @@
 #include "tracer/shadow_packet.h"
 
 namespace aamap {
+namespace {
+
+// How light arriving from direction wi reaches the vertex: the cosine at the surface (> 0), the
+// shadow ray's origin (offset to wi's side) and the BSDF. Only a rough dielectric (the one Glass
+// that samples lights) takes light from behind, through its interface; false where the surface
+// cannot pass light from wi.
+bool lightToward(const SurfaceHit& hit, const glm::vec3& wi, float diffusePick, float& cosSurface, glm::vec3& origin,
+                 bsdf::Eval& e) {
+    const ShadingMaterial& m = *hit.material;
+    const float g = glm::dot(hit.geometric, wi), c = glm::dot(hit.shading, wi);
+    if (m.kind == MaterialKind::Glass) {
+        if (c * g <= 0.0f) return false;  // the shading and geometric normals disagree about the side
+        cosSurface = std::abs(c);
+        origin = hit.position + (g > 0.0f ? hit.offset : -hit.offset) * hit.geometric;
+        e = bsdf::evalRoughDielectric(m, hit.shading, hit.wo, hit.front ? m.ior : 1.0f / m.ior, wi);
+        return true;
+    }
+    if (g <= 0.0f || c <= 0.0f) return false;
+    cosSurface = c;
+    origin = hit.position + hit.offset * hit.geometric;
+    e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, wi, c, diffusePick);
+    return true;
+}
+
+}  // namespace
 
 glm::vec3 Integrator::nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
                                         RayCounts& rays) const {
-    const ShadingMaterial& m = *hit.material;
-    const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
     glm::vec3 L(0.0f);
+    float cosSurface = 0.0f;
+    glm::vec3 origin;
+    bsdf::Eval e;
     for (const DirectionalSource& d : lights_.directionals) {  // delta lights: no MIS
-        const float cosSurface = glm::dot(hit.shading, d.toLight);
-        if (glm::dot(hit.geometric, d.toLight) <= 0.0f || cosSurface <= 0.0f) continue;
+        if (!lightToward(hit, d.toLight, diffusePick, cosSurface, origin, e)) continue;
         if (!unoccludedToward(origin, d.toLight, rays)) continue;
-        const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, d.toLight, cosSurface, diffusePick);
         L += e.f * d.irradiance * cosSurface;
     }
     if (!lights_.environment || lights_.environment->constant()) return L;
     const EnvironmentSampler::Sample s = lights_.environment->sample(sampler.get2D(dims::path(depth, dims::PathSlot::EnvLight)));
     if (!(s.pdf > 0.0f)) return L;
-    const float cosSurface = glm::dot(hit.shading, s.direction);
-    if (glm::dot(hit.geometric, s.direction) <= 0.0f || cosSurface <= 0.0f) return L;
+    if (!lightToward(hit, s.direction, diffusePick, cosSurface, origin, e)) return L;
     if (!unoccludedToward(origin, s.direction, rays)) return L;
-    const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, s.direction, cosSurface, diffusePick);
     return L + e.f * s.radiance * (cosSurface * powerHeuristic(s.pdf, e.pdf) / s.pdf);
 }
 
@@ -54,11 +76,12 @@ glm::vec3 Integrator::escapedPath(const glm::vec3& dir, bool specularBefore, flo
 bool Integrator::prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
                                         glm::vec3& contribution, ShadowSegment& segment) const {
     if (lights_.selectCdf.empty()) return false;
-    const ShadingMaterial& m = *hit.material;
     glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Light));
     const std::size_t l = lights_.select(u.x);
     const float pick = lights_.selectPdf[l];
-    const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
+    float cosSurface = 0.0f;
+    glm::vec3 origin;
+    bsdf::Eval e;
     const std::size_t nPoints = lights_.points.size();
     if (l < nPoints) {  // a delta light: BSDF sampling never finds it, so no MIS
         const PointLightSource& p = lights_.points[l];
@@ -66,11 +89,9 @@ bool Integrator::prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sa
         const float d2 = glm::dot(w, w);
         if (!(d2 > 0.0f)) return false;
         const glm::vec3 wi = w * (1.0f / std::sqrt(d2));
-        const float cosSurface = glm::dot(hit.shading, wi);
         const float lobe = p.angular(-wi);
-        if (glm::dot(hit.geometric, wi) <= 0.0f || cosSurface <= 0.0f || lobe <= 0.0f) return false;
+        if (lobe <= 0.0f || !lightToward(hit, wi, diffusePick, cosSurface, origin, e)) return false;
         segment = {origin, p.position - origin, 1.0f};  // a point: nothing to stop short of
-        const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, wi, cosSurface, diffusePick);
         contribution = e.f * p.intensity * (lobe * cosSurface / (d2 * pick));
         return true;
     }
@@ -82,13 +103,11 @@ bool Integrator::prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sa
     if (!(d2 > 0.0f)) return false;
     const float invD = 1.0f / std::sqrt(d2);
     const glm::vec3 wi = w * invD;
-    const float cosSurface = glm::dot(hit.shading, wi);
     const float cosLight = -glm::dot(q.normal, wi);
-    if (glm::dot(hit.geometric, wi) <= 0.0f || cosSurface <= 0.0f || cosLight <= 0.0f) return false;
+    if (cosLight <= 0.0f || !lightToward(hit, wi, diffusePick, cosSurface, origin, e)) return false;
     const float tfar = 1.0f - rayOffset(q.position, a.vertexScale()) * invD;
     if (!(tfar > 0.0f)) return false;
     segment = {origin, q.position - origin, tfar};
-    const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, wi, cosSurface, diffusePick);
     // The power heuristic over the light's pdf, pdfLight = pick / inv (solid angle), in one
     // division: w / pdfLight = pdfLight / (pdfLight^2 + pdfBsdf^2) = pick inv / (pick^2 + (pdfBsdf inv)^2).
     const float inv = a.inversePdf(view, cosLight, d2);
@@ -148,7 +167,27 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
 
     const float lobeU = sampler.get1D(dims::path(depth, dims::PathSlot::Lobe));
     glm::vec3 dir;
-    if (m.kind == MaterialKind::Glass) {
+    if (m.kind == MaterialKind::Glass && m.rough) {
+        // Mitsuba's roughdielectric: lights sampled on both sides (through the interface too), and
+        // a visible-normal reflection or refraction, MIS-weighted against them.
+        out.nextEvent = true;
+        out.neeBeta = s.beta;
+        out.shadow = prepareNextEventFinite(hit, sampler, depth, 1.0f, out.finite, out.segment);
+        out.infiniteLights = !lights_.directionals.empty() || lights_.environment.has_value();
+        if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, 1.0f, rays);
+        const float eta = hit.front ? m.ior : 1.0f / m.ior;
+        glm::vec3 weight;
+        bool refracted = false;
+        const glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Bsdf));
+        if (!bsdf::sampleRoughDielectric(m, hit.shading, hit.wo, eta, lobeU, u, dir, weight, refracted)) return;
+        if (refracted ? glm::dot(dir, hit.geometric) >= 0.0f : glm::dot(dir, hit.geometric) <= 0.0f) return;
+        const float pdf = bsdf::pdfRoughDielectric(m, hit.shading, hit.wo, eta, dir);
+        if (!(pdf > 0.0f)) return;
+        s.beta *= weight;
+        if (refracted) s.etaScale *= eta * eta;
+        s.pdfBefore = pdf;
+        s.specularBefore = false;
+    } else if (m.kind == MaterialKind::Glass) {
         // One branch, chosen with the Fresnel probability: weight ks either way.
         const float cosI = std::min(glm::dot(hit.wo, hit.shading), 1.0f);
         if (!(cosI > 0.0f)) return;
@@ -173,28 +212,31 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
         s.beta *= m.ks;
         s.specularBefore = true;
     } else {
-        // Mirror: the delta lobe with probability by reflectance, else its Lambert part.
-        float specularPick = 0.0f;
-        if (m.kind == MaterialKind::Mirror) {
-            const float sp = bsdf::luminance(m.ks), dl = m.diffuse ? bsdf::luminance(m.kd) : 0.0f;
-            specularPick = sp + dl > 0.0f ? sp / (sp + dl) : 1.0f;
-        }
-        if (lobeU < specularPick) {
-            dir = bsdf::reflect(hit.wo, hit.shading);
-            if (glm::dot(dir, hit.geometric) <= 0.0f) return;
-            s.beta *= m.ks * (1.0f / specularPick);
-            s.specularBefore = true;
-        } else {
-            const float diffusePick = m.kind == MaterialKind::Mirror ? 1.0f - specularPick
-                                      : m.glossy                      ? m.diffuseWeight
-                                                                      : 1.0f;
-            if (!m.diffuse && !m.glossy) return;  // black
-            // Next-event estimation, weighted by the throughput before this vertex's scattering.
+        // Mirror (and the smooth Mitsuba models): the delta lobe with its probability, else the
+        // non-delta part.
+        const float cosO = std::clamp(glm::dot(hit.wo, hit.shading), 0.0f, 1.0f);
+        const float specularPick = m.kind == MaterialKind::Mirror ? bsdf::deltaPick(m, cosO) : 0.0f;
+        const float diffusePick = m.kind == MaterialKind::Mirror ? 1.0f - specularPick
+                                  : m.glossy                      ? m.diffuseWeight
+                                                                  : 1.0f;
+        const bool nonDelta = (m.diffuse || m.glossy) && (m.kind != MaterialKind::Mirror || diffusePick > 0.0f);
+        if (nonDelta) {
+            // Next-event estimation of the non-delta lobes at every such vertex, whichever lobe the
+            // path goes on with (light sampling does not depend on that choice), weighted by the
+            // throughput before this vertex's scattering.
             out.nextEvent = true;
             out.neeBeta = s.beta;
             out.shadow = prepareNextEventFinite(hit, sampler, depth, diffusePick, out.finite, out.segment);
             out.infiniteLights = !lights_.directionals.empty() || lights_.environment.has_value();
             if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays);
+        }
+        if (lobeU < specularPick) {
+            dir = bsdf::reflect(hit.wo, hit.shading);
+            if (glm::dot(dir, hit.geometric) <= 0.0f) return;
+            s.beta *= bsdf::deltaReflectance(m, cosO) * (1.0f / specularPick);
+            s.specularBefore = true;
+        } else {
+            if (!nonDelta) return;  // black
             const glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Bsdf));
             if (!bsdf::sampleSmooth(m, hit.shading, hit.wo, lobeU, u, dir)) return;
             const float cosI = glm::dot(hit.shading, dir);

@@ -54,6 +54,9 @@ SCENES = {
     "m_mask_leaf": (64, 256),
     "n_onesided_back": (64, 64),
     "o_glass_sphere": (64, 1024),
+    "p_roughconductor_aniso": (64, 256),
+    "q_beckmann_plastic_gold": (64, 256),
+    "r_roughdielectric": (64, 1024),
 }
 
 # The sky's sun, in world space: up 38.7 degrees, towards -z (through the rooms' window), and the

@@ -259,10 +259,84 @@ TEST_F(Mitsuba, MaterialsMapToTheNearestAndWarnOncePerKind) {
     EXPECT_EQ(s.materials[4].alphaMode, AlphaMode::Mask);
     EXPECT_NEAR(s.materials[4].alpha, 0.25f, 1e-6f);
     expectVec(s.materials[5].kd, {0.1f, 0.2f, 0.3f});
-    // One warning each for roughplastic, conductor and bumpmap, however many use them.
-    ASSERT_EQ(report.warnings.size(), 3u);
-    EXPECT_NE(report.warnings[0].find("roughplastic"), std::string::npos);
-    EXPECT_NE(report.warnings[2].find("bumpmap"), std::string::npos);
+    // The tracer's models: Mitsuba's plastic and conductor with their parameters.
+    EXPECT_EQ(p1.model, BsdfModel::Plastic);
+    EXPECT_EQ(p1.distribution, MicrofacetType::Beckmann);
+    EXPECT_EQ(p1.alphaU, 0.1f);
+    EXPECT_EQ(s.materials[1].alphaV, 0.3f);
+    EXPECT_NEAR(p1.ior, 1.49f / 1.000277f, 1e-5f);
+    EXPECT_EQ(mirror.model, BsdfModel::Conductor);
+    EXPECT_EQ(mirror.alphaU, 0.0f);
+    expectVec(mirror.eta, glm::vec3(0.2f));
+    expectVec(mirror.k, glm::vec3(3.0f));
+    // Only bumpmap is approximated (once, however many use it).
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find("bumpmap"), std::string::npos);
+}
+
+TEST_F(Mitsuba, MicrofacetBsdfsReadTheirParameters) {
+    MitsubaLoadReport report;
+    const Scene s = load(R"(<shape type="rectangle"><bsdf type="roughconductor"><string name="material" value="Au"/>
+<string name="distribution" value="ggx"/><float name="alpha_u" value="0.05"/><float name="alpha_v" value="0.4"/>
+<rgb name="specular_reflectance" value="0.9"/><float name="colour" value="1"/></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughplastic"><string name="int_ior" value="bk7"/><float name="ext_ior" value="1"/>
+<boolean name="nonlinear" value="true"/><float name="alpha" value="0.2"/></bsdf></shape>
+<shape type="rectangle"><bsdf type="plastic"/></shape>
+<shape type="rectangle"><bsdf type="roughconductor"/></shape>
+<shape type="rectangle"><bsdf type="roughdielectric"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/>
+<rgb name="specular_transmittance" value="0.9, 0.8, 0.7"/></bsdf></shape>
+)", &report);
+    ASSERT_EQ(s.materials.size(), 5u);
+    const Material& glass = s.materials[4];
+    EXPECT_EQ(glass.kind, MaterialKind::Glass);
+    EXPECT_EQ(glass.model, BsdfModel::Dielectric);
+    EXPECT_EQ(glass.distribution, MicrofacetType::GGX);
+    EXPECT_EQ(glass.alphaU, 0.3f);
+    EXPECT_NEAR(glass.ior, 1.5046f / 1.000277f, 1e-5f);  // bk7 in air, Mitsuba's defaults
+    expectVec(glass.ks, {0.9f, 0.8f, 0.7f});
+    const Material& gold = s.materials[0];
+    EXPECT_EQ(gold.model, BsdfModel::Conductor);
+    EXPECT_EQ(gold.distribution, MicrofacetType::GGX);
+    EXPECT_EQ(gold.alphaU, 0.05f);
+    EXPECT_EQ(gold.alphaV, 0.4f);
+    expectVec(gold.specularReflectance, glm::vec3(0.9f));
+    // Gold in RGB: its index is lowest in red (a weak eta, a strong k), so it reflects red most.
+    EXPECT_LT(gold.eta.x, gold.eta.z);
+    EXPECT_GT(gold.k.x, gold.k.z);
+    const Material& p = s.materials[1];
+    EXPECT_EQ(p.model, BsdfModel::Plastic);
+    EXPECT_TRUE(p.nonlinear);
+    EXPECT_NEAR(p.ior, 1.5046f, 1e-4f);
+    EXPECT_EQ(s.materials[2].model, BsdfModel::Plastic);
+    EXPECT_EQ(s.materials[2].alphaU, 0.0f);  // smooth
+    // Mitsuba 3's default conductor is a perfect mirror (eta 0, k 1), Beckmann alpha 0.1.
+    const Material& none = s.materials[3];
+    expectVec(none.eta, glm::vec3(0.0f));
+    expectVec(none.k, glm::vec3(1.0f));
+    EXPECT_EQ(none.alphaU, 0.1f);
+    EXPECT_EQ(none.distribution, MicrofacetType::Beckmann);
+    // The unknown parameter is named with its file and line.
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find("scene.xml:4"), std::string::npos) << report.warnings[0];  // <scene> is line 1
+    EXPECT_NE(report.warnings[0].find("'colour'"), std::string::npos) << report.warnings[0];
+}
+
+TEST_F(Mitsuba, MicrofacetBsdfsRejectBadRoughnessAndIndices) {
+    const auto expectError = [&](const std::string& bsdf, const std::string& what) {
+        const std::string e = error("<shape type=\"rectangle\">" + bsdf + "</shape>\n");
+        EXPECT_NE(e.find("scene.xml:"), std::string::npos) << e;
+        EXPECT_NE(e.find(what), std::string::npos) << e;
+    };
+    expectError("<bsdf type=\"roughconductor\"><float name=\"alpha\" value=\"-0.1\"/></bsdf>", "out of range");
+    expectError("<bsdf type=\"roughplastic\"><float name=\"alpha_u\" value=\"0.1\"/><float name=\"alpha_v\" value=\"0.2\"/></bsdf>",
+                "isotropic");
+    expectError("<bsdf type=\"roughconductor\"><float name=\"alpha_u\" value=\"0.1\"/></bsdf>", "both");
+    expectError("<bsdf type=\"roughconductor\"><string name=\"distribution\" value=\"phong\"/></bsdf>", "distribution");
+    expectError("<bsdf type=\"plastic\"><float name=\"int_ior\" value=\"-1.5\"/></bsdf>", "positive");
+    expectError("<bsdf type=\"conductor\"><string name=\"material\" value=\"Unobtainium\"/></bsdf>", "Unobtainium");
+    expectError("<bsdf type=\"conductor\"><string name=\"material\" value=\"Au\"/><rgb name=\"eta\" value=\"1\"/></bsdf>",
+                "either");
+    expectError("<bsdf type=\"conductor\"><rgb name=\"k\" value=\"-1\"/></bsdf>", "out of range");
 }
 
 TEST_F(Mitsuba, ThinDielectricOneSidedRawBitmapAndRectangleUvAsMitsuba) {

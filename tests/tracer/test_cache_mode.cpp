@@ -194,6 +194,38 @@ TEST(CacheMode, ImageIndependentOfThreadsAndRaysCounted) {
     EXPECT_GT(one.cache.prepassRays.shadow, one.cache.prepassRays.other);
 }
 
+// The Cornell box with Mitsuba's rough plastic on every wall: the cache stores irradiance, which
+// the base reflects through the coating (bsdf::lambertEquivalent). Any thread count gives the same
+// image, and the image is close to path mode's (the coating's angular weighting of the indirect
+// light is averaged, so not exactly it).
+TEST(CacheMode, RoughPlasticThreadIndependentAndCloseToPathMode) {
+    Scene scene = builtinScene("cornell");
+    for (Material& m : scene.materials)
+        if (m.ke == glm::vec3(0.0f)) {
+            m.model = BsdfModel::Plastic;
+            m.distribution = MicrofacetType::GGX;
+            m.alphaU = m.alphaV = 0.3f;
+            m.ior = 1.49f;
+        }
+    const int size = 32;
+    ShadingSettings sh = cacheShading(4, 128, 32);
+    const TraceResult one = renderScene(scene, scene.views.front(), sh, size, 2, 1);
+    const TraceResult two = renderScene(scene, scene.views.front(), sh, size, 2, 2);
+    ASSERT_TRUE(one.cache.built);
+    EXPECT_EQ(one.image.pixels(), two.image.pixels());
+    EXPECT_EQ(one.nonFiniteSamples, 0u);
+    ShadingSettings path;
+    path.mode = ShadingMode::Path;
+    path.maxDepth = 6;
+    const TraceResult p = renderScene(scene, scene.views.front(), path, size, 8);
+    glm::dvec3 meanCache(0.0), meanPath(0.0);
+    for (std::size_t i = 0; i < p.image.pixels().size(); ++i) {
+        meanCache += glm::dvec3(one.image.pixels()[i]);
+        meanPath += glm::dvec3(p.image.pixels()[i]);
+    }
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(meanCache[c] / meanPath[c], 1.0, 0.08) << "channel " << c;
+}
+
 // -ab 0 means no cache: exactly the Direct image, and no pre-pass.
 TEST(CacheMode, ZeroBouncesIsDirect) {
     const Scene scene = builtinScene("cornell");

@@ -76,13 +76,17 @@ TEST(PathMode, RouletteDepthIsTheFirstSegmentRouletteMayEnd) {
 // per-pixel differences. Lambert, and Lambert + Phong (the glossy sampling/eval pair); the area
 // light sampled by solid angle or by area in each mode, so the MIS pdfs of both are checked
 // against the other estimator.
+void pathMatchesDirect(const Material& plane, LightSampling pathSampling, LightSampling directSampling);
 void pathMatchesDirect(float ks, float ns, LightSampling pathSampling, LightSampling directSampling) {
-    testing::SceneBuilder b;
     Material plane;
     plane.name = "plane";
     plane.kd = glm::vec3(0.5f);
     plane.ks = glm::vec3(ks);
     plane.ns = ns;
+    pathMatchesDirect(plane, pathSampling, directSampling);
+}
+void pathMatchesDirect(const Material& plane, LightSampling pathSampling, LightSampling directSampling) {
+    testing::SceneBuilder b;
     b.quad({-20, 0, -20}, {0, 0, 40}, {40, 0, 0}, testing::addMaterial(b, plane));
     b.areaLightQuad({-0.6f, 1.2f, -0.4f}, {1.2f, 0, 0}, {0, 0, 0.8f}, glm::vec3(3.0f, 2.0f, 1.0f));  // faces down
     b.pointLight({0.8f, 1.5f, 0.6f}, glm::vec3(1.0f, 2.0f, 3.0f));
@@ -122,6 +126,47 @@ TEST(PathMode, AgreesWithDirectWithoutIndirectLightGlossy) {
 }
 TEST(PathMode, AgreesWithDirectWithoutIndirectLightByArea) {
     pathMatchesDirect(0.4f, 30.0f, LightSampling::Area, LightSampling::SolidAngle);
+}
+
+// Mitsuba's BSDFs (tracer/bsdf.h) through the same check: their sampling and pdf in path mode's
+// MIS against direct mode's light sampling alone, and a delta lobe (smooth plastic, a mirror with
+// a Lambert part) whose vertex must still sample the lights for the non-delta part.
+Material modelPlane(BsdfModel model, MicrofacetType type, float au, float av) {
+    Material m;
+    m.name = "plane";
+    m.model = model;
+    m.distribution = type;
+    m.alphaU = au;
+    m.alphaV = av;
+    m.kd = glm::vec3(0.6f, 0.4f, 0.2f);
+    m.ior = 1.5f;
+    m.eta = glm::vec3(0.2f, 0.9f, 1.1f);  // copper-like
+    m.k = glm::vec3(3.9f, 2.4f, 2.1f);
+    return m;
+}
+TEST(PathMode, AgreesWithDirectRoughConductorGgxAnisotropic) {
+    pathMatchesDirect(modelPlane(BsdfModel::Conductor, MicrofacetType::GGX, 0.25f, 0.5f), LightSampling::SolidAngle,
+                      LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectRoughConductorBeckmann) {
+    pathMatchesDirect(modelPlane(BsdfModel::Conductor, MicrofacetType::Beckmann, 0.3f, 0.3f), LightSampling::Area,
+                      LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectRoughPlastic) {
+    pathMatchesDirect(modelPlane(BsdfModel::Plastic, MicrofacetType::GGX, 0.2f, 0.2f), LightSampling::SolidAngle,
+                      LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectSmoothPlastic) {
+    pathMatchesDirect(modelPlane(BsdfModel::Plastic, MicrofacetType::Beckmann, 0.0f, 0.0f), LightSampling::SolidAngle,
+                      LightSampling::SolidAngle);
+}
+TEST(PathMode, AgreesWithDirectMirrorWithLambertPart) {
+    Material m;
+    m.name = "plane";
+    m.kind = MaterialKind::Mirror;
+    m.kd = glm::vec3(0.5f);
+    m.ks = glm::vec3(0.3f);
+    pathMatchesDirect(m, LightSampling::SolidAngle, LightSampling::SolidAngle);
 }
 
 // Many lights (more than LightSet::kFewLights) switch Direct mode to power-CDF selection: by
@@ -185,8 +230,50 @@ Scene scaledRoom(float s);
 // packets; each lane must come out exactly as the path traced one ray at a time (the room has a
 // mirror, glass, an area and a point light, and an open side that bounce rays escape through),
 // with the same rays, for full and partly filled packets.
-TEST(PathMode, LockstepPacketsEqualSingleRayPaths) {
-    const Scene scene = scaledRoom(1.0f);
+void expectLockstepEqualsSingleRays(const Scene& scene);
+TEST(PathMode, LockstepPacketsEqualSingleRayPaths) { expectLockstepEqualsSingleRays(scaledRoom(1.0f)); }
+
+// The room with Mitsuba's BSDFs: rough plastic walls, an anisotropic rough conductor for the
+// mirror, a rough dielectric for the glass block (lights sampled through it, from both sides).
+Scene withMitsubaBsdfs(Scene scene) {
+    for (Material& m : scene.materials) {
+        if (m.ke != glm::vec3(0.0f)) continue;
+        m.distribution = MicrofacetType::GGX;
+        m.alphaU = 0.2f;
+        m.alphaV = 0.2f;
+        if (m.kind == MaterialKind::Diffuse) {
+            m.model = BsdfModel::Plastic;
+            m.ior = 1.49f;
+        } else if (m.kind == MaterialKind::Mirror) {
+            m.model = BsdfModel::Conductor;
+            m.distribution = MicrofacetType::Beckmann;
+            m.alphaV = 0.05f;
+            m.eta = glm::vec3(0.14f, 0.38f, 1.44f);
+            m.k = glm::vec3(3.98f, 2.39f, 1.60f);
+        } else {
+            m.model = BsdfModel::Dielectric;
+        }
+    }
+    return scene;
+}
+
+TEST(PathMode, LockstepPacketsEqualSingleRayPathsWithMitsubaBsdfs) {
+    expectLockstepEqualsSingleRays(withMitsubaBsdfs(scaledRoom(1.0f)));
+}
+
+TEST(PathMode, BitIdenticalForAnyThreadCountWithMitsubaBsdfs) {
+    const Scene scene = withMitsubaBsdfs(scaledRoom(1.0f));
+    ShadingSettings sh;
+    sh.mode = ShadingMode::Path;
+    const View view = lookAt({0.0f, 1.0f, 3.9f}, {0, 0.8f, 0}, 60);
+    const TraceResult a = renderScene(scene, view, sh, 24, 2, 1);
+    const TraceResult c = renderScene(scene, view, sh, 24, 2, 8);
+    EXPECT_EQ(a.image.pixels(), c.image.pixels());
+    EXPECT_EQ(a.rays.total(), c.rays.total());
+    EXPECT_EQ(a.nonFiniteSamples, 0u);
+}
+
+void expectLockstepEqualsSingleRays(const Scene& scene) {
     const EmbreeScene geometry(scene);
     const LightSet lights = buildLights(scene, geometry);
     ShadingSettings sh;
