@@ -132,6 +132,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.snapshot.noiseFloor = sv.real("noise_floor");
     c.snapshot.gain = sv.real("gain");
     c.snapshot.map = sv.choice("map");
+    c.snapshot.subpixel = sv.integer("subpixel");
 
     MapReader shading(ctx, top.node("shading"), "shading", sectionKeyNames(shadingParams(), {"cache"}));
     const ParamValues hv = readSection(ctx, shading, shadingParams());
@@ -234,6 +235,10 @@ Json snapshotJson(const ExperimentConfig& c) {
     // 0 is the chain without the flat gate, whose keys do not name it; every other value changes the map.
     if (c.snapshot.flatRange != 0.0) j["flat_range"] = c.snapshot.flatRange;
     if (!c.snapshot.softShadows) j["soft_shadows"] = false;  // likewise
+    if (c.snapshot.map == "subpixel") {  // the other maps do not read them
+        j["subpixel"] = c.snapshot.subpixel;
+        j["flip_threshold"] = c.metrics.flipThreshold;  // the predicted error is held against it
+    }
     return j;
 }
 

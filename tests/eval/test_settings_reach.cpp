@@ -248,6 +248,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                   becomes([](const ExperimentConfig& c, int) { return snap(c, 0).shadows.softShadows; }, true)};
     t["snapshot.map"] = {{}, {"snapshot.map=geometric"}, Renders::UsingAamap, true,
                          becomes([](const ExperimentConfig& c, int) { return snap(c, 0).map; }, passes::AamapSource::Geometric)};
+    t["snapshot.subpixel"] = {{"snapshot.map=subpixel"}, {"snapshot.subpixel=3"}, Renders::UsingAamap, true,
+                              becomes([](const ExperimentConfig& c, int) { return snap(c, 0).subpixel; }, 3)};
     // Shading: every traced image, never the Snapshot.
     t["shading.area_light_samples"] = {{}, {"shading.area_light_samples=9"}, Renders::All, false,
                                        becomes([](const ExperimentConfig& c, int) { return shade(c, 0).areaLightSamples; }, 9)};
