@@ -10,6 +10,9 @@
 
 layout(local_size_x = SUBPIXEL_GROUP_X, local_size_y = SUBPIXEL_GROUP_Y) in;
 layout(push_constant) uniform Push { SubpixelPush pc; };
+// k is fixed per pipeline so that the sample loops unroll to exactly k x k (lavapipe runs a loop
+// bounded by a push constant, or masked lanes of a longer one, much slower).
+layout(constant_id = SUBPIXEL_SPEC_K) const int K = SUBPIXEL_DEFAULT_K;
 
 layout(binding = SUBPIXEL_BINDING_COLOUR, rgba32f) uniform readonly image2D colour;
 layout(binding = SUBPIXEL_BINDING_NORMAL_DEPTH, rgba32f) uniform readonly image2D normalDepth;
@@ -43,24 +46,20 @@ bool geometryDiffers(ivec2 a, ivec2 b) {
 void main() {
     const ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, pc.outSize))) return;
-    const int k = pc.k;
+    const int k = K;
     const ivec2 base = k * p;
     const ivec2 size = k * pc.outSize;
-    // Loops to the constant bound unroll; the push-constant k only masks (lavapipe runs loops
-    // bounded by a push constant much slower).
     precise vec3 sum = vec3(0.0);
-    for (int j = 0; j < SUBPIXEL_MAX_K; ++j)
-        for (int i = 0; i < SUBPIXEL_MAX_K; ++i)
-            if (i < k && j < k) sum += imageLoad(colour, base + ivec2(i, j)).rgb;
+    for (int j = 0; j < k; ++j)
+        for (int i = 0; i < k; ++i) sum += imageLoad(colour, base + ivec2(i, j)).rgb;
     const vec3 mean = display(sum / float(k * k));
 
     float own = 0.0;  // sum of the samples' deviations, row-major
     float error = 0.0;
     bool geometry = false;
     const ivec2 steps[4] = ivec2[4](ivec2(1, 0), ivec2(0, 1), ivec2(-1, 0), ivec2(0, -1));
-    for (int j = 0; j < SUBPIXEL_MAX_K; ++j)
-        for (int i = 0; i < SUBPIXEL_MAX_K; ++i) {
-            if (i >= k || j >= k) continue;
+    for (int j = 0; j < k; ++j)
+        for (int i = 0; i < k; ++i) {
             const ivec2 s = base + ivec2(i, j);
             const vec3 ds = display(imageLoad(colour, s).rgb);
             own += maxOf(abs(ds - mean));

@@ -38,12 +38,17 @@ graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor&
          {graph::reads(colour, graph::Usage::StorageRead), graph::reads(normalDepth, graph::Usage::StorageRead),
           graph::reads(ids, graph::Usage::StorageRead), graph::writes(output, graph::Usage::StorageWrite)},
          "aamap: each pixel's predicted one-ray display error from its k x k samples"});
-    executor.setPrepare(kSubpixelMapPass, [this] {
-        if (!pipeline_.handle())
-            pipeline_ = vk::Pipeline(*context_, spirv::subpixel_map_comp,
-                                     vk::LayoutDesc{std::vector<VkDescriptorType>(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
-                                                    static_cast<std::uint32_t>(sizeof(gpu::SubpixelPush)),
-                                                    VK_SHADER_STAGE_COMPUTE_BIT});
+    const int k = settings.k;
+    executor.setPrepare(kSubpixelMapPass, [this, k] {
+        vk::Pipeline& pipeline = pipelines_[k];
+        if (pipeline.handle()) return;
+        std::vector<std::uint32_t> constants(SUBPIXEL_SPEC_K + 1, 0u);
+        constants[SUBPIXEL_SPEC_K] = static_cast<std::uint32_t>(k);
+        pipeline = vk::Pipeline(*context_, spirv::subpixel_map_comp,
+                                vk::LayoutDesc{std::vector<VkDescriptorType>(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+                                               static_cast<std::uint32_t>(sizeof(gpu::SubpixelPush)),
+                                               VK_SHADER_STAGE_COMPUTE_BIT},
+                                constants);
     });
     executor.setRecord(kSubpixelMapPass, [this, colour, normalDepth, ids, output, settings](vk::PassContext& pc) {
         const vk::Image& out = pc.image(output);
@@ -52,14 +57,15 @@ graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor&
         push.k = settings.k;
         push.exposure = settings.exposure;
         push.tolerance = settings.tolerance;
-        pipeline_.bind(pc.cmd());
+        const vk::Pipeline& pipeline = pipelines_[settings.k];
+        pipeline.bind(pc.cmd());
         vk::DescriptorPush descriptors;
         descriptors.storageImage(SUBPIXEL_BINDING_COLOUR, pc.image(colour).view())
             .storageImage(SUBPIXEL_BINDING_NORMAL_DEPTH, pc.image(normalDepth).view())
             .storageImage(SUBPIXEL_BINDING_IDS, pc.image(ids).view())
             .storageImage(SUBPIXEL_BINDING_OUTPUT, out.view());
-        descriptors.push(*context_, pc.cmd(), pipeline_);
-        pipeline_.pushConstants(pc.cmd(), push);
+        descriptors.push(*context_, pc.cmd(), pipeline);
+        pipeline.pushConstants(pc.cmd(), push);
         vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, SUBPIXEL_GROUP_X, SUBPIXEL_GROUP_Y);
     });
     return id;

@@ -10,6 +10,7 @@
 #include "core/image.h"
 #include "engine/vk/graph_executor.h"
 #include "engine/vk/pipeline.h"
+#include "glsl/shared/subpixel_map.h"
 #include "passes/cpu_geometric.h"
 
 namespace aamap::passes {
@@ -31,7 +32,7 @@ public:
 
 private:
     VulkanContext* context_;
-    mutable vk::Pipeline pipeline_;  // built when the pass is kept
+    mutable vk::Pipeline pipelines_[SUBPIXEL_MAX_K + 1];  // by k, built when a pass with that k is kept
 };
 
 // The pass alone on host images: colour and geometry k W x k H, the map W x H.

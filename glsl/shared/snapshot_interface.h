@@ -216,7 +216,7 @@ struct GeometryPush {
 // --- Sub-pixel aamap (subpixel_map.comp; the predictor: glsl/shared/subpixel_map.h) -------------
 struct SubpixelPush {
     ivec2 outSize;    // render resolution W x H; the inputs are k W x k H
-    int k;            // samples per pixel side
+    int k;            // samples per pixel side (also the pipeline's SUBPIXEL_SPEC_K; checked equal)
     float exposure;   // the display transform's, as FilterPush::exposure
     float tolerance;  // tau: display-value error at the FLIP threshold
     uint pad0, pad1, pad2;

@@ -55,6 +55,7 @@
 #define SUBPIXEL_DEPTH_TOLERANCE 0.05
 #define SUBPIXEL_GEOMETRY_ERROR 2.0
 
+#define SUBPIXEL_SPEC_K 0  // specialisation constant of subpixel_map.comp: k (a pipeline per k)
 #define SUBPIXEL_GROUP_X 8
 #define SUBPIXEL_GROUP_Y 8
 

@@ -47,6 +47,7 @@ const std::map<std::string, Field>& fields() {
         {"snapshot.noise_floor", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.noiseFloor); }},
         {"snapshot.gain", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.gain); }},
         {"snapshot.map", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.map); }},
+        {"snapshot.subpixel", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.subpixel); }},
         {"shading.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.shading.areaLightSamples); }},
         {"shading.mode", [](const ExperimentConfig& c) { return ParamValue(c.shading.mode); }},
         {"shading.max_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxDepth); }},
@@ -230,7 +231,7 @@ TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
     EXPECT_EQ(snapshotKey(hand), snapshotKey(parsed));
     EXPECT_EQ(hand.hash(), parsed.hash());
 
-    hand.snapshot.map = "geometric";
+    hand.snapshot.map = "subpixel";  // the key names snapshot.subpixel only for this map
     hand.snapshot.environmentLights = 2;
     hand.snapshot.softShadows = false;
     const nlohmann::json key = nlohmann::json::parse(renderKeyJson(hand, hand.renders[0]));
