@@ -294,5 +294,23 @@ TEST(ConfigSchema, DocsTableRowsMatchTheSchema) {
     }
 }
 
+// The subpixel map holds its prediction against the metrics' FLIP threshold: the threshold is part
+// of that Snapshot's key and of its renders' keys, and of no other map's.
+TEST(ConfigSchema, FlipThresholdEntersOnlyTheSubpixelSnapshotKey) {
+    const auto key = [](const std::string& map, double threshold, bool render) {
+        const ExperimentConfig c = parseConfig(
+            fmt::format("scene: builtin:cornell\nsnapshot: {{map: {}}}\nmetrics: {{flip_threshold: {}}}\n"
+                        "renders:\n  - {{name: a, strategy: aamap, rpp: 4}}\n",
+                        map, threshold),
+            "exp.yaml");
+        return render ? renderKey(c, c.renders[0]) : snapshotKey(c);
+    };
+    for (bool render : {false, true}) {
+        EXPECT_NE(key("subpixel", 0.1, render), key("subpixel", 0.2, render)) << render;
+        EXPECT_EQ(key("luminance", 0.1, render), key("luminance", 0.2, render)) << render;
+        EXPECT_EQ(key("geometric", 0.1, render), key("geometric", 0.2, render)) << render;
+    }
+}
+
 }  // namespace
 }  // namespace aamap
