@@ -14,6 +14,7 @@
 #include "engine/vk/context.h"
 #include "eval/config.h"
 #include "eval/light_list.h"
+#include "glsl/shared/subpixel_map.h"
 #include "passes/snapshot.h"
 #include "scene/framing.h"
 #include "scene/light_file.h"
@@ -127,6 +128,10 @@ CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
     cmd->add_flag("--no-shadows", o.noShadows, "No shadow maps");
     cmd->add_flag("--hard-shadows", o.hardShadows,
                   "Area-light samples cast hard shadows (snapshot.soft_shadows: false)");
+    cmd->add_option("--map", o.map, "What the aamap is built from (snapshot.map)")
+        ->check(CLI::IsMember({"luminance", "geometric", "combined", "subpixel"}))->capture_default_str();
+    cmd->add_option("--subpixel", o.subpixel, "Subpixel map: samples per pixel side k (snapshot.subpixel)")
+        ->check(CLI::Range(SUBPIXEL_MIN_K, SUBPIXEL_MAX_K))->capture_default_str();
     cmd->add_option("--device", o.device, "Vulkan device: index or name substring (default: best GPU)")
         ->type_name("NAME");
     cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; any message fails (exit 3)");
@@ -155,6 +160,8 @@ int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::str
     settings.shadows.softShadows = !o.hardShadows;
     settings.shadows.resolution = o.shadowResolution;
     settings.keepDebugImages = true;
+    passes::parse(o.map, settings.map);  // checked by the option
+    settings.subpixel = o.subpixel;
 
     VulkanContext context(ContextOptions{validation, device});
     if (validation && !context.validationEnabled())
@@ -169,7 +176,7 @@ int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::str
     std::filesystem::create_directories(out);
     writePng(out / "snapshot.png", toneMap(r.snapshot, o.exposure));
     writeExr(out / "snapshot.exr", r.snapshot);  // linear radiance, for measuring the map's input
-    writePng(out / "laplacian.png", quantise(r.laplacian));
+    if (!r.laplacian.empty()) writePng(out / "laplacian.png", quantise(r.laplacian));  // the Laplacian maps only
     writeExr(out / "aamap.exr", r.aamap);
     writePng(out / "aamap.png", quantise(r.aamap));
     if (!o.dot.empty()) writeTextAtomically(o.dot, r.dot);

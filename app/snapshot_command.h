@@ -19,6 +19,8 @@ struct SnapshotOptions {
     int shadowResolution = 256;
     bool noShadows = false;
     bool hardShadows = false;
+    std::string map = "luminance";  // snapshot.map
+    int subpixel = 2;               // snapshot.subpixel
     bool explain = false;
     std::string device;       // "" = AAMAP_DEVICE or the best GPU
     bool validation = false;  // or AAMAP_VALIDATION=1

@@ -133,6 +133,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.snapshot.noiseFloor = sv.real("noise_floor");
     c.snapshot.gain = sv.real("gain");
     c.snapshot.map = sv.choice("map");
+    c.snapshot.subpixel = sv.integer("subpixel");
 
     MapReader shading(ctx, top.node("shading"), "shading", sectionKeyNames(shadingParams(), {"cache"}));
     const ParamValues hv = readSection(ctx, shading, shadingParams());
@@ -235,7 +236,14 @@ Json snapshotJson(const ExperimentConfig& c) {
     // 0 is the chain without the flat gate, whose keys do not name it; every other value changes the map.
     if (c.snapshot.flatRange != 0.0) j["flat_range"] = c.snapshot.flatRange;
     if (!c.snapshot.softShadows) j["soft_shadows"] = false;  // likewise
+    if (c.snapshot.map == "subpixel") j["subpixel"] = c.snapshot.subpixel;  // the other maps do not read it
     return j;
+}
+
+// The subpixel map holds its predicted error against the metrics' FLIP threshold, so that
+// threshold is part of its Snapshot (beside the snapshot section: it is a metrics key).
+void addSubpixelThreshold(const ExperimentConfig& c, Json& key) {
+    if (c.snapshot.map == "subpixel") key["subpixel_flip_threshold"] = c.metrics.flipThreshold;
 }
 
 // A Mitsuba scene file says how it is rendered (film size, integrator depths): what the config
@@ -323,7 +331,10 @@ Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     if (!c.image.defaultFilter()) j["filter"] = filterJson(c.image);  // only then: other configs keep their keys
     if (!c.image.filterGiven && sceneDecidesRendering(c)) j["filter"] = "scene";  // the film's, as the file says
     const StrategyDescriptor* s = findStrategy(r.strategy);
-    if (s != nullptr && s->usesAamap) j["snapshot"] = snapshotJson(c);
+    if (s != nullptr && s->usesAamap) {
+        j["snapshot"] = snapshotJson(c);
+        addSubpixelThreshold(c, j);
+    }
     return j;
 }
 
@@ -338,6 +349,7 @@ std::string snapshotKey(const ExperimentConfig& c) {
     j["format"] = "aamap-snapshot-9";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c);
+    addSubpixelThreshold(c, j);
     return fnv1a64Hex(j.dump());
 }
 

@@ -54,7 +54,8 @@ struct SnapshotConfig {
     double flatRange = 1.0 / 255.0;  // the Laplacian's flat gate (glsl/shared/aamap_filter.h)
     double noiseFloor = 0.02;
     double gain = 1.0;
-    std::string map = "luminance";  // luminance | geometric | combined (passes/geometric_aamap.h)
+    std::string map = "luminance";  // luminance | geometric | combined | subpixel (passes/geometric_aamap.h)
+    int subpixel = 2;               // the subpixel map's samples per pixel side (passes/subpixel_map.h)
     // The environment map's brightest regions as this many shadowed directional lights, 0..16
     // (0: all of it in the SH ambient term); no effect without an environment map.
     int environmentLights = 1;

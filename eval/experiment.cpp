@@ -119,6 +119,8 @@ SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
     s.filter.noiseFloor = static_cast<float>(c.snapshot.noiseFloor);
     s.filter.gain = static_cast<float>(c.snapshot.gain);
     passes::parse(c.snapshot.map, s.map);  // validated by the config reader
+    s.subpixel = c.snapshot.subpixel;
+    s.flipThreshold = static_cast<float>(c.metrics.flipThreshold);  // what the metrics count as an error
     s.keepDebugImages = true;
     // The GPU block-sum pass only when a render subsamples (otherwise the graph culls it).
     s.blockSums = std::any_of(c.renders.begin(), c.renders.end(), [](const RenderConfig& r) {

@@ -39,12 +39,13 @@ const char* toString(AamapSource source) {
         case AamapSource::Luminance: return "luminance";
         case AamapSource::Geometric: return "geometric";
         case AamapSource::Combined: return "combined";
+        case AamapSource::Subpixel: return "subpixel";
     }
     return "?";
 }
 
 bool parse(const std::string& name, AamapSource& source) {
-    for (AamapSource s : {AamapSource::Luminance, AamapSource::Geometric, AamapSource::Combined})
+    for (AamapSource s : {AamapSource::Luminance, AamapSource::Geometric, AamapSource::Combined, AamapSource::Subpixel})
         if (name == toString(s)) {
             source = s;
             return true;
@@ -91,8 +92,14 @@ graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecuto
 }
 
 void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const FilterChain& chain,
-                   GeometryBufferPass& geometry, const GeometricEdgePass& edges, AamapSource source,
-                   const MapChainInputs& in) {
+                   GeometryBufferPass& geometry, const GeometricEdgePass& edges, const SubpixelMapPass& subpixel,
+                   AamapSource source, const MapChainInputs& in) {
+    if (source == AamapSource::Subpixel) {
+        geometry.add(graph, executor, in.colour, in.view);
+        graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
+        subpixel.add(graph, executor, in.colour, kGeometryNormalDepth, kGeometryIds, kAamap, in.subpixel);
+        return;
+    }
     geometry.add(graph, executor, in.colour, in.view, in.shadows);
     graph.addResource(graph::imageResource(kEdges, graph::Format::R32Float, graph::Size::relative(in.colour)));
     if (source == AamapSource::Luminance) {

@@ -16,12 +16,14 @@
 #include "passes/geometry_buffer.h"
 #include "passes/gpu_aamap.h"
 #include "passes/snapshot_graph.h"
+#include "passes/subpixel_map.h"
 
 namespace aamap::passes {
 
 // Which edges the aamap is built from (config snapshot.map).
-enum class AamapSource { Luminance, Geometric, Combined };
-const char* toString(AamapSource source);                   // "luminance", "geometric", "combined"
+// Subpixel: the predicted one-ray error from k x k samples per pixel (passes/subpixel_map.h).
+enum class AamapSource { Luminance, Geometric, Combined, Subpixel };
+const char* toString(AamapSource source);  // "luminance", "geometric", "combined", "subpixel"
 bool parse(const std::string& name, AamapSource& source);  // false for an unknown name
 
 class GeometricEdgePass {
@@ -44,14 +46,17 @@ struct MapChainInputs {
     FilterParams params;
     GBufferShadows shadows;  // the G-buffer's shadow maps (none: empty resource), for the occlusion mask
     bool greyFromGBuffer = false;  // kGrey is declared and the G-buffer writes it (GBufferGrey)
+    SubpixelSettings subpixel;     // the subpixel map: `colour` is k x the render resolution
 };
 
 // Declares grey, laplacian, map and aamap (gpu_aamap.h) and the passes that make the aamap from
 // `source`. The geometry raster and edge pass are declared in every mode, so that a luminance
-// Snapshot culls them (CompiledGraph::explain says why) and builds nothing for them.
+// Snapshot culls them (CompiledGraph::explain says why) and builds nothing for them. The
+// subpixel map declares the geometry raster (without the occlusion mask: shadows are in the
+// colour) and the subpixel pass, which writes the aamap.
 void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const FilterChain& chain,
-                   GeometryBufferPass& geometry, const GeometricEdgePass& edges, AamapSource source,
-                   const MapChainInputs& in);
+                   GeometryBufferPass& geometry, const GeometricEdgePass& edges, const SubpixelMapPass& subpixel,
+                   AamapSource source, const MapChainInputs& in);
 
 // The edge pass alone on host images.
 class GpuGeometricEdges {

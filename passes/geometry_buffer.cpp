@@ -109,7 +109,7 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
     graph.addPass({kGeometryBufferPass, graph::QueueKind::Graphics, accesses,
                    shadowed ? "rasterise normals, view depth, object/material ids and the shadow occlusion mask "
                               "for the geometric aamap"
-                            : "rasterise normals, view depth and object/material ids for the geometric aamap"});
+                            : "rasterise normals, view depth and object/material ids for the geometric or subpixel aamap"});
     shadowed_ = shadowed;
     constants_ = scene_->lightingConstants(shadows.pcf);
     const vk::Pipeline& pipeline = pipelines_[shadowed ? 1 : 0];  // built by prepare()

@@ -20,6 +20,8 @@
 #include "passes/gpu_aamap.h"
 #include "passes/scene_gpu.h"
 #include "passes/shadow_cube.h"
+#include "passes/subpixel_map.h"
+#include "glsl/shared/subpixel_map.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
 #include "passes/snapshot_graph.h"
@@ -95,6 +97,7 @@ struct SnapshotRenderer::Impl {
     passes::BlockSumPass blockSums;
     passes::GeometryBufferPass geometry;  // uploads its ids on first use
     passes::GeometricEdgePass geometricEdges;
+    passes::SubpixelMapPass subpixel;
     vk::GraphExecutor executor;
     int lightSamples = -1;  // k the light buffer was built for
     int environmentLights = -1;  // and the environment's extracted lights
@@ -115,6 +118,7 @@ struct SnapshotRenderer::Impl {
           blockSums(c),
           geometry(c, scene, sceneGpu),
           geometricEdges(c),
+          subpixel(c),
           executor(c) {}
 
     void updateLights(int k, int fromEnvironment, bool soft) {
@@ -174,7 +178,14 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     auto scaled = [&](int v) {
         return static_cast<std::uint32_t>(std::max(1L, std::lround(settings.scale * static_cast<float>(v))));
     };
-    const std::uint32_t snapW = scaled(width), snapH = scaled(height);
+    const bool subpixelMap = settings.map == passes::AamapSource::Subpixel;
+    if (subpixelMap && (settings.subpixel < SUBPIXEL_MIN_K || settings.subpixel > SUBPIXEL_MAX_K))
+        throw std::invalid_argument("SnapshotSettings::subpixel must be in [2, 4], got " +
+                                    std::to_string(settings.subpixel));
+    // The subpixel map reads k x k raster samples per render pixel, texel (k x + i, k y + j).
+    const auto k = static_cast<std::uint32_t>(settings.subpixel);
+    const std::uint32_t snapW = subpixelMap ? k * static_cast<std::uint32_t>(width) : scaled(width);
+    const std::uint32_t snapH = subpixelMap ? k * static_cast<std::uint32_t>(height) : scaled(height);
     passes::SnapshotView snapshotView;
     snapshotView.camera = PinholeCamera::fromView(view);
     clipPlanes(s.bounds, snapshotView.camera.origin, s.emptyMesh, snapshotView.nearPlane, snapshotView.farPlane);
@@ -214,7 +225,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     passes::GBufferGrey grey;
     if (!s.mirrors.anyInView(snapshotView, {snapW, snapH}) && !s.probes.anyInView(snapshotView, {snapW, snapH}) &&
         !s.gbuffer.drawsGlass() &&
-        settings.map != passes::AamapSource::Geometric) {
+        settings.map != passes::AamapSource::Geometric && !subpixelMap) {
         graph.addResource(
             graph::imageResource(passes::kGrey, passes::GBufferPass::kGreyFormat, graph::Size::relative(passes::kSnapshot)));
         grey = {passes::kGrey, settings.filter.exposure};
@@ -229,7 +240,9 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     passes::MapChainInputs mapInputs{passes::kSnapshot, snapshotView, width, height, settings.filter};
     mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
     mapInputs.greyFromGBuffer = !grey.resource.empty();
-    passes::addAamapChain(graph, s.executor, s.chain, s.geometry, s.geometricEdges, settings.map, mapInputs);
+    mapInputs.subpixel = {settings.subpixel, settings.filter.exposure, subpixelTolerance(settings.flipThreshold)};
+    passes::addAamapChain(graph, s.executor, s.chain, s.geometry, s.geometricEdges, s.subpixel, settings.map,
+                          mapInputs);
     // Always declared: culled (with the reason in `explain`) unless a strategy asked for it.
     s.blockSums.add(graph, s.executor, passes::kAamap, width, height,
                     "O(1) aamap block sums for adaptive subsampling");
@@ -237,8 +250,8 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     std::vector<std::string> outputs{passes::kAamap};
     if (settings.keepDebugImages) {
         outputs.push_back(passes::kSnapshot);
-        if (settings.map != passes::AamapSource::Geometric) outputs.push_back(passes::kLaplacian);
-        if (settings.map != passes::AamapSource::Luminance) outputs.push_back(passes::kEdges);
+        if (settings.map != passes::AamapSource::Geometric && !subpixelMap) outputs.push_back(passes::kLaplacian);
+        if (settings.map != passes::AamapSource::Luminance && !subpixelMap) outputs.push_back(passes::kEdges);
     }
     if (settings.blockSums) {
         outputs.push_back(passes::kBlockSums);
@@ -253,9 +266,9 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     result.aamap = passes::toImageGrey(run.outputs.at(passes::kAamap));
     if (settings.keepDebugImages) {
         result.snapshot = passes::toImageRGB(run.outputs.at(passes::kSnapshot));
-        if (settings.map != passes::AamapSource::Geometric)
+        if (settings.map != passes::AamapSource::Geometric && !subpixelMap)
             result.laplacian = passes::toImageGrey(run.outputs.at(passes::kLaplacian));
-        if (settings.map != passes::AamapSource::Luminance)
+        if (settings.map != passes::AamapSource::Luminance && !subpixelMap)
             result.edges = passes::toImageGrey(run.outputs.at(passes::kEdges));
     }
     if (settings.blockSums)

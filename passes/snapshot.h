@@ -28,7 +28,7 @@ struct ShadowSettings {
 };
 
 struct SnapshotSettings {
-    float scale = 1.5f;          // snapshot resolution / render resolution (768 for 512)
+    float scale = 1.5f;          // snapshot resolution / render resolution (768 for 512); not the subpixel map's
     int areaLightSamples = 5;    // point samples per area light (the paper used 5)
     // The environment map's brightest regions shaded as this many shadowed directional lights
     // (0..16; 0: the whole map goes to the SH ambient term). passes/environment_lighting.h.
@@ -41,6 +41,11 @@ struct SnapshotSettings {
     // Edges the aamap is built from: the luminance Laplacian (the paper), G-buffer
     // discontinuities, or their max (passes/geometric_aamap.h).
     passes::AamapSource map = passes::AamapSource::Luminance;
+    // The subpixel map: k x k samples per render pixel (the raster runs at k x the render
+    // resolution; `scale` does not apply), and the FLIP threshold its predicted error is held
+    // against (glsl/shared/subpixel_map.h).
+    int subpixel = 2;
+    float flipThreshold = 0.1f;
     ShadowSettings shadows;
 };
 
@@ -51,7 +56,7 @@ struct PassTiming {
 
 struct SnapshotResult {
     ImageRGB snapshot;     // linear colour at snapshot resolution (if keepDebugImages)
-    ImageGrey laplacian;   // |L| at snapshot resolution (if keepDebugImages; not for the geometric map)
+    ImageGrey laplacian;   // |L| at snapshot resolution (if keepDebugImages; not for the geometric and subpixel maps)
     ImageGrey edges;       // geometric/combined map: the edge image the blur read (if keepDebugImages)
     ImageGrey aamap;       // render resolution, values in [0,1]
     passes::BlockSumTables blockSums;  // of the aamap, if SnapshotSettings::blockSums (else empty)

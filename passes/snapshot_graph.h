@@ -20,7 +20,9 @@
 //   geometry_depth        D32, the raster's z-buffer   geometry_buffer
 //   edges                 R32F                         geometric_edges -> blur (geometric, combined)
 //   map                   R32F, snapshot resolution    blur -> reduce
-//   aamap                 R32F, render resolution      reduce -> block_sum_rows; an output
+//   aamap                 R32F, render resolution      reduce, or subpixel_map (subpixel map: reads
+//                                                      snapshot and the geometry images at k x k
+//                                                      texels a pixel) -> block_sum_rows; an output
 //   block_sums/_counts    (W+1) x (H+1) prefix tables  block_sum_columns; outputs
 // The graph culls what the scene and the requested outputs do not need, and says why.
 #include <string>
@@ -57,6 +59,7 @@ inline const std::string kLuminancePass = "luminance";
 inline const std::string kLaplacianPass = "laplacian";
 inline const std::string kGeometryBufferPass = "geometry_buffer";
 inline const std::string kGeometricEdgesPass = "geometric_edges";
+inline const std::string kSubpixelMapPass = "subpixel_map";
 inline const std::string kBlurPass = "blur";
 inline const std::string kReducePass = "reduce";
 inline const std::string kBlockSumRowsPass = "block_sum_rows";

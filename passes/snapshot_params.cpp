@@ -1,6 +1,7 @@
 #include "passes/snapshot_params.h"
 
 #include "glsl/shared/aamap_filter.h"
+#include "glsl/shared/subpixel_map.h"
 
 namespace aamap {
 
@@ -17,7 +18,10 @@ const std::vector<ParamSpec>& snapshotParams() {
                   "(1/255: one 8-bit code value; 0: everywhere)"),
         realParam("noise_floor", 0.0, 1.0, 0.02, "blurred edge responses below this are smooth shading"),
         realParamAbove("gain", 0.0, 1e6, 1.0, "map = clamp(gain * (blurred - noise_floor), 0, 1)"),
-        choiceParam("map", {"luminance", "geometric", "combined"}, "edges the map is built from"),
+        choiceParam("map", {"luminance", "geometric", "combined", "subpixel"},
+                    "what the map is built from (subpixel: each pixel's predicted one-ray error from k x k samples)"),
+        intParam("subpixel", SUBPIXEL_MIN_K, SUBPIXEL_MAX_K, SUBPIXEL_DEFAULT_K,
+                 "map subpixel: samples per pixel side k (the raster runs at k x the render resolution)"),
     };
     return params;
 }

@@ -213,8 +213,18 @@ struct GeometryPush {
     vec4 shadow;         // shadowed: as GBufferPush::shadow (light count and PCF: LIGHTING_SPEC_*)
 };
 
+// --- Sub-pixel aamap (subpixel_map.comp; the predictor: glsl/shared/subpixel_map.h) -------------
+struct SubpixelPush {
+    ivec2 outSize;    // render resolution W x H; the inputs are k W x k H
+    int k;            // samples per pixel side (also the pipeline's SUBPIXEL_SPEC_K; checked equal)
+    float exposure;   // the display transform's, as FilterPush::exposure
+    float tolerance;  // tau: display-value error at the FLIP threshold
+    uint pad0, pad1, pad2;
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(GeometryPush) == 112);
+static_assert(sizeof(SubpixelPush) == 32);
 static_assert(sizeof(BlockSumPush) == 16);
 static_assert(sizeof(GpuLight) == 64);
 static_assert(sizeof(GpuLight) * GBUFFER_MAX_LIGHTS <= 16384);  // maxUniformBufferRange's minimum

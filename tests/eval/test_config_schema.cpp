@@ -47,6 +47,7 @@ const std::map<std::string, Field>& fields() {
         {"snapshot.noise_floor", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.noiseFloor); }},
         {"snapshot.gain", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.gain); }},
         {"snapshot.map", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.map); }},
+        {"snapshot.subpixel", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.subpixel); }},
         {"shading.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.shading.areaLightSamples); }},
         {"shading.mode", [](const ExperimentConfig& c) { return ParamValue(c.shading.mode); }},
         {"shading.max_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxDepth); }},
@@ -230,7 +231,7 @@ TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
     EXPECT_EQ(snapshotKey(hand), snapshotKey(parsed));
     EXPECT_EQ(hand.hash(), parsed.hash());
 
-    hand.snapshot.map = "geometric";
+    hand.snapshot.map = "subpixel";  // the key names snapshot.subpixel only for this map
     hand.snapshot.environmentLights = 2;
     hand.snapshot.softShadows = false;
     const nlohmann::json key = nlohmann::json::parse(renderKeyJson(hand, hand.renders[0]));
@@ -290,6 +291,24 @@ TEST(ConfigSchema, DocsTableRowsMatchTheSchema) {
                 << k.dotted << ": " << cell;
         else
             EXPECT_EQ(def, toString(k.spec->defaultParam())) << k.dotted << ": " << cell;
+    }
+}
+
+// The subpixel map holds its prediction against the metrics' FLIP threshold: the threshold is part
+// of that Snapshot's key and of its renders' keys, and of no other map's.
+TEST(ConfigSchema, FlipThresholdEntersOnlyTheSubpixelSnapshotKey) {
+    const auto key = [](const std::string& map, double threshold, bool render) {
+        const ExperimentConfig c = parseConfig(
+            fmt::format("scene: builtin:cornell\nsnapshot: {{map: {}}}\nmetrics: {{flip_threshold: {}}}\n"
+                        "renders:\n  - {{name: a, strategy: aamap, rpp: 4}}\n",
+                        map, threshold),
+            "exp.yaml");
+        return render ? renderKey(c, c.renders[0]) : snapshotKey(c);
+    };
+    for (bool render : {false, true}) {
+        EXPECT_NE(key("subpixel", 0.1, render), key("subpixel", 0.2, render)) << render;
+        EXPECT_EQ(key("luminance", 0.1, render), key("luminance", 0.2, render)) << render;
+        EXPECT_EQ(key("geometric", 0.1, render), key("geometric", 0.2, render)) << render;
     }
 }
 

@@ -248,6 +248,9 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                   becomes([](const ExperimentConfig& c, int) { return snap(c, 0).shadows.softShadows; }, true)};
     t["snapshot.map"] = {{}, {"snapshot.map=geometric"}, Renders::UsingAamap, true,
                          becomes([](const ExperimentConfig& c, int) { return snap(c, 0).map; }, passes::AamapSource::Geometric)};
+    // Written only with map: subpixel, which the "infinity" base sets (with k = 3).
+    t["snapshot.subpixel"] = {{}, {"snapshot.subpixel=4"}, Renders::UsingAamap, true,
+                              becomes([](const ExperimentConfig& c, int) { return snap(c, 0).subpixel; }, 4)};
     // Shading: every traced image, never the Snapshot.
     t["shading.area_light_samples"] = {{}, {"shading.area_light_samples=9"}, Renders::All, false,
                                        becomes([](const ExperimentConfig& c, int) { return shade(c, 0).areaLightSamples; }, 9)};
@@ -443,7 +446,7 @@ protected:
                              "lights:\n"
                              "  - {type: directional, name: sun, direction: [0.3, -1, 0.2], irradiance: [2, 2, 2]}\n"
                              "  - {type: environment, name: sky, map: sky.exr, scale: 1.5, rotation: 30, up: [0, 1, 0]}\n"
-                             "snapshot: {environment_lights: 2, soft_shadows: false}\n"
+                             "snapshot: {environment_lights: 2, soft_shadows: false, map: subpixel, subpixel: 3}\n"
                              "shading: {mode: cache, cache: {bounces: 2, divisions: 64, supersamples: 32, accuracy: 0.25,\n"
                              "          resolution: 32, grid_step: 8}}\n"
                              "metrics: {causes: false, oracle: true}\n"

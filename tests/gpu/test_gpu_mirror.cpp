@@ -602,7 +602,8 @@ TEST_F(SnapshotMirror, EveryPassAndResourceIsNamedInTheSnapshotGraphHeader) {
     // pass, "name (culled)" for a culled one.
     const std::regex node(R"re(\[shape=\w+[^\]]*label="(\d+: )?([^"\\ ]+))re");
     for (const passes::AamapSource source :
-         {passes::AamapSource::Luminance, passes::AamapSource::Geometric, passes::AamapSource::Combined}) {
+         {passes::AamapSource::Luminance, passes::AamapSource::Geometric, passes::AamapSource::Combined,
+          passes::AamapSource::Subpixel}) {
         SnapshotSettings settings;
         settings.map = source;
         settings.blockSums = true;

@@ -1,0 +1,99 @@
+#include "passes/subpixel_map.h"
+
+#include <cstring>
+#include <stdexcept>
+
+#include <aamap/spirv.h>
+
+#include "engine/vk/context.h"
+#include "glsl/shared/snapshot_interface.h"
+#include "glsl/shared/subpixel_map.h"
+#include "passes/gpu_aamap.h"
+#include "passes/snapshot_graph.h"
+
+namespace aamap::passes {
+namespace {
+
+graph::Size sizeOf(int width, int height) {
+    return graph::Size::absolute(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
+}
+
+std::vector<std::byte> toRGBA32(const Image<glm::vec4>& image) {
+    std::vector<std::byte> bytes(image.size() * sizeof(glm::vec4));
+    std::memcpy(bytes.data(), image.data(), bytes.size());
+    return bytes;
+}
+
+}  // namespace
+
+SubpixelMapPass::SubpixelMapPass(VulkanContext& context) : context_(&context) {}
+
+graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour,
+                                   const std::string& normalDepth, const std::string& ids, const std::string& output,
+                                   const SubpixelSettings& settings) const {
+    if (settings.k < SUBPIXEL_MIN_K || settings.k > SUBPIXEL_MAX_K)
+        throw std::invalid_argument("SubpixelSettings::k must be in [2, 4], got " + std::to_string(settings.k));
+    const graph::PassId id = graph.addPass(
+        {kSubpixelMapPass, graph::QueueKind::Compute,
+         {graph::reads(colour, graph::Usage::StorageRead), graph::reads(normalDepth, graph::Usage::StorageRead),
+          graph::reads(ids, graph::Usage::StorageRead), graph::writes(output, graph::Usage::StorageWrite)},
+         "aamap: each pixel's predicted one-ray display error from its k x k samples"});
+    const int k = settings.k;
+    executor.setPrepare(kSubpixelMapPass, [this, k] {
+        vk::Pipeline& pipeline = pipelines_[k];
+        if (pipeline.handle()) return;
+        std::vector<std::uint32_t> constants(SUBPIXEL_SPEC_K + 1, 0u);
+        constants[SUBPIXEL_SPEC_K] = static_cast<std::uint32_t>(k);
+        pipeline = vk::Pipeline(*context_, spirv::subpixel_map_comp,
+                                vk::LayoutDesc{std::vector<VkDescriptorType>(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+                                               static_cast<std::uint32_t>(sizeof(gpu::SubpixelPush)),
+                                               VK_SHADER_STAGE_COMPUTE_BIT},
+                                constants);
+    });
+    executor.setRecord(kSubpixelMapPass, [this, colour, normalDepth, ids, output, settings](vk::PassContext& pc) {
+        const vk::Image& out = pc.image(output);
+        gpu::SubpixelPush push{};
+        push.outSize = {static_cast<int>(out.info().width), static_cast<int>(out.info().height)};
+        push.k = settings.k;
+        push.exposure = settings.exposure;
+        push.tolerance = settings.tolerance;
+        const vk::Pipeline& pipeline = pipelines_[settings.k];
+        pipeline.bind(pc.cmd());
+        vk::DescriptorPush descriptors;
+        descriptors.storageImage(SUBPIXEL_BINDING_COLOUR, pc.image(colour).view())
+            .storageImage(SUBPIXEL_BINDING_NORMAL_DEPTH, pc.image(normalDepth).view())
+            .storageImage(SUBPIXEL_BINDING_IDS, pc.image(ids).view())
+            .storageImage(SUBPIXEL_BINDING_OUTPUT, out.view());
+        descriptors.push(*context_, pc.cmd(), pipeline);
+        pipeline.pushConstants(pc.cmd(), push);
+        vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, SUBPIXEL_GROUP_X, SUBPIXEL_GROUP_Y);
+    });
+    return id;
+}
+
+GpuSubpixelMap::GpuSubpixelMap(VulkanContext& context)
+    : pass_(context), executor_(std::make_unique<vk::GraphExecutor>(context)) {}
+GpuSubpixelMap::~GpuSubpixelMap() = default;
+
+ImageGrey GpuSubpixelMap::map(const ImageRGB& colour, const cpu::GeometryImages& g, const SubpixelSettings& settings) {
+    const int Ws = colour.width(), Hs = colour.height(), k = settings.k;
+    if (Ws <= 0 || Hs <= 0 || k <= 0 || Ws % k != 0 || Hs % k != 0 || g.normalDepth.width() != Ws ||
+        g.normalDepth.height() != Hs || g.ids.width() != Ws || g.ids.height() != Hs)
+        throw std::invalid_argument("GpuSubpixelMap: empty or mismatched images, or a size not a multiple of k");
+    executor_->clear();
+    graph::RenderGraph graph;
+    graph.addResource(graph::imageResource("colour", graph::Format::RGBA32Float, sizeOf(Ws, Hs), true));
+    graph.addResource(graph::imageResource(kGeometryNormalDepth, graph::Format::RGBA32Float, sizeOf(Ws, Hs), true));
+    graph.addResource(graph::imageResource(kGeometryIds, graph::Format::RGBA32Float, sizeOf(Ws, Hs), true));
+    graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(Ws / k, Hs / k)));
+    executor_->setUpload("colour", passes::toRGBA32(colour));
+    executor_->setUpload(kGeometryNormalDepth, toRGBA32(g.normalDepth));
+    executor_->setUpload(kGeometryIds, toRGBA32(g.ids));
+    pass_.add(graph, *executor_, "colour", kGeometryNormalDepth, kGeometryIds, kAamap, settings);
+    const std::vector<std::string> outputs{kAamap};
+    const vk::ExecutionResult r = executor_->execute(graph.compile(outputs));
+    executor_->clear();
+    return toImageGrey(r.outputs.at(kAamap));
+}
+
+}  // namespace aamap::passes
