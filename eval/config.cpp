@@ -210,6 +210,7 @@ namespace {
 using Json = nlohmann::ordered_json;
 
 // Numbers as doubles, choices by name: the render keys of existing configs stay as they were.
+// For cache keys: integers as doubles, as the key format has always hashed them (so keys stay).
 Json paramsJson(const RenderConfig& r) {
     Json p = Json::object();
     for (const auto& [k, v] : r.params.entries()) {
@@ -248,9 +249,6 @@ void addSubpixelThreshold(const ExperimentConfig& c, Json& key) {
 
 // A Mitsuba scene file says how it is rendered (film size, integrator depths): what the config
 // leaves out, the file decides.
-bool sceneDecidesRendering(const ExperimentConfig& c) {
-    return !c.scene.starts_with("builtin:") && c.scene.ends_with(".xml");
-}
 
 // What every image of the experiment depends on, with paths resolved. forKey: for one render's
 // cache key, which leaves out what its shading mode never reads (the cache outside cache mode).
@@ -319,6 +317,10 @@ std::string fnv1a64Hex(const std::string& text) {
     return fmt::format("{:016x}", h);
 }
 
+bool sceneDecidesRendering(const ExperimentConfig& c) {
+    return !c.scene.starts_with("builtin:") && c.scene.ends_with(".xml");
+}
+
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
     j["format"] = "aamap-render-10";  // bump when the image for the same settings and files changes (tracer or loader)
@@ -336,6 +338,12 @@ Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
         addSubpixelThreshold(c, j);
     }
     return j;
+}
+
+Json strategyParamsJson(const RenderConfig& r) {
+    Json p = Json::object();
+    for (const auto& [k, v] : r.params.entries()) std::visit([&](const auto& value) { p[k] = value; }, v);
+    return p;
 }
 
 std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) { return renderKeyObject(c, r).dump(); }

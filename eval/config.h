@@ -180,6 +180,11 @@ std::string renderKey(const ExperimentConfig& config, const RenderConfig& render
 // What renderKey hashes, as an object ({format, scene, seed, shading, strategy, rpp, params, ...})
 // and as the compact text that is hashed.
 nlohmann::ordered_json renderKeyObject(const ExperimentConfig& config, const RenderConfig& render);
+// A Mitsuba scene file brings its own render settings (integrator depths, film size and filter),
+// which apply where the config is silent.
+bool sceneDecidesRendering(const ExperimentConfig& config);
+// The render's strategy parameters as typed values (an integer stays one): for records and reports.
+nlohmann::ordered_json strategyParamsJson(const RenderConfig& render);
 std::string renderKeyJson(const ExperimentConfig& config, const RenderConfig& render);
 // The snapshot section with its defaults filled in, as in canonicalJson() and the keys.
 nlohmann::ordered_json snapshotSettingsJson(const ExperimentConfig& config);

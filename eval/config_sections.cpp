@@ -110,10 +110,13 @@ std::vector<RenderConfig> expandEntry(const yaml::Context& ctx, const YAML::Node
     std::string strategy;
     m.getString("strategy", strategy);
     const StrategyDescriptor* info = findStrategy(strategy);
-    if (info == nullptr)
+    if (info == nullptr) {
+        const std::string hint = yaml::closest(strategy, strategyNames());
         ctx.fail(m.node("strategy"), m.childPath("strategy"),
-                 fmt::format("{}: unknown strategy '{}' (supported: {})", m.childPath("strategy"), strategy,
+                 fmt::format("{}: unknown strategy '{}'{} (supported: {})", m.childPath("strategy"), strategy,
+                             hint.empty() ? "" : fmt::format("; did you mean '{}'?", hint),
                              fmt::join(strategyNames(), ", ")));
+    }
     for (const std::string& p : allStrategyParamNames()) {
         if (info->param(p) == nullptr && m.has(p))
             ctx.fail(m.node(p), m.childPath(p),

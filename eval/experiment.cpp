@@ -22,6 +22,7 @@
 #include "engine/vk/context.h"
 #include "passes/cpu_aamap.h"
 #include "passes/snapshot.h"
+#include "scene/builtin_scenes.h"
 #include "scene/camera.h"
 #include "scene/framing.h"
 #include "scene/light_file.h"
@@ -29,6 +30,7 @@
 #include "scene/load_scene.h"
 #include "scene/view_file.h"
 #include "eval/runner.h"
+#include "eval/yaml_reader.h"
 #include "eval/strategy_settings.h"
 #include "tracer/block_sums.h"
 #include "tracer/shading_params.h"
@@ -55,6 +57,17 @@ Scene loadSceneFor(const ExperimentConfig& config) {
     }
 }
 
+// The config's view file, its errors without a line pointing at the config's `view`.
+std::vector<View> loadConfigViewFile(const ExperimentConfig& config, const std::filesystem::path& file) {
+    try {
+        return loadViewFile(file);
+    } catch (const InputError& e) {
+        if (e.line() > 0) throw;
+        const SourceLocation& at = config.viewLocation;
+        throw InputError(at.file, at.line, at.column, fmt::format("view '{}': {}", *config.view, e.what()));
+    }
+}
+
 // Precedence: the config's camera, its view file, the scene's own views, a view framing the
 // scene's bounds (with a warning). width x height: the image box the camera fills.
 View pickView(const ExperimentConfig& config, const Scene& scene, std::string& label, int width, int height) {
@@ -73,13 +86,7 @@ View pickView(const ExperimentConfig& config, const Scene& scene, std::string& l
     std::vector<View> views;
     std::string source;
     if (const auto file = config.resolvedView()) {
-        try {
-            views = loadViewFile(*file);
-        } catch (const InputError& e) {
-            if (e.line() > 0) throw;
-            const SourceLocation& at = config.viewLocation;
-            throw InputError(at.file, at.line, at.column, fmt::format("view '{}': {}", *config.view, e.what()));
-        }
+        views = loadConfigViewFile(config, *file);
         source = file->filename().string();
     } else {
         views = scene.views;
@@ -296,6 +303,10 @@ public:
         return out;
     }
 
+    std::optional<std::pair<int, int>> renderSizeWithoutScene() const override {
+        return aamap::renderSizeWithoutScene(config_);
+    }
+
     bool hasPixelFacts() const override { return true; }
     PixelFacts pixelFacts() override { return tracer_->pixelFacts(view_, info_.width, info_.height, options_.threads); }
 
@@ -312,6 +323,15 @@ private:
 };
 
 }  // namespace
+
+std::optional<std::pair<int, int>> renderSizeWithoutScene(const ExperimentConfig& config) {
+    if (!config.image.sizeGiven && sceneDecidesRendering(config)) return std::nullopt;
+    if (!config.camera && !config.resolvedView()) return std::nullopt;
+    Scene none;
+    std::string label;
+    const View view = pickView(config, none, label, config.image.width, config.image.height);
+    return fitResolution(view, config.image.width, config.image.height);
+}
 
 PreparedScene prepareScene(const ExperimentConfig& config) {
     const auto t0 = Clock::now();
@@ -403,6 +423,7 @@ TraceSettings traceSettingsFor(const ExperimentConfig& config, const RenderConfi
 }
 
 Results runExperiment(const ExperimentConfig& config, const std::filesystem::path& outDir, const RunOptions& options) {
+    checkInputs(config);
     TracerBackend backend(config, options);
     RunnerOptions ro;
     ro.gitRevision = options.gitRevision;
@@ -443,7 +464,31 @@ void computeExperimentItem(const Experiment& experiment, const std::string& key,
                      fmt::format("--only {}: no Snapshot or render of this experiment has that cache key (see --list-work)", key));
 }
 
+void checkInputs(const ExperimentConfig& config) {
+    const SourceLocation& at = config.sceneLocation;
+    if (config.scene.starts_with("builtin:")) {
+        const std::string name = config.scene.substr(8);
+        const std::vector<std::string> known = builtinSceneNames();
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            const std::string hint = yaml::closest(name, known);
+            throw InputError(at.file, at.line, at.column,
+                             fmt::format("scene '{}': unknown built-in scene{} (known: {})", config.scene,
+                                         hint.empty() ? "" : fmt::format("; did you mean 'builtin:{}'?", hint),
+                                         fmt::join(known, ", ")));
+        }
+    } else {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(config.resolvedScene(), ec))
+            throw InputError(at.file, at.line, at.column,
+                             fmt::format("scene '{}': no such file ({})", config.scene, config.resolvedScene()));
+    }
+    // The view file, and view_index within it; the render size where it needs no scene.
+    if (config.resolvedView() || config.camera) renderSizeWithoutScene(config);
+}
+
 void runSweptExperiment(const Experiment& experiment, const std::filesystem::path& outDir, const RunOptions& options) {
+    // Every variant's inputs before any runs: a typo in the last scene must not wait for the others.
+    for (const ExperimentConfig& variant : experiment.variants) checkInputs(variant);
     if (experiment.sweptKeys.empty()) {
         runExperiment(experiment.variants.front(), outDir, options);
         return;

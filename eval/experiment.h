@@ -2,6 +2,8 @@
 // One experiment run: load the scene, render the Snapshot and its aamap on the GPU, trace every
 // render in the config, and write images plus results.json into the output folder.
 #include <filesystem>
+#include <optional>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -38,7 +40,18 @@ Results runExperiment(const ExperimentConfig& config, const std::filesystem::pat
 
 // Every variant of a swept experiment with the real backend (eval/sweep_runner.h); one variant
 // without sweeps runs as runExperiment.
+// Every variant's inputs are checked (checkInputs) before the first one runs.
 void runSweptExperiment(const Experiment& experiment, const std::filesystem::path& outDir, const RunOptions& options);
+
+// What can be checked of a config's inputs without loading its scene, so that a bad one fails
+// before any work: the scene file exists or the built-in name is known (did-you-mean), the view
+// file loads and view_index is within it, a camera is valid. Throws InputError naming the
+// config's line.
+void checkInputs(const ExperimentConfig& config);
+
+// The render size when the scene is not needed for it (a camera or view file in the config, and
+// an image box that no Mitsuba film replaces); nullopt otherwise.
+std::optional<std::pair<int, int>> renderSizeWithoutScene(const ExperimentConfig& config);
 
 // The render cache every variant of the experiment shares: options.cacheDir, else OUTDIR/cache.
 std::filesystem::path experimentCacheDir(const std::filesystem::path& outDir, const RunOptions& options);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <optional>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -404,11 +405,32 @@ std::string resultsCsv(const Json& results) {
     return out;
 }
 
+std::optional<Table> snapshotCostTable(const Json& results) {
+    if (!results.contains("snapshot") || !results["snapshot"].is_object()) return std::nullopt;
+    const Json& s = results["snapshot"];
+    Table t{"snapshot_cost", "Snapshot cost", "", {"", "value"}, {}};
+    if (s.contains("width") && s.contains("height"))
+        t.rows.push_back({"resolution", fmt::format("{} × {}", s["width"].get<int>(), s["height"].get<int>())});
+    t.rows.push_back({"per frame (ms)", readableNumber(1000 * num(s, "total_s"))});
+    if (s.contains("readback_s")) t.rows.push_back({"of which readback (ms)", readableNumber(1000 * num(s, "readback_s"))});
+    if (s.contains("setup_s")) t.rows.push_back({"setup, once (ms)", readableNumber(1000 * num(s, "setup_s"))});
+    const Json passes = s.value("passes_gpu_ms", Json::object());  // items() must not outlive it
+    std::vector<std::string> perPass;
+    for (const auto& [pass, ms] : passes.items())
+        if (ms.is_number()) perPass.push_back(fmt::format("{} {}", pass, readableNumber(ms.get<double>())));
+    if (!perPass.empty()) t.rows.push_back({"GPU per pass (ms)", fmt::format("{}", fmt::join(perPass, ", "))});
+    t.note = fmt::format("on {}{}; per frame is what Table 1/2 adds to each aamap-driven render's trace",
+                         s.value("vulkan_device", std::string("the Vulkan device")),
+                         s.value("cached", false) ? ", measured when it was first made (reused from the cache)" : "");
+    return t;
+}
+
 std::string markdownReport(const Json& results, const std::vector<Table>& tables) {
     std::string md = fmt::format("# aamap experiment report\n\nconfig hash `{}`, git revision `{}`\n\n",
                                  results.value("config_hash", std::string()), results.value("git_revision", std::string()));
     for (const Json& w : results["warnings"]) md += fmt::format("> **warning:** {}\n\n", w.get<std::string>());
     for (const Table& t : tables) md += markdownTable(t);
+    if (const std::optional<Table> cost = snapshotCostTable(results)) md += markdownTable(*cost);
     return md;
 }
 

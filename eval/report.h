@@ -4,6 +4,7 @@
 // report.html (tables, a comparison viewer, plots; relative links, opens from disk, offline), and the
 // plots of tools/report_plots.py (run from the Python venv; skipped with a warning without one).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +41,9 @@ std::string csvField(const std::string& s);
 // One row per render; the header is resultsCsvColumns().
 std::string resultsCsv(const nlohmann::ordered_json& results);
 const std::vector<std::string>& resultsCsvColumns();
+
+// What the Snapshot cost (per frame, readback, setup, GPU per pass, device); none without a Snapshot.
+std::optional<Table> snapshotCostTable(const nlohmann::ordered_json& results);
 
 std::string markdownReport(const nlohmann::ordered_json& results, const std::vector<Table>& tables);
 // One table as Markdown: a heading of that level, the table, the note.

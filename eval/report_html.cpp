@@ -57,25 +57,10 @@ std::string tableHtml(const Table& t, const char* heading = "h2") {
 
 double number(const Json& j, const char* key) { return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN; }
 
-// What the Snapshot cost: per frame (what each aamap-driven render pays), once (setup), per pass.
+// What the Snapshot cost, as a card beside the summary.
 std::string snapshotCard(const Json& results) {
-    if (!results.contains("snapshot")) return "";
-    const Json& s = results["snapshot"];
-    Table t{"snapshot_cost", "Snapshot cost", "", {"", "value"}, {}};
-    if (s.contains("width") && s.contains("height"))
-        t.rows.push_back({"resolution", fmt::format("{} × {}", s["width"].get<int>(), s["height"].get<int>())});
-    t.rows.push_back({"per frame (ms)", readableNumber(1000 * number(s, "total_s"))});
-    if (s.contains("readback_s")) t.rows.push_back({"of which readback (ms)", readableNumber(1000 * number(s, "readback_s"))});
-    if (s.contains("setup_s")) t.rows.push_back({"setup, once (ms)", readableNumber(1000 * number(s, "setup_s"))});
-    const Json passes = s.value("passes_gpu_ms", Json::object());  // items() must not outlive it
-    std::vector<std::string> perPass;
-    for (const auto& [pass, ms] : passes.items())
-        if (ms.is_number()) perPass.push_back(fmt::format("{} {}", pass, readableNumber(ms.get<double>())));
-    if (!perPass.empty()) t.rows.push_back({"GPU per pass (ms)", fmt::format("{}", fmt::join(perPass, ", "))});
-    t.note = fmt::format("on {}{}; per frame is what Table 1/2 adds to each aamap-driven render's trace",
-                         s.value("vulkan_device", std::string("the Vulkan device")),
-                         s.value("cached", false) ? ", measured when it was first made (reused from the cache)" : "");
-    return "<div class=\"card\">" + tableHtml(t) + "</div>\n";
+    const std::optional<Table> t = snapshotCostTable(results);
+    return t ? "<div class=\"card\">" + tableHtml(*t) + "</div>\n" : "";
 }
 
 std::string problemsSection(const Json& results, const PlotRun& plots) {

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <optional>
 #include <set>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -268,7 +269,8 @@ const Traced& Runner::loadOrTrace(const Job& job, int index, int count) {
     r.parameters = {{"rpp", job.render.rpp}, {"strata", job.render.strata()}, {"seed", c_.seed},
                     {"shading_area_light_samples", c_.shading.areaLightSamples},
                     {"shading", renderConfig["shading"]}};
-    for (const auto& [k, v] : renderConfig["params"].items()) r.parameters[k] = v;
+    const Json params = strategyParamsJson(job.render);  // items() must not outlive it
+    for (const auto& [k, v] : params.items()) r.parameters[k] = v;
     if (!out.blockSums.empty()) r.parameters["block_sums"] = out.blockSums;
     r.maxRaysPerPixel = job.render.rpp;
     r.times.load = s.loadSeconds;
@@ -421,6 +423,8 @@ ImageRGB Runner::loadFileReference(const std::vector<Job>& jobs) {
         const ImageRGB& first = loadOrTrace(jobs.front(), 1, static_cast<int>(jobs.size())).image;
         width = first.width();
         height = first.height();
+    } else if (const auto size = backend_.renderSizeWithoutScene()) {
+        std::tie(width, height) = *size;  // refused before a long scene load, if it must be
     } else {
         width = scene().width;
         height = scene().height;

@@ -60,6 +60,9 @@ public:
     // must be computed: a fully cached run needs neither the scene nor the GPU.
     virtual SceneInfo prepare() = 0;
     virtual SnapshotOutput snapshot() = 0;  // after prepare()
+    // The render size, when it is known without loading the scene (before prepare()): a bad
+    // reference image is then refused before the scene loads. nullopt: prepare() tells.
+    virtual std::optional<std::pair<int, int>> renderSizeWithoutScene() const { return std::nullopt; }
     // aamap: the Snapshot's map for strategies that use it, else null. progress(done, total).
     virtual TraceOutput trace(const RenderConfig& render, const ImageGrey* aamap,
                               const std::function<void(int, int)>& progress) = 0;

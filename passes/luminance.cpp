@@ -13,8 +13,9 @@ graph::PassId LuminancePass::add(graph::RenderGraph& graph, vk::GraphExecutor& e
     gpu::FilterPush push{};
     push.exposure = exposure;
     return pass_.add(graph, executor, kLuminancePass, colour, grey, push,
-                     "greyscale of the snapshot for the edge filter (in a Snapshot only after a mirror "
-                     "composite: otherwise the G-buffer writes it)");
+                     "greyscale of the snapshot for the edge filter (in a Snapshot only after something "
+                     "changes the snapshot past the opaque draw, a mirror composite or glass: otherwise the "
+                     "G-buffer writes it)");
 }
 
 }  // namespace aamap::passes

@@ -2,6 +2,8 @@
 // A RenderBackend without GPU or tracer, for the runner's tests.
 #include <cmath>
 #include <map>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,9 @@ public:
         progress(1, 1);
         return t;
     }
+    std::optional<std::pair<int, int>> renderSizeWithoutScene() const override {
+        return sizeKnown ? std::optional<std::pair<int, int>>(std::pair{kW, kH}) : std::nullopt;
+    }
     // The edge column is a silhouette, the rest of the image plain (pixel facts for the causes).
     bool hasPixelFacts() const override { return withFacts; }
     PixelFacts pixelFacts() override {
@@ -72,7 +77,8 @@ public:
     bool withFacts = false;
     int factsComputed = 0;
     int prepares = 0, snapshots = 0;
-    bool failPrepare = false;  // like a scene that does not load
+    bool failPrepare = false;
+    bool sizeKnown = false;  // the render size is known without prepare() (a view file, say)  // like a scene that does not load
     std::vector<std::string> sceneWarnings;  // what prepare() reports about the scene
     std::map<std::string, int> traces;
     std::vector<std::string> order;  // every trace() call, in order

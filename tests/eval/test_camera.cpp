@@ -185,5 +185,33 @@ TEST_F(Files, MitsubaIntegratorDecidesTheDepthsTheConfigLeavesOut) {
     EXPECT_TRUE(notes.empty());
 }
 
+// What can be checked before the scene loads is checked before it loads: the scene's name or
+// file, the view file and view_index in it; and the render size from a view file, so a reference
+// image of another size is refused without loading the scene.
+TEST_F(Files, InputsAreCheckedWithoutLoadingTheScene) {
+    const auto errorOf = [&](const std::string& yaml) -> std::string {
+        try {
+            checkInputs(loadConfig(write("check.yaml", yaml)));
+        } catch (const InputError& e) {
+            EXPECT_GT(e.line(), 0) << e.what();
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_NE(errorOf("scene: builtin:cornel\n" + kRenders).find("did you mean 'builtin:cornell'"), std::string::npos);
+    EXPECT_NE(errorOf("scene: missing.obj\n" + kRenders).find("no such file"), std::string::npos);
+    write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    EXPECT_EQ(errorOf("scene: tri.obj\n" + kRenders), "");
+    EXPECT_NE(errorOf("scene: tri.obj\nview: missing.vf\n" + kRenders).find("view 'missing.vf'"), std::string::npos);
+    write("one.vf", "rview -vtv -vp 0 0 5 -vd 0 0 -1 -vu 0 1 0 -vh 60 -vv 30\n");
+    EXPECT_NE(errorOf("scene: tri.obj\nview: one.vf\nview_index: 3\n" + kRenders).find("out of range"), std::string::npos);
+    const ExperimentConfig c = loadConfig(write("ok.yaml", "scene: tri.obj\nview: one.vf\nimage: {width: 64, height: 64}\n" + kRenders));
+    const auto size = renderSizeWithoutScene(c);
+    ASSERT_TRUE(size.has_value());
+    EXPECT_EQ(size->first, 64);
+    EXPECT_LT(size->second, 64);  // the view's 2:1 field shrinks the height
+    EXPECT_FALSE(renderSizeWithoutScene(loadConfig(write("noview.yaml", "scene: tri.obj\n" + kRenders))).has_value());
+}
+
 }  // namespace
 }  // namespace aamap

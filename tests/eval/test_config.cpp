@@ -140,6 +140,8 @@ TEST(ConfigErrors, RenderNames) {
     expectAt(parseError("scene: s.obj\nrenders:\n  - {name: aamap, strategy: uniform, rpp: 1}\n"), 3, 12,
              "reserved");
     expectAt(parseError("scene: s.obj\nrenders:\n  - {strategy: adaptive, rpp: 1}\n"), 3, 16, "unknown strategy");
+    expectAt(parseError("scene: s.obj\nrenders:\n  - {strategy: unifrom, rpp: 1}\n"), 3, 16,
+             "unknown strategy 'unifrom'; did you mean 'uniform'?");
 }
 
 TEST(ConfigErrors, MissingAndMalformed) {

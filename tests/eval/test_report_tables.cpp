@@ -3,11 +3,15 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+#include <fstream>
+#include <iterator>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "eval/report.h"
+#include "scene/light_file.h"
 
 namespace aamap {
 namespace {
@@ -80,6 +84,31 @@ TEST(ReportTables, CsvCarriesTheSpread) {
     EXPECT_EQ(fields[column("speedup")], "3");
     EXPECT_EQ(fields[column("speedup_min")], "1.6");
     EXPECT_EQ(fields[column("speedup_max")], "5.33333333");
+}
+
+// The docs name every results.csv column and every light type a config may use.
+TEST(ReportDocs, ListEveryCsvColumnAndLightType) {
+    const auto read = [](const char* file) {
+        std::ifstream in(std::string(AAMAP_SOURCE_DIR) + "/" + file);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const std::string experiments = read("docs/experiments.md");
+    const std::size_t at = experiments.find("`results.csv` columns:");
+    ASSERT_NE(at, std::string::npos);
+    const std::string list = experiments.substr(at, experiments.find("\n\n", at) - at);
+    for (const std::string& column : resultsCsvColumns()) EXPECT_NE(list.find(column), std::string::npos) << column;
+    const std::string config = read("docs/config.md"), lights = read("docs/lights.md");
+    const std::size_t lightFile = config.find("| `light_file` |");
+    ASSERT_NE(lightFile, std::string::npos);
+    const std::string row = config.substr(lightFile, config.find('\n', lightFile) - lightFile);
+    const std::size_t typeRow = lights.find("| `type` |");
+    ASSERT_NE(typeRow, std::string::npos);
+    const std::string types = lights.substr(typeRow, lights.find('\n', typeRow) - typeRow);
+    for (LightType t : {LightType::Point, LightType::Spot, LightType::Quad, LightType::Disk, LightType::Directional,
+                        LightType::Environment}) {
+        EXPECT_NE(types.find(fmt::format("`{}`", toString(t))), std::string::npos) << toString(t);
+        EXPECT_NE(row.find(toString(t)), std::string::npos) << toString(t) << " not in " << row;
+    }
 }
 
 }  // namespace

@@ -76,6 +76,11 @@ TEST_F(RunnerChecks, ReferenceOfTheWrongSizeFailsBeforeAnyWork) {
     EXPECT_EQ(backend.snapshots, 0);
     EXPECT_EQ(backend.totalTraces(), 0);
     EXPECT_FALSE(fs::exists(out_));
+    // When the size is known without the scene, the scene is not even loaded first.
+    FakeBackend known;
+    known.sizeKnown = true;
+    EXPECT_THROW(run(known, "reference: {type: file, path: small.exr}\n"), InputError);
+    EXPECT_EQ(known.prepares, 0);
 }
 
 TEST_F(RunnerChecks, BlackReferenceIsAWarning) {
@@ -170,6 +175,16 @@ TEST_F(RunnerChecks, NoisyReferenceIsAWarningAndItsErrorPixelsAreLeftOut) {
     EXPECT_TRUE((*ok.referenceInfo.noise)["converged"].get<bool>());
     EXPECT_EQ((*ok.referenceInfo.noise)["suggested_rpp"].get<int>(), 16);
     EXPECT_EQ(readText(out_ / "report.md").find("not reported"), std::string::npos);
+}
+
+// report.md carries what the HTML's Snapshot card says: its cost per frame, on which device.
+TEST_F(RunnerChecks, MarkdownReportHasTheSnapshotCost) {
+    FakeBackend backend;
+    run(backend, "metrics: {map_quality: false}\n");
+    const std::string md = readText(out_ / "report.md");
+    EXPECT_NE(md.find("## Snapshot cost"), std::string::npos) << md;
+    EXPECT_NE(md.find("| per frame (ms) | 5 |"), std::string::npos) << md;  // the fake's 5 ms
+    EXPECT_NE(md.find("on fake GPU"), std::string::npos) << md;
 }
 
 }  // namespace

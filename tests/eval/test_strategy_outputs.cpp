@@ -3,6 +3,7 @@
 // strategy's parameters, and the snapshot.map key.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -72,7 +73,12 @@ TEST(StrategyOutputs, TracedMaskBlockSumSourceAndHybridParameters) {
     EXPECT_FALSE(hybrid["parameters"].contains("block_sums"));
     EXPECT_EQ(hybrid["strategy"], "hybrid");
     EXPECT_DOUBLE_EQ(hybrid["parameters"]["noise_threshold"].get<double>(), 0.02);
-    EXPECT_EQ(hybrid["parameters"]["sample_step"].get<double>(), 3.0);
+    EXPECT_TRUE(hybrid["parameters"]["sample_step"].is_number_integer());  // an integer stays one in the record
+    EXPECT_EQ(hybrid["parameters"]["sample_step"].get<int>(), 3);
+    std::ifstream csvIn(out / "results.csv");
+    const std::string csv((std::istreambuf_iterator<char>(csvIn)), std::istreambuf_iterator<char>());
+    EXPECT_NE(csv.find("sample_step=3"), std::string::npos) << csv;
+    EXPECT_EQ(csv.find("sample_step=3.0"), std::string::npos) << csv;
     EXPECT_EQ(hybrid["parameters"]["mapping"], "paper");
     EXPECT_EQ(subsample["rays"]["primary"].get<std::uint64_t>(), 64u);  // what the backend traced
     EXPECT_EQ(subsample["parameters"]["snapshot"]["map"], "combined");

@@ -178,6 +178,8 @@ TEST_F(SnapshotFeaturePairs, EveryPairComposesInOneGraph) {
             EXPECT_EQ(r.shadowCubeMaps, lights) << r.explain;
             if (has(Feature::Glass)) {
                 EXPECT_NE(r.explain.find("glass triangles"), std::string::npos) << r.explain;
+                // --explain says why the luminance pass is there: glass too, not only a mirror.
+                EXPECT_NE(r.explain.find("a mirror composite or glass"), std::string::npos) << r.explain;
             }
 
             ASSERT_EQ(r.snapshot.width(), kSize);
