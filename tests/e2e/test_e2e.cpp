@@ -380,6 +380,18 @@ TEST_F(CliErrors, UsageErrorsAndHelp) {
         EXPECT_NE(help.find(word), std::string::npos) << word;
     // The strategy lines, from the registry (tests/eval/test_strategy_registry.cpp checks them).
     EXPECT_NE(help.find(strategyHelpLines()), std::string::npos) << help;
+    EXPECT_NE(help.find("Usage: aamap run [OPTIONS] CONFIG"), std::string::npos) << help;  // required, not [CONFIG]
+    EXPECT_NE(help.find("--plan"), std::string::npos);
+    // `aamap report` skips the plots on request, as run and compare do.
+    const std::string reportHelp = fmt::format("'{}' report --help", env("AAMAP_EXE"));
+    FILE* report = ::popen(reportHelp.c_str(), "r");
+    ASSERT_NE(report, nullptr);
+    std::string reportText;
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), report)) > 0;) reportText.append(buffer, n);
+    EXPECT_EQ(::pclose(report), 0);
+    EXPECT_NE(reportText.find("--no-plots"), std::string::npos) << reportText;
+    // --list-devices needs no CONFIG although CONFIG is required.
+    EXPECT_NE(aamap("run --list-devices").exitCode, 2);
 }
 
 // `aamap diff`: the experiment's metrics for two image files, with exit code 2 for bad input.
