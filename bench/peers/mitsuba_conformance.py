@@ -140,6 +140,10 @@ def main():
     repo = os.path.dirname(os.path.dirname(HERE))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", help="comma-separated scene names (default: all)")
+    ap.add_argument("--scene", action="append", default=[],
+                    help="a whole Mitsuba scene file to compare (repeatable); renders only these")
+    ap.add_argument("--size", type=int, default=128, help="--scene: image width and height")
+    ap.add_argument("--spp", type=int, default=256, help="--scene: samples per pixel (a perfect square)")
     ap.add_argument("--bench", default=os.path.join(repo, "build", "release", "bench", "tracer", "bench_tracer"))
     ap.add_argument("--spp-scale", type=int, default=1, help="multiply every scene's spp by this square (1, 4, ...)")
     ap.add_argument("--make-assets", action="store_true", help="rewrite sky.exr, checker.png and leaf.png")
@@ -147,11 +151,16 @@ def main():
     args = ap.parse_args()
     if not os.path.exists(args.bench):
         sys.exit(f"{args.bench}: build it first (cmake --build --preset release), or pass --bench")
-    names = args.only.split(",") if args.only else list(SCENES)
+    # Whole scene files beside the one-feature ones: each at --size and --spp, its own max_depth.
+    for extra in args.scene:
+        SCENES[extra] = (args.size, args.spp)
+    names = args.only.split(",") if args.only else (list(args.scene) if args.scene else list(SCENES))
     for n in names:
-        if n not in SCENES:
+        if n not in SCENES and n not in args.scene:
             sys.exit(f"unknown scene {n} (have: {', '.join(SCENES)})")
     mi, _ = load_mitsuba(os.path.join(SCENES_DIR, "a_constant_box.xml"))
+    for extra in args.scene:  # their meshes and textures, relative to their own folders
+        mi.Thread.thread().file_resolver().append(os.path.dirname(os.path.abspath(extra)))
     import numpy as np
 
     make_assets(mi, args.make_assets)
@@ -168,7 +177,7 @@ def main():
         strata = round(math.sqrt(spp))
         if strata * strata != spp:
             sys.exit(f"{name}: spp {spp} is not a perfect square")
-        path = os.path.join(SCENES_DIR, name + ".xml")
+        path = name if name in args.scene else os.path.join(SCENES_DIR, name + ".xml")
         depth = scene_depth(path)
         with tempfile.TemporaryDirectory() as tmp:
             t0 = time.perf_counter()
@@ -204,7 +213,8 @@ def main():
         flag = "  <--" if np.any(np.abs(ratio - 1.0) > 0.02) else ""
         if len(rows) == 1:
             print(header)
-        print(f"{name:<26} {size:>4} {spp:>5} {depth:>3}  {m_ref[0]:.4f} {m_ref[1]:.4f} {m_ref[2]:.4f}    "
+        label = os.path.relpath(name, os.path.dirname(os.path.dirname(name))) if name in args.scene else name
+        print(f"{label:<26} {size:>4} {spp:>5} {depth:>3}  {m_ref[0]:.4f} {m_ref[1]:.4f} {m_ref[2]:.4f}    "
               f"{m_img[0]:.4f} {m_img[1]:.4f} {m_img[2]:.4f}    {ratio[0]:.3f} {ratio[1]:.3f} {ratio[2]:.3f}   "
               f"{dldr:7.2f} {flip_mean:6.3f} {noise:7.2f}{flag}   ({t_mi:.0f} s / {t_aa:.0f} s)", flush=True)
     bad = [r[0] for r in rows if np.any(np.abs(r[6] - 1.0) > 0.02)]

@@ -255,13 +255,26 @@ TEST_F(Outputs, AamapMarksTheBoxEdgesAndLeavesTheBackWallAlone) {
 
 struct CommandResult {
     int exitCode = -1;
-    std::string stderrText;
+    std::string stderrText;  // aamapOutput: stdout and stderr together
 };
 
 CommandResult aamap(const std::string& args) {
     const std::string exe = env("AAMAP_EXE");
     EXPECT_FALSE(exe.empty()) << "set AAMAP_EXE";
     const std::string command = fmt::format("'{}' {} 2>&1 1>/dev/null", exe, args);
+    CommandResult run;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    if (pipe == nullptr) return run;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) run.stderrText.append(buffer, n);
+    const int status = ::pclose(pipe);
+    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+// `aamap ARGS` with stdout and stderr together, and its exit code.
+CommandResult aamapOutput(const std::string& args) {
+    const std::string command = fmt::format("'{}' {} 2>&1", env("AAMAP_EXE"), args);
     CommandResult run;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (pipe == nullptr) return run;
@@ -325,15 +338,9 @@ TEST_F(CliErrors, PlanPrintsTheWorkAndWritesNothing) {
                                               "snapshot: {blur_radius: [1, 2]}\n"
                                               "renders: [{strategy: uniform, rpp: [1, 4]}, {strategy: aamap, rpp: 4}]\n");
     const fs::path out = dir_ / "out";
-    const std::string exe = env("AAMAP_EXE");
-    const std::string command = fmt::format("'{}' run '{}' -o '{}' --plan 2>&1", exe, config.string(), out.string());
-    FILE* pipe = ::popen(command.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    std::string text;
-    char buffer[4096];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) text.append(buffer, n);
-    const int status = ::pclose(pipe);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << text;
+    const CommandResult plan = aamapOutput(fmt::format("run '{}' -o '{}' --plan", config.string(), out.string()));
+    const std::string& text = plan.stderrText;
+    EXPECT_EQ(plan.exitCode, 0) << text;
     EXPECT_NE(text.find("variant 2/2 (snapshot.blur_radius=2)"), std::string::npos) << text;
     EXPECT_NE(text.find("aamap4"), std::string::npos) << text;
     EXPECT_NE(text.find("trace(s) to do"), std::string::npos) << text;
@@ -383,13 +390,9 @@ TEST_F(CliErrors, UsageErrorsAndHelp) {
     EXPECT_NE(help.find("Usage: aamap run [OPTIONS] CONFIG"), std::string::npos) << help;  // required, not [CONFIG]
     EXPECT_NE(help.find("--plan"), std::string::npos);
     // `aamap report` skips the plots on request, as run and compare do.
-    const std::string reportHelp = fmt::format("'{}' report --help", env("AAMAP_EXE"));
-    FILE* report = ::popen(reportHelp.c_str(), "r");
-    ASSERT_NE(report, nullptr);
-    std::string reportText;
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), report)) > 0;) reportText.append(buffer, n);
-    EXPECT_EQ(::pclose(report), 0);
-    EXPECT_NE(reportText.find("--no-plots"), std::string::npos) << reportText;
+    const CommandResult report = aamapOutput("report --help");
+    EXPECT_EQ(report.exitCode, 0);
+    EXPECT_NE(report.stderrText.find("--no-plots"), std::string::npos) << report.stderrText;
     // --list-devices needs no CONFIG although CONFIG is required.
     EXPECT_NE(aamap("run --list-devices").exitCode, 2);
 }

@@ -30,6 +30,16 @@ renders:
 report: {plots: false}
 )";
 
+// The line of the error a swept config gives; -1 when it parses.
+int lineOf(const std::string& yaml) {
+    try {
+        parseExperiment(yaml, "exp.yaml");
+    } catch (const InputError& e) {
+        return e.line();
+    }
+    return -1;
+}
+
 TEST(ConfigSweeps, CartesianProductWithTheFirstKeySlowest) {
     const Experiment e = parseExperiment(kSwept, "exp.yaml");
     ASSERT_EQ(e.sweptKeys, (std::vector<std::string>{"scene", "snapshot.blur_radius"}));
@@ -65,14 +75,6 @@ TEST(ConfigSweeps, OverridesSweepAndSingleConfigCommandsRefuse) {
 }
 
 TEST(ConfigSweeps, BadListsNameTheirLine) {
-    const auto lineOf = [](const std::string& yaml) {
-        try {
-            parseExperiment(yaml, "exp.yaml");
-        } catch (const InputError& e) {
-            return e.line();
-        }
-        return -1;
-    };
     EXPECT_EQ(lineOf("scene: builtin:cornell\nsnapshot: {blur_radius: []}\nrenders: [{strategy: uniform, rpp: 1}]\n"), 2);
     EXPECT_EQ(lineOf("scene: builtin:cornell\nsnapshot:\n  blur_radius: [1, 1]\nrenders: [{strategy: uniform, rpp: 1}]\n"), 3);
     // A swept value is checked like a single one, and the error points at the list item.
@@ -102,14 +104,6 @@ TEST(ConfigSweeps, ZippedListsVaryTogether) {
         EXPECT_EQ(e.variants[i].snapshot.blurRadius, radius[i % 3]);
         EXPECT_DOUBLE_EQ(e.variants[i].snapshot.gain, gain[i % 3]);
     }
-    const auto lineOf = [](const std::string& text) {
-        try {
-            parseExperiment(text, "exp.yaml");
-        } catch (const InputError& err) {
-            return err.line();
-        }
-        return -1;
-    };
     const std::string body = "scene: builtin:cornell\nsnapshot: {blur_radius: [0, 1], gain: [1, 2, 4]}\n";
     EXPECT_EQ(lineOf(body + "zip: [[snapshot.blur_radius, snapshot.gain]]\nrenders: [{strategy: uniform, rpp: 1}]\n"), 3);
     EXPECT_EQ(lineOf(body + "zip: [[snapshot.blur_radius, seed]]\nrenders: [{strategy: uniform, rpp: 1}]\n"), 3);

@@ -8,18 +8,7 @@
 
 namespace aamap {
 
-glm::vec3 SampleSource::pixel(int x, int y, int k) const {
-    glm::dvec3 sum(0.0);
-    int kept = 0;
-    for (int sy = 0; sy < k; ++sy)
-        for (int sx = 0; sx < k; ++sx) {
-            const PrimarySample s = sample(x, y, sx, sy, k, false);
-            if (!s.finite) continue;
-            sum += glm::dvec3(s.radiance);
-            ++kept;
-        }
-    return kept > 0 ? glm::vec3(sum / static_cast<double>(kept)) : glm::vec3(0.0f);
-}
+glm::vec3 SampleSource::pixel(int x, int y, int k) const { return pixelHalves(x, y, k).mean; }
 
 SampleSource::Halves SampleSource::pixelHalves(int x, int y, int k) const {
     glm::dvec3 sum(0.0), half[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
