@@ -30,7 +30,7 @@ import time
 import xml.etree.ElementTree as ET
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mitsuba_throughput import load_mitsuba, mitsuba_scene_file  # noqa: E402
+from mitsuba_throughput import film_aspect, load_mitsuba, mitsuba_scene_file  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES_DIR = os.path.join(HERE, "conformance")
@@ -181,19 +181,23 @@ def main():
         depth = scene_depth(path)
         with tempfile.TemporaryDirectory() as tmp:
             t0 = time.perf_counter()
-            scene = mi.load_file(mitsuba_scene_file(path, size, spp, depth, "box", tmp))
+            # A whole scene keeps its film's aspect ratio (aamap fits its view in size x size, as
+            # `aamap run` does); the one-feature scenes are square.
+            whole = name in args.scene
+            height = max(1, round(size * film_aspect(path))) if whole else size
+            scene = mi.load_file(mitsuba_scene_file(path, size, spp, depth, "box", tmp, height))
             halves = [np.array(mi.render(scene, spp=spp // 2, seed=seed))[:, :, :3].astype(np.float64)
                       for seed in (0, 1)]
             t_mi = time.perf_counter() - t0
             ref = 0.5 * (halves[0] + halves[1])
             # Standard error of the image mean: pixels are independent, each half's noise is (a - b) / 2.
-            se = np.sqrt(((halves[0] - halves[1]) ** 2 / 4.0).reshape(-1, 3).mean(0) / (size * size))
+            se = np.sqrt(((halves[0] - halves[1]) ** 2 / 4.0).reshape(-1, 3).mean(0) / (size * height))
             exr = os.path.join(tmp, "aamap.exr")
             aamap_scene = path
             t0 = time.perf_counter()
             r = subprocess.run([args.bench, "--scene", aamap_scene, "--size", str(size), "--strata", str(strata), "--mode",
                                 "path", "--max-depth", str(depth), "--light-samples", "1", "--repeat", "1",
-                                "--out", exr], capture_output=True, text=True)
+                                "--out", exr] + (["--fit-view"] if whole else []), capture_output=True, text=True)
             t_aa = time.perf_counter() - t0
             if r.returncode != 0:
                 print(f"{name}: bench_tracer failed ({r.returncode}):\n{r.stderr[-2000:]}", file=sys.stderr)
@@ -202,9 +206,10 @@ def main():
             ref_exr = os.path.join(tmp, "mitsuba.exr")
             mi.Bitmap(ref.astype(np.float32)).write(ref_exr)
             flip_mean = ldr_flip(ref_exr, exr)
-            if args.keep:
-                mi.Bitmap(ref.astype(np.float32)).write(os.path.join(args.keep, f"{name}.mitsuba.exr"))
-                mi.Bitmap(img.astype(np.float32)).write(os.path.join(args.keep, f"{name}.aamap.exr"))
+            if args.keep:  # a whole scene file by its folder's name: never beside the scene itself
+                stem = os.path.basename(os.path.dirname(os.path.abspath(name))) if name in args.scene else name
+                mi.Bitmap(ref.astype(np.float32)).write(os.path.join(args.keep, f"{stem}.mitsuba.exr"))
+                mi.Bitmap(img.astype(np.float32)).write(os.path.join(args.keep, f"{stem}.aamap.exr"))
         m_ref, m_img = ref.reshape(-1, 3).mean(0), img.reshape(-1, 3).mean(0)
         ratio = m_img / np.maximum(m_ref, 1e-12)
         dldr = np.abs(ldr(img) - ldr(ref)).mean()

@@ -58,8 +58,18 @@ def load_mitsuba(scene, variant="llvm_ad_rgb"):
     return mi, dr
 
 
-def mitsuba_scene_file(scene, size, spp, depth, rfilter, out_dir):
-    """The scene with the film size, sample count, path depth and pixel filter replaced."""
+def film_aspect(scene):
+    """The film's height / width as the scene file gives it (1 without one)."""
+    sensor = ET.parse(scene).getroot().find("sensor")
+    film = sensor.find("film") if sensor is not None else None
+    size = {c.attrib.get("name"): int(c.attrib["value"]) for c in (film if film is not None else [])
+            if c.attrib.get("name") in ("width", "height")}
+    return size["height"] / size["width"] if "width" in size and "height" in size else 1.0
+
+
+def mitsuba_scene_file(scene, size, spp, depth, rfilter, out_dir, height=None):
+    """The scene with the film size (size x height, default square), sample count, path depth and
+    pixel filter replaced."""
     tree = ET.parse(scene)
     root = tree.getroot()
     integrator = root.find("integrator")
@@ -84,7 +94,7 @@ def mitsuba_scene_file(scene, size, spp, depth, rfilter, out_dir):
         if child.attrib.get("name") in ("width", "height", "high_quality_edges") or child.tag == "rfilter":
             film.remove(child)
     ET.SubElement(film, "integer", name="width", value=str(size))
-    ET.SubElement(film, "integer", name="height", value=str(size))
+    ET.SubElement(film, "integer", name="height", value=str(height or size))
     ET.SubElement(film, "rfilter", type=rfilter)
     path = os.path.join(out_dir, "scene.xml")
     tree.write(path)
