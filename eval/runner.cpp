@@ -531,7 +531,10 @@ void Runner::traceOracle(Results& results, const std::vector<Job>& jobs, std::si
         results.oracle->runs.push_back({mapRenders[k], std::move(rec)});
         writeResults(out_ / "results.json", results);
     }
-    repeatTraces(oracleJobs);
+    // Every render's repeated runs in one set of rounds: the renders, then the oracle's.
+    std::vector<Job> all = jobs;
+    all.insert(all.end(), oracleJobs.begin(), oracleJobs.end());
+    repeatTraces(all);
     for (std::size_t k = 0; k < oracleJobs.size(); ++k) results.oracle->runs[k].record.times = traced_.at(oracleJobs[k].key).record.times;
 }
 
@@ -611,11 +614,19 @@ Results Runner::run() {
         else results.oneRay = std::move(rec);
         writeResults(out_ / "results.json", results);
     }
-    repeatTraces(jobs);
-    if (c_.timing.repeats > 1) {  // the records above were taken before the repeated runs
+    // The records above were taken before the repeated runs.
+    const auto copyRepeatedTimes = [&] {
+        if (c_.timing.repeats <= 1) return;
         for (std::size_t i = 0; i < listed; ++i) results.renders[i].times = traced_.at(jobs[i].key).record.times;
         if (refJob && results.reference) results.reference->times = traced_.at(refJob->key).record.times;
         if (oneRayJob && results.oneRay) results.oneRay->times = traced_.at(oneRayJob->key).record.times;
+    };
+    // With the oracle, the repeated runs wait for its renders, so that they are timed in the same
+    // rounds as the renders they are compared with (the machine's drift hits them alike).
+    const bool oracleLater = mapQuality && c_.metrics.oracle && (refJob || fileReference);
+    if (!oracleLater) {
+        repeatTraces(jobs);
+        copyRepeatedTimes();
     }
     // Jobs with equal keys (the reference is also a listed render, say) are traced once.
     const std::size_t reused = traced_.size() - static_cast<std::size_t>(tracedNow_);
@@ -663,7 +674,10 @@ Results Runner::run() {
                                                              rec.name, rec.outputs);
         }
         addAntialiasingShares(results, jobs, listed, *reference);
-        if (mapQuality && c_.metrics.oracle) traceOracle(results, jobs, listed, *reference, traced_.at(oneRayJob->key).image);
+        if (mapQuality && c_.metrics.oracle) {
+            traceOracle(results, jobs, listed, *reference, traced_.at(oneRayJob->key).image);
+            copyRepeatedTimes();
+        }
         if (mapQuality) {
             spdlog::info("map quality: recall {:.3f}, precision {:.3f}, flagged {:.1f}%",
                          results.mapQuality["recall"].get<double>(), results.mapQuality["precision"].get<double>(),

@@ -187,5 +187,20 @@ TEST_F(RunnerChecks, MarkdownReportHasTheSnapshotCost) {
     EXPECT_NE(md.find("on fake GPU"), std::string::npos) << md;
 }
 
+// The oracle's renders are timed in the same rounds as the renders they are compared with: the
+// repeated runs wait until the oracle's first runs are done.
+TEST_F(RunnerChecks, OracleRendersAreTimedInTheSameRounds) {
+    FakeBackend backend;
+    const Results r = run(backend, "timing: {repeats: 2}\nmetrics: {oracle: true}\n");
+    ASSERT_TRUE(r.oracle.has_value());
+    ASSERT_EQ(r.oracle->runs.size(), 1u);
+    const std::vector<std::string> expected = {"uniform1", "uniform16", "aamap16",  // first runs
+                                               "aamap16",                           // the oracle's first run
+                                               "uniform1", "uniform16", "aamap16", "aamap16"};  // one round of all
+    EXPECT_EQ(backend.order, expected);
+    EXPECT_EQ(r.oracle->runs[0].record.times.traceRuns.size(), 2u);
+    for (const RenderRecord& rec : r.renders) EXPECT_EQ(rec.times.traceRuns.size(), 2u) << rec.name;
+}
+
 }  // namespace
 }  // namespace aamap
