@@ -258,10 +258,11 @@ struct CommandResult {
     std::string stderrText;  // aamapOutput: stdout and stderr together
 };
 
-CommandResult aamap(const std::string& args) {
+// `aamap ARGS` with its output redirected as `redirect` says, and its exit code.
+CommandResult runAamap(const std::string& args, const char* redirect) {
     const std::string exe = env("AAMAP_EXE");
     EXPECT_FALSE(exe.empty()) << "set AAMAP_EXE";
-    const std::string command = fmt::format("'{}' {} 2>&1 1>/dev/null", exe, args);
+    const std::string command = fmt::format("'{}' {} {}", exe, args, redirect);
     CommandResult run;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (pipe == nullptr) return run;
@@ -272,18 +273,8 @@ CommandResult aamap(const std::string& args) {
     return run;
 }
 
-// `aamap ARGS` with stdout and stderr together, and its exit code.
-CommandResult aamapOutput(const std::string& args) {
-    const std::string command = fmt::format("'{}' {} 2>&1", env("AAMAP_EXE"), args);
-    CommandResult run;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) return run;
-    char buffer[4096];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) run.stderrText.append(buffer, n);
-    const int status = ::pclose(pipe);
-    run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return run;
-}
+CommandResult aamap(const std::string& args) { return runAamap(args, "2>&1 1>/dev/null"); }  // stderr only
+CommandResult aamapOutput(const std::string& args) { return runAamap(args, "2>&1"); }          // both
 
 class CliErrors : public ::testing::Test {
 protected:
