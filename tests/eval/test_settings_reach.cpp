@@ -262,6 +262,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                      becomes([](const ExperimentConfig& c, int) { return shade(c, 0).russianRoulette; }, false)};
     t["shading.roulette_depth"] = {{}, {"shading.roulette_depth=2"}, Renders::All, false,
                                    becomes([](const ExperimentConfig& c, int) { return shade(c, 0).rouletteDepth; }, 2)};
+    t["shading.hide_emitters"] = {{}, {"shading.hide_emitters=true"}, Renders::All, false,
+                                  becomes([](const ExperimentConfig& c, int) { return shade(c, 0).hideEmitters; }, true)};
     t["shading.max_specular_depth"] = {{}, {"shading.max_specular_depth=2"}, Renders::All, false,
                                        becomes([](const ExperimentConfig& c, int) { return shade(c, 0).maxSpecularDepth; }, 2)};
     t["shading.light_selection"] = {{}, {"shading.light_selection=power"}, Renders::All, false,
