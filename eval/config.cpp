@@ -145,6 +145,8 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     c.shading.russianRoulette = hv.boolean("russian_roulette");
     c.shading.rouletteDepth = hv.integer("roulette_depth");
     c.shading.maxSpecularDepth = hv.integer("max_specular_depth");
+    c.shading.hideEmitters = hv.boolean("hide_emitters");
+    c.shading.hideEmittersGiven = shading.has("hide_emitters");
     c.shading.lightSelection = hv.choice("light_selection");
     c.shading.lightSampling = hv.choice("light_sampling");
     c.shading.textureFilter = hv.choice("texture_filter");
@@ -266,6 +268,9 @@ Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = ""
         if (!s.rouletteDepthGiven) j["roulette_depth"] = "scene";
     }
     if (s.textureFilter != "anisotropic") j["texture_filter"] = s.textureFilter;  // else configs keep their hash
+    // Only when it can matter, so that other configs keep their hash: true, or given for a file
+    // that could decide otherwise (left out, the file's contents in the key decide).
+    if (s.hideEmitters || (forKey && s.hideEmittersGiven && sceneDecidesRendering(c))) j["hide_emitters"] = s.hideEmitters;
     // The cache's settings only when they differ from the defaults: other configs keep their keys.
     if (!(s.cache == ShadingConfig::Cache{}) && (!forKey || mode == "cache"))
         j["cache"] = {{"bounces", s.cache.bounces}, {"divisions", s.cache.divisions},
@@ -323,7 +328,7 @@ bool sceneDecidesRendering(const ExperimentConfig& c) {
 
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-10";  // bump when the image for the same settings and files changes (tracer or loader)
+    j["format"] = "aamap-render-11";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);

@@ -73,6 +73,8 @@ struct ShadingConfig {
     // Written in the config (or --set): else a scene file's own integrator depths win
     // (withSceneRenderSettings in eval/experiment.h).
     bool maxDepthGiven = false, rouletteDepthGiven = false;
+    // Camera rays see no emitter (Mitsuba's hide_emitters); unset: a scene file's integrator decides.
+    bool hideEmitters = false, hideEmittersGiven = false;
     int maxSpecularDepth = 8;     // direct/cache: mirror and glass bounces
     std::string lightSelection = "contribution";  // contribution | power: which light a shadow ray goes to
     std::string lightSampling = "auto";           // auto | solid_angle | area: where an area light's samples go

@@ -369,8 +369,12 @@ ExperimentConfig withSceneRenderSettings(const ExperimentConfig& config, const S
         }
         if (!applied.empty())
             notes.push_back(fmt::format("{} from {}; the config's own values win", fmt::join(applied, " and "), from));
-        if (r.hideEmitters)
-            notes.push_back(fmt::format("{} hides directly visible emitters; aamap shows them", from));
+        if (!c.shading.hideEmittersGiven && r.hideEmitters) {
+            c.shading.hideEmitters = true;
+            notes.push_back(fmt::format("shading.hide_emitters true from {} (it hides directly visible emitters); the "
+                                        "config's own value wins",
+                                        from));
+        }
     }
     if (r.sampleCount) {
         // Its author's converged sample count: a reference with fewer rays is noisier than meant.

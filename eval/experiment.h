@@ -77,8 +77,8 @@ struct PreparedScene {
 };
 PreparedScene prepareScene(const ExperimentConfig& config);  // throws InputError naming the config line
 // The config with what the scene file decides where the config is silent (a Mitsuba integrator's
-// max_depth and rr_depth), and in `notes` one sentence per render setting of the file: applied,
-// or not applied and why (its sample count, pixel filter, hidden emitters).
+// max_depth, rr_depth and hide_emitters), and in `notes` one sentence per render setting of the
+// file: applied, or not applied and why (its sample count, pixel filter).
 ExperimentConfig withSceneRenderSettings(const ExperimentConfig& config, const Scene& scene,
                                          std::vector<std::string>& notes);
 // snapshot.* (and image.exposure for the greyscale) as the Snapshot's settings.

@@ -26,6 +26,7 @@ ShadingSettings toShadingSettings(const ExperimentConfig& c, const RenderConfig&
     s.russianRoulette = c.shading.russianRoulette;
     s.rouletteDepth = c.shading.rouletteDepth;
     s.maxSpecularDepth = c.shading.maxSpecularDepth;
+    s.hideEmitters = c.shading.hideEmitters;
     s.lightSelection = c.shading.lightSelection == "power" ? LightSelection::Power : LightSelection::Contribution;
     parse(c.shading.lightSampling, s.lightSampling);  // the config reader checked the name
     s.textureFilter = c.shading.textureFilter == "none" ? TextureFilter::None : TextureFilter::Anisotropic;

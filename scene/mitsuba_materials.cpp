@@ -182,6 +182,53 @@ float MaterialBuilder::relativeIor(const Element& bsdf, float interior) {
     return in / out;
 }
 
+namespace {
+
+// What a Blend component can be: one non-delta lobe set that the tracer evaluates without a
+// texture (a Lambert or Phong colour, a rough conductor or plastic), not a blend itself.
+bool blendable(const Material& c) {
+    if (c.diffuseTexture >= 0 || c.alphaMode != AlphaMode::Opaque || !c.blend.empty()) return false;
+    if (c.model == BsdfModel::Conductor || c.model == BsdfModel::Plastic) return c.alphaU > 0.0f && c.alphaV > 0.0f;
+    return c.model == BsdfModel::Classic && c.kind == MaterialKind::Diffuse;
+}
+
+}  // namespace
+
+Material MaterialBuilder::blend(const Element& bsdf, int depth) {
+    std::vector<const Element*> parts;
+    for (const Element& c : bsdf.children)
+        if (c.tag == "bsdf" || (c.tag == "ref" && resolve(c).tag == "bsdf")) parts.push_back(&c);
+    if (parts.size() != 2) fail(bsdf, fmt::format("blendbsdf needs two nested BSDFs, not {}", parts.size()));
+    float w = 0.5f;
+    const Element* weight = bsdf.property("weight");
+    if (weight == nullptr) fail(bsdf, "blendbsdf needs a weight");
+    if (weight->tag == "texture" || weight->tag == "ref") {
+        warnings_.once("blend-texture", fmt::format("{}: a textured blendbsdf weight is replaced by 0.5", at(*weight)));
+    } else {
+        w = floatProperty(bsdf, "weight", 0.5f);
+        if (!(w >= 0.0f && w <= 1.0f)) fail(*weight, fmt::format("blendbsdf weight {} is not in [0, 1]", w));
+    }
+    Material a = convert(*parts[0], depth + 1), b = convert(*parts[1], depth + 1);
+    if (!blendable(a) || !blendable(b)) {
+        warnings_.once("blendbsdf", fmt::format("{}: a blendbsdf of a smooth, textured, masked or blended BSDF is "
+                                                "approximated by the component of larger weight",
+                                                at(bsdf)));
+        return w > 0.5f ? b : a;
+    }
+    Material m;
+    m.model = BsdfModel::Blend;
+    m.kind = MaterialKind::Diffuse;
+    m.blendWeight = w;
+    // The Snapshot's stand-in: the components' Lambert and Phong parameters mixed.
+    m.kd = (1.0f - w) * a.kd + w * b.kd;
+    m.ks = (1.0f - w) * a.ks + w * b.ks;
+    m.ns = glm::max(a.ns, b.ns);
+    // Each component is black from its own back; a mixed pair is one-sided only when both are.
+    m.oneSided = a.oneSided && b.oneSided;
+    m.blend = {std::move(a), std::move(b)};
+    return m;
+}
+
 const Element& MaterialBuilder::resolve(const Element& e) const {
     if (e.tag != "ref") return e;
     const auto it = doc_.byId.find(e.id());
@@ -274,9 +321,11 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
     } else if (type == "bumpmap" || type == "normalmap") {
         approximated(fmt::format("{} is ignored; the nested BSDF is used without it", type));
         m = convert(*nested(true), depth + 1);
-    } else if (type == "coating" || type == "roughcoating" || type == "blendbsdf") {
+    } else if (type == "coating" || type == "roughcoating") {
         approximated(fmt::format("{} is approximated by its (first) nested BSDF", type));
         m = convert(*nested(true), depth + 1);
+    } else if (type == "blendbsdf") {
+        m = blend(bsdf, depth);
     } else if (type == "mask") {
         m = convert(*nested(true), depth + 1);
         m.alphaMode = AlphaMode::Mask;

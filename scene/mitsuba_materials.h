@@ -5,11 +5,14 @@
 // roughconductor, plastic and roughplastic (Material::model, docs/tracer.md "BSDFs"; the Snapshot
 // shows them through kd, ks, ns: Lambert plus a Phong lobe, ns = 2 / alpha^2 - 2, ks = F0).
 // Their unknown parameters are warnings, out-of-range roughness or indices errors (file:line).
+// blendbsdf of two rough or diffuse BSDFs with a float weight is exact in the tracer (BsdfModel::Blend).
 // roughdielectric is a Glass with a microfacet interface that path mode samples (the direct and
 // cache modes and the Snapshot see it smooth); thindielectric is exact (a thin Glass sheet).
 // What it approximates (one warning per kind, naming the approximation):
 // - bumpmap/normalmap: ignored (the nested BSDF is used); twosided: the nested BSDF (aamap shades
-//   both sides); coating/roughcoating and blendbsdf: the (first) nested BSDF; null: fully cut out;
+//   both sides); coating/roughcoating: the (first) nested BSDF; blendbsdf of a smooth, textured or
+//   masked BSDF (or with a textured weight): the component of larger weight (weight 0.5); null:
+//   fully cut out;
 // - phong/ward: kd plus a Phong lobe.
 // An unknown BSDF type is an error (file:line).
 #include <array>
@@ -39,6 +42,9 @@ public:
 
 private:
     Material convert(const Element& bsdf, int depth);
+    // blendbsdf: the two components and the weight (Material::blend), or, where the tracer cannot
+    // mix them, the component of larger weight with a warning.
+    Material blend(const Element& bsdf, int depth);
     // A colour or a bitmap texture property: sets kd (or ks) and, for a texture, the texture index.
     glm::vec3 colourOrTexture(const Element& bsdf, const char* name, glm::vec3 fallback, int* texture);
     int bitmap(const Element& texture, bool coverage);

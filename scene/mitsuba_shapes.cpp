@@ -12,6 +12,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/error.h"
+#include "scene/mitsuba_serialized.h"
 #include "scene/obj_loader.h"
 #include "scene/texture_loader.h"
 
@@ -80,6 +81,17 @@ ShapeMesh plyMesh(const Element& shape) {
     if (m.normals.size() != m.positions.size()) m.normals.clear();
     if (m.uvs.size() != m.positions.size()) m.uvs.clear();
     return m;
+}
+
+ShapeMesh serializedMesh(const Element& shape) {
+    const fs::path path = meshFile(shape);
+    const int index = integerProperty(shape, "shape_index", 0);
+    if (index < 0) fail(shape, fmt::format("shape_index {} is negative", index));
+    try {
+        return readSerialized(path, index, booleanProperty(shape, "face_normals", false));
+    } catch (const InputError& e) {
+        fail(shape, fmt::format("mesh '{}': {}", path.string(), e.problem()));
+    }
 }
 
 // uv of the corners corner, +du, +du+dv, +dv, with v = 0 at the image's top.
@@ -184,11 +196,12 @@ ShapeMesh shapeGeometry(const Element& shape, Warnings&) {
     const std::string type = shape.type();
     if (type == "obj") return objMesh(shape);
     if (type == "ply") return plyMesh(shape);
+    if (type == "serialized") return serializedMesh(shape);
     if (type == "rectangle") return rectangle();
     if (type == "cube") return cube();
     if (type == "disk") return disk();
     if (type == "sphere") return sphere(shape);
-    fail(shape, fmt::format("unknown shape type '{}' (supported: obj, ply, rectangle, cube, disk, sphere, "
+    fail(shape, fmt::format("unknown shape type '{}' (supported: obj, ply, serialized, rectangle, cube, disk, sphere, "
                             "shapegroup, instance)", type));
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Mitsuba shapes to triangles. Meshes: obj (scene/obj_loader.h; its MTL materials are not used,
-// the shape's BSDF is) and ply (binary or ASCII, through Assimp). Built-in shapes, in their local
+// the shape's BSDF is), ply (binary or ASCII, through Assimp) and serialized (scene/mitsuba_serialized.h;
+// shape_index picks the mesh). Built-in shapes, in their local
 // frame before to_world: rectangle [-1,1]^2 at z = 0 facing +Z; cube [-1,1]^3; disk of radius 1
 // at z = 0 facing +Z; sphere (center, radius). Curved shapes are tessellated so that no point of
 // the mesh lies farther than kTessellationError x radius from the true surface; the disk keeps
@@ -26,7 +27,7 @@ struct ShapeMesh {
     std::vector<glm::uvec3> triangles;
 };
 
-// The local-space triangles of a shape of type obj, ply, rectangle, cube, disk or sphere. Throws
+// The local-space triangles of a shape of type obj, ply, serialized, rectangle, cube, disk or sphere. Throws
 // InputError (the shape's file:line) for a missing or unreadable mesh file or a bad parameter.
 ShapeMesh shapeGeometry(const Element& shape, Warnings& warnings);
 

@@ -32,6 +32,7 @@ enum class BsdfModel : std::uint8_t {
     Conductor,  // conductor / roughconductor: complex-IOR Fresnel, optional microfacet roughness
     Plastic,    // plastic / roughplastic: dielectric coating over a diffuse base
     Dielectric, // roughdielectric: microfacet reflection and refraction (kind Glass)
+    Blend,      // blendbsdf: (1 - blendWeight) x blend[0] + blendWeight x blend[1] (kind Diffuse)
 };
 
 // Microfacet normal distributions (tracer/microfacet.h).
@@ -68,6 +69,10 @@ struct Material {
     glm::vec3 specularReflectance{1.0f}; // Conductor, Plastic, Dielectric: tint of the specular lobes
     bool nonlinear = false;              // Plastic: the diffuse base's colour shifts with internal scattering
     // Plastic and Dielectric use `ior` (interior over exterior) and Plastic `kd` / `diffuseTexture`.
+    // Blend: its two components, each non-delta, untextured and not itself a blend; kd, ks, ns
+    // are the Snapshot's mix of theirs.
+    std::vector<Material> blend;
+    float blendWeight = 0.5f;
 };
 
 // Whether a material can cut holes: Mask, or Blend (treated as a mask at 0.5).
@@ -158,7 +163,7 @@ struct SceneRenderSettings {
     std::string at;                 // "file:line" of the integrator
     std::optional<int> maxDepth;    // longest path in segments; unset: unlimited (Mitsuba's -1)
     std::optional<int> rrDepth;     // Russian roulette from this depth on
-    bool hideEmitters = false;      // directly visible emitters rendered black
+    bool hideEmitters = false;      // camera rays see no emission and no environment
     std::optional<int> sampleCount;  // the sampler's samples per pixel
     std::string filter;             // the film's rfilter type; "" when the file names none
 };

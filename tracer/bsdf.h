@@ -126,11 +126,16 @@ inline glm::vec3 plasticBase(const ShadingMaterial& m, const glm::vec3& albedo) 
     return m.nonlinear ? albedo / (1.0f - albedo * m.internalReflectance) : albedo / (1.0f - m.internalReflectance);
 }
 
+inline Eval evalBlend(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi);
+inline bool sampleBlend(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
+                        glm::vec3& wi);
+
 // Non-delta lobes of the Mitsuba models and the pdf of sampleModel choosing wi. A smooth
 // plastic's only non-delta lobe is its base: its pdf is diffusePick cos / pi, diffusePick the
 // caller's probability of sampling it (path mode: 1 - deltaPick; direct mode samples it alone).
 inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
                       const glm::vec3& wi, float diffusePick = 1.0f) {
+    if (m.model == BsdfModel::Blend) return evalBlend(m, n, wo, wi);
     const Frame frame(n);
     const glm::vec3 lo = frame.toLocal(wo), li = frame.toLocal(wi);
     Eval e{glm::vec3(0.0f), 0.0f};
@@ -160,6 +165,7 @@ inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const g
 // Samples evalModel's lobes: lobeU picks coating or base (plastic), u places the direction.
 inline bool sampleModel(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
                         glm::vec3& wi) {
+    if (m.model == BsdfModel::Blend) return sampleBlend(m, n, wo, lobeU, u, wi);
     const Frame frame(n);
     const glm::vec3 lo = frame.toLocal(wo);
     if (!(lo.z > 0.0f)) return false;
@@ -376,6 +382,44 @@ inline bool sampleSmooth(const ShadingMaterial& m, const glm::vec3& n, const glm
     glm::vec3 t, b;
     basis(r, t, b);
     wi = (sinA * std::cos(phi)) * t + (sinA * std::sin(phi)) * b + cosA * r;
+    return glm::dot(wi, n) > 0.0f;
+}
+
+// ---- Blend (Mitsuba's blendbsdf): the components' BSDFs and pdfs mixed by the weight, and
+// sampling that picks a component with its weight (so the mixed pdf is sampleBlend's density).
+
+// A component's own choice between its Lambert and Phong lobes (Classic glossy), else 1.
+inline float componentDiffusePick(const ShadingMaterial& c) {
+    return c.model == BsdfModel::Classic && c.glossy ? c.diffuseWeight : 1.0f;
+}
+
+inline Eval evalBlend(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, const glm::vec3& wi) {
+    Eval e{glm::vec3(0.0f), 0.0f};
+    const float cosI = glm::dot(n, wi);
+    if (!(cosI > 0.0f) || !(glm::dot(n, wo) > 0.0f)) return e;
+    const float w = m.blendWeight;
+    const ShadingMaterial* parts[2] = {m.blendA, m.blendB};
+    const float weights[2] = {1.0f - w, w};
+    for (int k = 0; k < 2; ++k) {
+        if (!(weights[k] > 0.0f)) continue;
+        const ShadingMaterial& c = *parts[k];
+        if (!c.diffuse && !c.glossy) continue;  // black
+        const Eval ec = evalSmooth(c, c.kd, n, wo, wi, cosI, componentDiffusePick(c));
+        e.f += weights[k] * ec.f;
+        e.pdf += weights[k] * ec.pdf;
+    }
+    return e;
+}
+
+inline bool sampleBlend(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
+                        glm::vec3& wi) {
+    const float w = m.blendWeight;
+    // lobeU picks the component, then, rescaled to [0, 1), the component's own lobe.
+    const bool second = lobeU >= 1.0f - w;
+    const float rest = second ? (lobeU - (1.0f - w)) / w : lobeU / (1.0f - w);
+    const ShadingMaterial& c = second ? *m.blendB : *m.blendA;
+    if (!c.diffuse && !c.glossy) return false;
+    if (!sampleSmooth(c, n, wo, std::min(rest, 0.99999994f), u, wi)) return false;
     return glm::dot(wi, n) > 0.0f;
 }
 

@@ -156,6 +156,17 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
         s.diffuseWeight = d + g > 0.0f ? d / (d + g) : 0.0f;
     }
     if (mat.model == BsdfModel::Conductor || mat.model == BsdfModel::Plastic) convertModel(mat, s);
+    if (mat.model == BsdfModel::Blend && mat.blend.size() == 2) {
+        // Its components scatter; kd (their mix) is only the albedo the cache mode's Lambert
+        // stand-in reads. One non-delta lobe to the integrators: diffuse, never glossy.
+        s.model = BsdfModel::Blend;
+        s.kind = MaterialKind::Diffuse;
+        s.diffuse = true;
+        s.glossy = false;
+        s.diffuseWeight = 1.0f;
+        s.texture = -1;
+        s.blendWeight = std::clamp(mat.blendWeight, 0.0f, 1.0f);
+    }
     if (mat.model == BsdfModel::Dielectric && mat.kind == MaterialKind::Glass && !mat.thin) {
         // roughdielectric: a Glass whose interface has microfacets (path mode samples them; the
         // direct and cache modes' specular branches see the smooth interface).
@@ -190,6 +201,17 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
 
     materials_.reserve(scene.materials.size());
     for (const Material& mat : scene.materials) materials_.push_back(convertMaterial(mat, scene.textures.size()));
+    // Blend components, converted as materials of their own; the pointers are taken once the
+    // vector holds them all (it never grows after).
+    for (const Material& mat : scene.materials)
+        if (mat.model == BsdfModel::Blend)
+            for (const Material& part : mat.blend) blendComponents_.push_back(convertMaterial(part, 0));
+    for (std::size_t i = 0, next = 0; i < scene.materials.size(); ++i) {
+        if (scene.materials[i].model != BsdfModel::Blend) continue;
+        materials_[i].blendA = &blendComponents_[next];
+        materials_[i].blendB = &blendComponents_[next + 1];
+        next += 2;
+    }
     std::vector<char> used(materials_.size(), 0);
     for (std::uint32_t id : m.materialIds) used[id] = 1;
     const bool hasUvs = !m.uvs.empty() && m.uvs.size() == m.positions.size();

@@ -60,6 +60,11 @@ struct ShadingMaterial {
     // Rough plastic: the coating's transmittance (1 - its directional albedo) at cos = i / (N - 1).
     static constexpr int kTransmittanceRes = 64;
     std::array<float, kTransmittanceRes> transmittance{};
+    // Blend: the two components (owned by the EmbreeScene, which cannot be copied) and the
+    // second one's weight.
+    const ShadingMaterial* blendA = nullptr;
+    const ShadingMaterial* blendB = nullptr;
+    float blendWeight = 0.5f;
 };
 
 struct Triangle {
@@ -142,6 +147,7 @@ private:
     SceneFeatures features_;
     std::vector<Triangle> triangles_;
     std::vector<ShadingMaterial> materials_;
+    std::vector<ShadingMaterial> blendComponents_;  // what Blend materials point to, two each
     std::vector<glm::vec3> vertexNormals_;  // 3 per triangle, empty without normals
     std::vector<glm::vec2> vertexUvs_;      // 3 per triangle, only when a used material is textured
                                             // or alpha-tested with a texture

@@ -90,7 +90,7 @@ bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, Surfac
 glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays,
                               float spread) const {
     SurfaceHit hit;
-    if (!intersect(origin, dir, hit, rays.primary, cameraCone(spread))) return escaped(dir);
+    if (!intersect(origin, dir, hit, rays.primary, cameraCone(spread))) return escapedCamera(dir);
     if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
     return shadeDirect(hit, sampler, 0, 0, 1.0f, rays);
 }
@@ -98,7 +98,7 @@ glm::vec3 Integrator::primary(const glm::vec3& origin, const glm::vec3& dir, con
 glm::vec3 Integrator::primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler,
                                      RayCounts& rays, float spread) const {
     ++rays.primary;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return escaped(dir);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return escapedCamera(dir);
     SurfaceHit hit;
     fillHit(rh.hit.primID, rh.hit.u, rh.hit.v, rh.ray.tfar, dir, cameraCone(spread), hit);
     if (shading_.mode == ShadingMode::Path) return tracePath(hit, sampler, rays);
@@ -125,8 +125,10 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
                                   RayCounts& rays) const {
     const ShadingMaterial& m = *hit.material;
     glm::vec3 L(0.0f);
-    // One-sided emitters: the front emits Ke; both sides also reflect like their material.
-    if (m.emissive && hit.front) L += m.ke;
+    // One-sided emitters: the front emits Ke; both sides also reflect like their material. The
+    // camera's own hit (depth, specular 0 under a primary ray) hides it when emitters are hidden.
+    const bool cameraHit = depth == 0 && specular == 0 && weight > 0.0f;
+    if (m.emissive && hit.front && !(cameraHit && shading_.hideEmitters)) L += m.ke;
     if (m.oneSided && !hit.front) return L;  // a one-sided BSDF's back reflects nothing
     if (m.diffuse || m.glossy) L += directLight(hit, sampler, depth, rays);
     if (m.diffuse && weight > 0.0f && indirect_ && shading_.mode == ShadingMode::Cache)

@@ -160,6 +160,10 @@ public:
     glm::vec3 escaped(const glm::vec3& dir) const {
         return lights_.environment ? lights_.environment->radiance(dir) : glm::vec3(0.0f);
     }
+    // A camera ray's escape: black when emitters are hidden from the camera.
+    glm::vec3 escapedCamera(const glm::vec3& dir) const {
+        return shading_.hideEmitters ? glm::vec3(0.0f) : escaped(dir);
+    }
 
     int areaLightGrid() const { return lightGrid_; }  // m: m x m samples per area light per hit
     const ShadingSettings& settings() const { return shading_; }

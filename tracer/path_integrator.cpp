@@ -148,7 +148,7 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
     const SurfaceHit& hit = s.hit;
     const ShadingMaterial& m = *hit.material;
     const int depth = s.depth;
-    if (m.emissive && hit.front) {
+    if (m.emissive && hit.front && !(depth == 0 && shading_.hideEmitters)) {
         float w = 1.0f;
         const std::int32_t area = lights_.areaOfTriangle.empty() ? -1 : lights_.areaOfTriangle[hit.primitive];
         if (!s.specularBefore && area >= 0) {
@@ -300,7 +300,7 @@ void Integrator::primaryPaths(const RayPacket<kPathPacket>& primaries, int count
     for (int i = 0; i < count; ++i) {
         ++rays.primary;
         if (primaries.missed(i)) {
-            out[i] = escaped(primaries.dir[i]);
+            out[i] = escapedCamera(primaries.dir[i]);
             continue;
         }
         fillHit(primaries, i, cameraCone(spreads[i]), s[i].hit);

@@ -13,6 +13,9 @@ const std::vector<ParamSpec>& shadingParams() {
         boolParam("russian_roulette", true, "path"),
         intParam("roulette_depth", 1, kMaxPathDepth, 5,
                  "path: roulette from this segment on; unset: a Mitsuba scene file's integrator decides"),
+        boolParam("hide_emitters", false,
+                  "camera rays see no emitter: area lights add no emission and the environment is black where "
+                  "seen directly (reflections keep both); unset: a Mitsuba scene file's integrator decides"),
         intParam("max_specular_depth", 0, 1024, 8, "direct/cache: mirror and glass bounces"),
         choiceParam("light_selection", {"contribution", "power"}, "which light a shadow ray goes to"),
         choiceParam("light_sampling", {"auto", "solid_angle", "area"},

@@ -45,6 +45,10 @@ struct ShadingSettings {
     int rouletteDepth = 5;        // Mitsuba's rr_depth default
     // Direct/Cache: mirror and glass bounces followed per primary ray (glass splits into both).
     int maxSpecularDepth = 8;
+    // Camera rays see no emitter, as Mitsuba's hide_emitters: a camera ray's hit adds no emission
+    // (the surface still reflects) and a camera ray that escapes is black. Paths that bounce first
+    // (a mirror's reflection of the light) see emitters as always.
+    bool hideEmitters = false;
     // Cache: the irradiance cache (-ab -ad -as -aa -ar; bounces 0 = no cache, shades as Direct).
     // Its pre-pass takes the first hits of one camera ray per cacheGridStep x cacheGridStep pixels
     // (at least a 32 x 32 grid, or the image size if smaller). docs/irradiance-cache.md, "Wiring".

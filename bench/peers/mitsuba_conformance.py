@@ -4,7 +4,8 @@
 Each scene in bench/peers/conformance/ exercises one feature with tiny procedural geometry
 (constant sky, a rotated and scaled envmap, a room lit through an opening, dielectric and
 thindielectric panes, directional, rectangle and sphere emitters, bitmap textures in sRGB and raw,
-a Mitsuba 0.5 file, and the materials of furnished interiors). Both renderers render it at the same
+a Mitsuba 0.5 file, the materials of furnished interiors, serialized meshes with hidden emitters,
+and blendbsdf). Both renderers render it at the same
 size, spp and path depth (the file's max_depth) with a box pixel filter: Mitsuba 3 in llvm_ad_rgb,
 aamap with bench_tracer in path mode. One line per scene: the mean linear RGB of each, aamap /
 Mitsuba per channel, the LDR (clamped sRGB, 0-255) mean absolute difference, the LDR-FLIP mean
@@ -57,6 +58,8 @@ SCENES = {
     "p_roughconductor_aniso": (64, 256),
     "q_beckmann_plastic_gold": (64, 256),
     "r_roughdielectric": (64, 1024),
+    "s_serialized_hidden_sky": (64, 256),
+    "t_blendbsdf": (64, 256),
 }
 
 # The sky's sun, in world space: up 38.7 degrees, towards -z (through the rooms' window), and the
@@ -109,6 +112,78 @@ def make_assets(mi, force):
         inside = (x / 0.9) ** 2 + (y / 0.45) ** 2 < 1.0  # an ellipse
         inside &= ~((np.abs(y) < 0.04) & (x > -0.8))      # a cut along the vein
         Image.fromarray((inside * 255).astype(np.uint8), "L").save(leaf)
+    make_serialized(force)
+
+
+def write_serialized(path, meshes):
+    """Mitsuba's .serialized format, version 4: per mesh the header (0x041C, 4) and a zlib stream of
+    flags, name, counts, positions, optional normals and uvs, and triangles; then every mesh's
+    offset and the count. meshes: dicts of numpy arrays p (V x 3), n (V x 3 or None), uv (V x 2 or
+    None), f (F x 3), and double (bool)."""
+    import struct
+    import zlib
+
+    import numpy as np
+
+    out, offsets = bytearray(), []
+    for m in meshes:
+        offsets.append(len(out))
+        out += struct.pack("<HH", 0x041C, 4)
+        dt = "<f8" if m["double"] else "<f4"
+        flags = (0x1 if m["n"] is not None else 0) | (0x2 if m["uv"] is not None else 0) | (0x2000 if m["double"] else 0x1000)
+        raw = struct.pack("<I", flags) + b"mesh\0" + struct.pack("<QQ", len(m["p"]), len(m["f"]))
+        for key in ("p", "n", "uv"):
+            if m[key] is not None:
+                raw += np.ascontiguousarray(m[key], dtype=dt).tobytes()
+        raw += np.ascontiguousarray(m["f"], dtype="<u4").tobytes()
+        out += zlib.compress(raw)
+    for o in offsets:
+        out += struct.pack("<Q", o)
+    out += struct.pack("<I", len(meshes))
+    with open(path, "wb") as f:
+        f.write(bytes(out))
+
+
+def make_serialized(force):
+    """meshes.serialized: mesh 0 a coarse sphere without normals (both renderers compute them),
+    single precision; mesh 1 a torus with normals and uvs, double precision."""
+    import numpy as np
+
+    path = os.path.join(SCENES_DIR, "meshes.serialized")
+    if not force and os.path.exists(path):
+        return
+
+    def grid(nu, nv, point, normal):
+        u, v = np.meshgrid(np.arange(nu + 1) / nu, np.arange(nv + 1) / nv)
+        p = point(u.ravel(), v.ravel())
+        n = normal(u.ravel(), v.ravel()) if normal else None
+        idx = np.arange((nu + 1) * (nv + 1)).reshape(nv + 1, nu + 1)
+        a, b, c, d = idx[:-1, :-1].ravel(), idx[:-1, 1:].ravel(), idx[1:, 1:].ravel(), idx[1:, :-1].ravel()
+        f = np.concatenate([np.stack([a, b, c], 1), np.stack([a, c, d], 1)])
+        # Wound counter-clockwise seen from outside (away from the centre): the front is outside.
+        e = np.cross(p[f[:, 1]] - p[f[:, 0]], p[f[:, 2]] - p[f[:, 0]])
+        outward = np.einsum("ij,ij->i", e, normal(u.ravel(), v.ravel())[f[:, 0]] if normal else p[f[:, 0]])
+        f[outward < 0] = f[outward < 0][:, [0, 2, 1]]
+        return p, n, np.stack([u.ravel(), v.ravel()], 1), f
+
+    def sphere_point(u, v):
+        th, ph = np.pi * v, 2 * np.pi * u
+        return np.stack([np.sin(th) * np.cos(ph), np.cos(th), -np.sin(th) * np.sin(ph)], 1)
+
+    sp, _, _, sf = grid(12, 8, sphere_point, None)
+    R, r = 0.6, 0.25
+
+    def torus_point(u, v):
+        a, b = 2 * np.pi * u, -2 * np.pi * v
+        return np.stack([(R + r * np.cos(b)) * np.cos(a), r * np.sin(b), -(R + r * np.cos(b)) * np.sin(a)], 1)
+
+    def torus_normal(u, v):
+        a, b = 2 * np.pi * u, -2 * np.pi * v
+        return np.stack([np.cos(b) * np.cos(a), np.sin(b), -np.cos(b) * np.sin(a)], 1)
+
+    tp, tn, tuv, tf = grid(48, 24, torus_point, torus_normal)
+    write_serialized(path, [dict(p=sp, n=None, uv=None, f=sf, double=False),
+                            dict(p=tp, n=tn, uv=tuv, f=tf, double=True)])
 
 
 def scene_depth(path):

@@ -69,7 +69,7 @@ def film_aspect(scene):
 
 def mitsuba_scene_file(scene, size, spp, depth, rfilter, out_dir, height=None):
     """The scene with the film size (size x height, default square), sample count, path depth and
-    pixel filter replaced."""
+    pixel filter replaced (the integrator becomes `path`; its hide_emitters stays)."""
     tree = ET.parse(scene)
     root = tree.getroot()
     integrator = root.find("integrator")
@@ -77,7 +77,9 @@ def mitsuba_scene_file(scene, size, spp, depth, rfilter, out_dir, height=None):
         integrator = ET.SubElement(root, "integrator")
     integrator.attrib["type"] = "path"
     for child in list(integrator):
-        integrator.remove(child)
+        # hide_emitters stays: aamap follows the file's, so both must render it.
+        if child.attrib.get("name") not in ("hide_emitters", "hideEmitters"):
+            integrator.remove(child)
     ET.SubElement(integrator, "integer", name="max_depth", value=str(depth))
     sensor = root.find("sensor")
     if sensor is None:

@@ -116,6 +116,7 @@ int main(int argc, char** argv) {
     settings.shading.cache = cache;
     settings.shading.cacheGridStep = gridStep;
     settings.shading.maxDepth = maxDepth;
+    settings.shading.hideEmitters = scene.render.hideEmitters;  // a Mitsuba file's integrator's, as its view
     aamap::parse(filter, settings.filter.type);
     aamap::parse(filterMode, settings.filter.mode);
     aamap::StrategySettings strategy;

@@ -95,6 +95,7 @@ std::vector<KeyInput> inputs() {
     set("ShadingMaxDepth", "shading.max_depth=2");
     set("ShadingRussianRoulette", "shading.russian_roulette=false");
     set("ShadingRouletteDepth", "shading.roulette_depth=3");
+    set("ShadingHideEmitters", "shading.hide_emitters=true");
     set("ShadingMaxSpecularDepth", "shading.max_specular_depth=1");
     set("ShadingLightSelection", "shading.light_selection=power");
     set("ShadingLightSampling", "shading.light_sampling=area");

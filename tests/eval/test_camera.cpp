@@ -149,7 +149,8 @@ TEST_F(Files, MitsubaIntegratorDecidesTheDepthsTheConfigLeavesOut) {
     };
     EXPECT_TRUE(noted("shading.max_depth 65 and shading.roulette_depth 9 from the scene file's <integrator "
                       "type=\"path\">"));
-    EXPECT_TRUE(noted("hides directly visible emitters"));
+    EXPECT_TRUE(effective.shading.hideEmitters);
+    EXPECT_TRUE(noted("shading.hide_emitters true from the scene file's <integrator type=\"path\">"));
     EXPECT_TRUE(noted("asks 64 samples per pixel"));
     EXPECT_TRUE(noted("reference.rpp: 64 would match the file"));  // the reference traces the renders' 1
     // The film's filter where the config names none, said so; the key follows the file.
@@ -175,6 +176,12 @@ TEST_F(Files, MitsubaIntegratorDecidesTheDepthsTheConfigLeavesOut) {
     // The key follows the file when the file decides: an explicit depth is another render.
     const ExperimentConfig explicitDepth = loadConfig(cfg, {"shading.max_depth=65"});
     EXPECT_NE(renderKey(silent, silent.renders[0]), renderKey(explicitDepth, explicitDepth.renders[0]));
+    // The config's hide_emitters wins over the file's, and is another render than the file's choice.
+    const ExperimentConfig shown = loadConfig(cfg, {"shading.hide_emitters=false"});
+    notes.clear();
+    EXPECT_FALSE(withSceneRenderSettings(shown, p.scene, notes).shading.hideEmitters);
+    EXPECT_FALSE(noted("hide_emitters"));
+    EXPECT_NE(renderKey(silent, silent.renders[0]), renderKey(shown, shown.renders[0]));
 
     // Without an integrator the config's defaults stand, unnoted.
     write("plain.xml", "<scene version=\"3.0.0\"><shape type=\"cube\"/></scene>\n");

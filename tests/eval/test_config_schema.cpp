@@ -53,6 +53,7 @@ const std::map<std::string, Field>& fields() {
         {"shading.max_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxDepth); }},
         {"shading.russian_roulette", [](const ExperimentConfig& c) { return ParamValue(c.shading.russianRoulette); }},
         {"shading.roulette_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.rouletteDepth); }},
+        {"shading.hide_emitters", [](const ExperimentConfig& c) { return ParamValue(c.shading.hideEmitters); }},
         {"shading.max_specular_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxSpecularDepth); }},
         {"shading.light_selection", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSelection); }},
         {"shading.light_sampling", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSampling); }},

@@ -262,6 +262,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                      becomes([](const ExperimentConfig& c, int) { return shade(c, 0).russianRoulette; }, false)};
     t["shading.roulette_depth"] = {{}, {"shading.roulette_depth=2"}, Renders::All, false,
                                    becomes([](const ExperimentConfig& c, int) { return shade(c, 0).rouletteDepth; }, 2)};
+    t["shading.hide_emitters"] = {{}, {"shading.hide_emitters=false"}, Renders::All, false,
+                                  becomes([](const ExperimentConfig& c, int) { return shade(c, 0).hideEmitters; }, false)};
     t["shading.max_specular_depth"] = {{}, {"shading.max_specular_depth=2"}, Renders::All, false,
                                        becomes([](const ExperimentConfig& c, int) { return shade(c, 0).maxSpecularDepth; }, 2)};
     t["shading.light_selection"] = {{}, {"shading.light_selection=power"}, Renders::All, false,
@@ -429,7 +431,7 @@ protected:
                            "camera: {position: [0, 1, 3.9], look_at: [0, 1, 0]}\n"
                            "snapshot: {map: combined}\n"
                            "image: {filter: gaussian}\n"  // the filter keys appear only when not the box
-                           "shading: {texture_filter: none}\n"  // likewise, when not the default
+                           "shading: {texture_filter: none, hide_emitters: true}\n"  // likewise, when not the default
                            "light_file: lights.yaml\n"
                            "timing: {repeats: 2}\n"
                            "renders:\n  - {strategy: uniform, rpp: 4}\n  - {strategy: aamap, rpp: 4}\n";

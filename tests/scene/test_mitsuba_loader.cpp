@@ -1,4 +1,5 @@
 // Mitsuba scene import: small scenes written here, checked against what the file says.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -446,6 +447,34 @@ TEST_F(Mitsuba, PlyAsciiAndBinaryThroughAssimp) {
     EXPECT_NEAR(triangleArea(s.mesh, 0), 0.5f, 1e-6f);
     EXPECT_NEAR(triangleArea(s.mesh, 1), 2.0f, 1e-6f);
     expectVec(triangleNormal(s.mesh, 1), {0, 0, 1});
+}
+
+TEST_F(Mitsuba, BlendBsdfKeepsBothComponentsOrFallsBackWithAWarning) {
+    MitsubaLoadReport report;
+    const Scene s = load(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.25"/>
+  <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.4, 0.2"/></bsdf>
+  <bsdf type="roughconductor"><float name="alpha" value="0.3"/></bsdf></bsdf></shape>
+<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="0.75"/>
+  <bsdf type="diffuse"/><bsdf type="conductor"/></bsdf></shape>
+)",
+                         &report);
+    ASSERT_EQ(s.materials.size(), 2u);
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.model, BsdfModel::Blend);
+    ASSERT_EQ(m.blend.size(), 2u);
+    EXPECT_FLOAT_EQ(m.blendWeight, 0.25f);
+    expectVec(m.blend[0].kd, {0.8f, 0.4f, 0.2f});
+    EXPECT_EQ(m.blend[1].model, BsdfModel::Conductor);
+    expectVec(m.kd, {0.6f, 0.3f, 0.15f});  // the Snapshot's mix (the conductor has no kd)
+    // A smooth conductor has a delta lobe: the heavier component stands in, with a warning.
+    EXPECT_EQ(s.materials[1].model, BsdfModel::Conductor);
+    EXPECT_TRUE(s.materials[1].blend.empty());
+    EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(),
+                            [](const std::string& w) { return w.find("blendbsdf") != std::string::npos; }));
+    EXPECT_NE(error(R"(<shape type="cube"><bsdf type="blendbsdf"><float name="weight" value="1.5"/>
+  <bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf></shape>
+)").find("weight 1.5"),
+              std::string::npos);
 }
 
 TEST_F(Mitsuba, LoadSceneDispatchesXml) {

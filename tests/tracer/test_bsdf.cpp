@@ -332,6 +332,54 @@ TEST(Bsdf, WhiteRoughConductorLosesOnlyMultipleScattering) {
     }
 }
 
+// Mitsuba's blendbsdf: a Lambert and a rough conductor mixed by the weight. Its value and pdf
+// are the weighted sums of the components' (so its albedo is theirs mixed, exactly), sampling
+// picks a component with its weight (the chi-square test of the mixed pdf), and the quadrature
+// and importance-sampled albedos agree.
+ShadingMaterial blendOf(const ShadingMaterial& a, const ShadingMaterial& b, float w) {
+    ShadingMaterial m;
+    m.model = BsdfModel::Blend;
+    m.diffuse = true;
+    m.blendA = &a;
+    m.blendB = &b;
+    m.blendWeight = w;
+    return m;
+}
+
+TEST(Bsdf, BlendIsTheWeightedMixOfItsComponents) {
+    ShadingMaterial lambert;
+    lambert.kd = glm::vec3(0.8f, 0.5f, 0.2f);
+    lambert.diffuse = true;
+    const ShadingMaterial metal = conductor(MicrofacetType::GGX, 0.2f, 0.2f);
+    for (float w : {0.0f, 0.3f, 1.0f}) {
+        const ShadingMaterial m = blendOf(lambert, metal, w);
+        for (float theta : {10.0f, 50.0f, 80.0f}) {
+            const glm::vec3 wo = viewAt(theta, 0.7f);
+            for (int i = 0; i < 16; ++i) {
+                const glm::vec3 wi = fromAngles((static_cast<float>(i) + 0.5f) / 16.0f, 0.9f * static_cast<float>(i));
+                const bsdf::Eval a = evalAsPath(lambert, wo, wi), b = evalAsPath(metal, wo, wi), e = evalAsPath(m, wo, wi);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(e.f[c], (1.0f - w) * a.f[c] + w * b.f[c], 1e-5f * (1.0f + b.f[c]));
+                EXPECT_NEAR(e.pdf, (1.0f - w) * a.pdf + w * b.pdf, 1e-5f * (1.0f + b.pdf));
+            }
+            const glm::vec3 mixed = albedo(m, wo, 150), parts = (1.0f - w) * albedo(lambert, wo, 150) + w * albedo(metal, wo, 150);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(mixed[c], parts[c], 1e-4f);
+            const glm::vec3 sampled = albedoSampled(m, wo, 100000);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(sampled[c], mixed[c], 0.01f) << "w " << w << " theta " << theta;
+            EXPECT_LE(mixed.x, 1.0f);
+        }
+    }
+}
+
+TEST(Bsdf, BlendSamplingMatchesItsPdf) {
+    ShadingMaterial lambert;
+    lambert.kd = glm::vec3(0.6f);
+    lambert.diffuse = true;
+    const ShadingMaterial metal = conductor(MicrofacetType::Beckmann, 0.15f, 0.4f);
+    const ShadingMaterial coat = plastic(MicrofacetType::GGX, 0.1f, 1.5f, glm::vec3(0.2f, 0.4f, 0.6f));
+    expectBsdfSamplingMatchesPdf(blendOf(lambert, metal, 0.35f), "blend lambert/roughconductor 0.35");
+    expectBsdfSamplingMatchesPdf(blendOf(metal, coat, 0.8f), "blend roughconductor/roughplastic 0.8");
+}
+
 TEST(Bsdf, WhiteLambertLosesNothing) {
     ShadingMaterial m;
     m.kd = glm::vec3(1.0f);

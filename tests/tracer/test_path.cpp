@@ -403,5 +403,38 @@ TEST(ScaleInvariance, CacheModeAtScale1em3And1e4) {
     }
 }
 
+// Mitsuba's hide_emitters: what a camera ray sees directly -- an area light's emission, the
+// environment where it escapes -- is black; a mirror's reflection of the same light is not (the
+// emission is hidden at depth 0 only, in every mode).
+TEST(HideEmitters, CameraRaysSeeNoEmitterAndMirrorsStillReflectIt) {
+    testing::SceneBuilder b;
+    const glm::vec3 le(10.0f);
+    b.areaLightQuad({-5, -2, -2}, {0, 4, 0}, {0, 0, 4}, le);  // at x = -5, facing +x
+    b.scene().materials.push_back(testing::mirrorMaterial(glm::vec3(1.0f)));
+    b.quad({5, -2, -2}, {0, 0, 4}, {0, 4, 0}, static_cast<std::uint32_t>(b.scene().materials.size() - 1));
+    EnvironmentLight sky;
+    sky.name = "sky";
+    sky.scale = glm::vec3(0.5f);
+    b.scene().environment = sky;
+    const auto mean = [&](ShadingMode mode, bool hide, glm::vec3 to) {
+        ShadingSettings sh;
+        sh.mode = mode;
+        sh.hideEmitters = hide;
+        const TraceResult r = renderScene(b.scene(), lookAt({0, 0, 0}, to, 10), sh, 8, 1);  // all on the quads
+        double sum = 0.0;
+        for (const glm::vec3& c : r.image.pixels()) sum += c.y;
+        return sum / static_cast<double>(r.image.pixels().size());
+    };
+    for (ShadingMode mode : {ShadingMode::Direct, ShadingMode::Path, ShadingMode::Cache}) {
+        SCOPED_TRACE(static_cast<int>(mode));
+        EXPECT_NEAR(mean(mode, false, {-1, 0, 0}), le.y, 1e-3);  // the light, seen directly
+        EXPECT_EQ(mean(mode, true, {-1, 0, 0}), 0.0);
+        EXPECT_NEAR(mean(mode, false, {0, 0, -1}), 0.5, 1e-3);  // the sky, seen directly
+        EXPECT_EQ(mean(mode, true, {0, 0, -1}), 0.0);
+        EXPECT_GT(mean(mode, true, {1, 0, 0}), 0.9 * le.y);  // the light in the mirror
+        EXPECT_NEAR(mean(mode, true, {1, 0, 0}), mean(mode, false, {1, 0, 0}), 1e-6);
+    }
+}
+
 }  // namespace
 }  // namespace aamap
