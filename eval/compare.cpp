@@ -308,8 +308,9 @@ Table summaryTable(const std::vector<ComparedRun>& runs) {
         double baselineError = NAN;
         std::vector<double>& vals = values[i];
         higherIsBetter.clear();
-        for (const auto& [name, rpp] : series) {
-            const auto h = std::find_if(hs.begin(), hs.end(), [&](const Headline& x) { return x.series == name; });
+        for (const auto& column : series) {  // not a structured binding: clang's lambdas cannot capture one
+            const std::string& name = column.first;
+            const auto h = std::find_if(hs.begin(), hs.end(), [&name](const Headline& x) { return x.series == name; });
             vals.push_back(h != hs.end() ? h->speedup : NAN);
             vals.push_back(h != hs.end() ? h->error : NAN);
             higherIsBetter.insert(higherIsBetter.end(), {true, false});

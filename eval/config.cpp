@@ -347,7 +347,8 @@ Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
 
 Json strategyParamsJson(const RenderConfig& r) {
     Json p = Json::object();
-    for (const auto& [k, v] : r.params.entries()) std::visit([&](const auto& value) { p[k] = value; }, v);
+    for (const auto& entry : r.params.entries())  // not a structured binding: clang's lambdas cannot capture one
+        std::visit([&p, &entry](const auto& value) { p[entry.first] = value; }, entry.second);
     return p;
 }
 
