@@ -256,14 +256,12 @@ std::vector<Headline> headlines(const ComparedRun& run, const std::string& error
     return out;
 }
 
-std::string errorMetricOf(const std::vector<const ComparedRun*>& runs) { return errorKey(runs); }
-
 }  // namespace
 
 Table summaryTable(const std::vector<ComparedRun>& runs) {
     std::vector<const ComparedRun*> all;
     for (const ComparedRun& r : runs) all.push_back(&r);
-    const std::string metric = errorMetricOf(all);
+    const std::string metric = errorKey(all);
     const std::string errorName = metric == "pct_error_flip" ? "% error (FLIP)" : "% error (MSE)";
     Table t{"summary", "Summary: one row per run",
             fmt::format("speedup: the baseline's time over the series' at the largest rpp both have (time = trace + "
@@ -347,9 +345,7 @@ Table summaryTable(const std::vector<ComparedRun>& runs) {
         for (std::size_t i = 0; i < runs.size(); ++i) {
             const double v = c < values[i].size() ? values[i][c] : NAN;
             std::string text = readableNumber(v);
-            if (higherIsBetter[c] && c + 1 < higherIsBetter.size() && t.header[keyColumns + c].find("speedup") != std::string::npos &&
-                std::isfinite(v))
-                text += "x";
+            if (std::isfinite(v) && t.header[keyColumns + c].find("speedup") != std::string::npos) text += "x";
             const auto sameScene = std::count_if(runs.begin(), runs.end(), [&](const ComparedRun& r) { return sceneOf(r) == sceneOf(runs[i]); });
             const bool isBest = sameScene > 1 && std::isfinite(v) && v == best[sceneOf(runs[i])];
             t.rows[i].push_back(isBest ? "**" + text + "**" : text);
@@ -361,7 +357,7 @@ Table summaryTable(const std::vector<ComparedRun>& runs) {
 std::vector<std::string> winners(const std::vector<const ComparedRun*>& sceneRuns) {
     std::vector<std::string> lines;
     if (sceneRuns.size() < 2) return lines;
-    const std::string metric = errorMetricOf(sceneRuns);
+    const std::string metric = errorKey(sceneRuns);
     std::vector<std::string> names;
     for (const ComparedRun* run : sceneRuns)
         for (const Headline& h : headlines(*run, metric))
