@@ -486,17 +486,22 @@ void checkInputs(const ExperimentConfig& config) {
             throw InputError(at.file, at.line, at.column,
                              fmt::format("scene '{}': no such file ({})", config.scene, config.resolvedScene()));
     }
-    // The view file, and view_index within it; the render size where it needs no scene.
-    if (config.resolvedView() || config.camera) renderSizeWithoutScene(config);
+    // The camera, or the view file and view_index within it (a Mitsuba film may still change the
+    // size, not the view).
+    if (config.resolvedView() || config.camera) {
+        Scene none;
+        std::string label;
+        pickView(config, none, label, config.image.width, config.image.height);
+    }
 }
 
 void runSweptExperiment(const Experiment& experiment, const std::filesystem::path& outDir, const RunOptions& options) {
-    // Every variant's inputs before any runs: a typo in the last scene must not wait for the others.
-    for (const ExperimentConfig& variant : experiment.variants) checkInputs(variant);
     if (experiment.sweptKeys.empty()) {
-        runExperiment(experiment.variants.front(), outDir, options);
+        runExperiment(experiment.variants.front(), outDir, options);  // which checks its inputs
         return;
     }
+    // Every variant's inputs before any runs: a typo in the last scene must not wait for the others.
+    for (const ExperimentConfig& variant : experiment.variants) checkInputs(variant);
     RunnerOptions ro;
     ro.gitRevision = options.gitRevision;
     ro.plots = options.plots;

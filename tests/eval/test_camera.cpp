@@ -218,6 +218,9 @@ TEST_F(Files, InputsAreCheckedWithoutLoadingTheScene) {
     EXPECT_EQ(size->first, 64);
     EXPECT_LT(size->second, 64);  // the view's 2:1 field shrinks the height
     EXPECT_FALSE(renderSizeWithoutScene(loadConfig(write("noview.yaml", "scene: tri.obj\n" + kRenders))).has_value());
+    // A Mitsuba scene whose film decides the size: the view file is still checked before loading.
+    write("scene.xml", "<scene version=\"3.0.0\"><shape type=\"cube\"/></scene>\n");
+    EXPECT_NE(errorOf("scene: scene.xml\nview: missing.vf\n" + kRenders).find("view 'missing.vf'"), std::string::npos);
 }
 
 }  // namespace
