@@ -108,17 +108,13 @@ void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const
         edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds, "", kEdges);
         return;
     }
-    if (!in.greyFromGBuffer)
-        graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
-    if (!in.greyFromGBuffer) chain.luminance.add(graph, executor, in.colour, kGrey, in.params.exposure);
-    chain.laplacian.add(graph, executor, kGrey, kLaplacian, in.params.flatRange);  // geometric: a debug output only
-    edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds,
-              source == AamapSource::Combined ? kLaplacian : "", kEdges);
-    chain.blur.add(graph, executor, kEdges, kMap, in.params.blurRadius, in.params.noiseFloor, in.params.gain);
-    chain.reduce.add(graph, executor, kMap, kAamap);
+    // The Laplacian stays declared for the geometric map: a debug output only (the combined map reads it).
+    const bool combined = source == AamapSource::Combined;
+    chain.add(graph, executor, in.colour, in.width, in.height, in.params, in.greyFromGBuffer,
+              [&executor, &edges, combined](graph::RenderGraph& g) {
+                  edges.add(g, executor, kGeometryNormalDepth, kGeometryIds, combined ? kLaplacian : "", kEdges);
+                  return std::string(kEdges);
+              });
 }
 
 GpuGeometricEdges::GpuGeometricEdges(VulkanContext& context)
