@@ -221,14 +221,15 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
                                       "clipped to it): {}",
                                       visible.size(), visible.size() == 1 ? "" : "s", names));
 
-    graph.addPass({kMirrorMaskPass,
-                   graph::QueueKind::Graphics,
-                   {graph::reads(depth, graph::Usage::Sampled), graph::writes(kMirrorMask, graph::Usage::ColorAttachment)},
-                   "mark the pixels where a planar mirror is the visible surface, with its reflectance"});
     gpu::MirrorMaskPush maskPush{};
     maskPush.viewProj = viewProj;
-    executor.setPrepare(kMirrorMaskPass, [this] { buildMaskPipeline(); });
-    executor.setRecord(kMirrorMaskPass, [this, depth, maskPush](vk::PassContext& pc) {
+    vk::PassDeclaration maskPass;
+    maskPass.desc = {kMirrorMaskPass,
+                     graph::QueueKind::Graphics,
+                     {graph::reads(depth, graph::Usage::Sampled), graph::writes(kMirrorMask, graph::Usage::ColorAttachment)},
+                     "mark the pixels where a planar mirror is the visible surface, with its reflectance"};
+    maskPass.prepare = [this] { buildMaskPipeline(); };
+    maskPass.record = [this, depth, maskPush](vk::PassContext& pc) {
         const vk::Image& target = pc.image(kMirrorMask);
         const VkExtent2D extent{target.info().width, target.info().height};
         VkCommandBuffer cmd = pc.cmd();
@@ -243,15 +244,17 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
         vkCmdDraw(cmd, maskVertexCount_, 1, 0, 0);
         vkCmdEndRendering(cmd);
-    });
+    };
+    vk::declarePass(graph, executor, std::move(maskPass));
 
-    graph.addPass({kMirrorCompositePass,
-                   graph::QueueKind::Compute,
-                   {graph::updates(snapshot, graph::Usage::StorageWrite), graph::reads(kMirrorMask, graph::Usage::StorageRead),
-                    graph::reads(kMirrorColour, graph::Usage::Sampled)},
-                   "add each visible mirror's reflection, times its reflectance, into the snapshot"});
-    executor.setPrepare(kMirrorCompositePass, [this] { buildCompositePipeline(); });
-    executor.setRecord(kMirrorCompositePass, [this, snapshot](vk::PassContext& pc) {
+    vk::PassDeclaration compositePass;
+    compositePass.desc = {kMirrorCompositePass,
+                          graph::QueueKind::Compute,
+                          {graph::updates(snapshot, graph::Usage::StorageWrite), graph::reads(kMirrorMask, graph::Usage::StorageRead),
+                           graph::reads(kMirrorColour, graph::Usage::Sampled)},
+                          "add each visible mirror's reflection, times its reflectance, into the snapshot"};
+    compositePass.prepare = [this] { buildCompositePipeline(); };
+    compositePass.record = [this, snapshot](vk::PassContext& pc) {
         const vk::Image& target = pc.image(snapshot);
         gpu::MirrorCompositePush push{};
         push.size = {static_cast<int>(target.info().width), static_cast<int>(target.info().height)};
@@ -265,7 +268,8 @@ void MirrorPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, GBu
         compositePipeline_.pushConstants(pc.cmd(), push);
         vk::dispatch2D(pc.cmd(), target.info().width, target.info().height, MIRROR_COMPOSITE_GROUP,
                        MIRROR_COMPOSITE_GROUP);
-    });
+    };
+    vk::declarePass(graph, executor, std::move(compositePass));
 }
 
 }  // namespace aamap::passes
