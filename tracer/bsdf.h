@@ -130,18 +130,36 @@ inline Eval evalBlend(const ShadingMaterial& m, const glm::vec3& n, const glm::v
 inline bool sampleBlend(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
                         glm::vec3& wi);
 
-// Non-delta lobes of the Mitsuba models and the pdf of sampleModel choosing wi. A smooth
-// plastic's only non-delta lobe is its base: its pdf is diffusePick cos / pi, diffusePick the
-// caller's probability of sampling it (path mode: 1 - deltaPick; direct mode samples it alone).
-inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
-                      const glm::vec3& wi, float diffusePick = 1.0f) {
-    if (m.model == BsdfModel::Blend) return evalBlend(m, n, wo, wi);
+// The non-delta lobes split in two, the one interface every mode evaluates: `diffuse` (Lambert,
+// a plastic's base, a blend as a whole) and `glossy` (Phong, the microfacet lobes of a rough
+// conductor or a rough plastic's coating) with glossyPdf, the density of sampleGlossy choosing wi
+// (solid angle). Direct and cache modes light-sample both and BSDF-sample the glossy one
+// (docs/tracer.md, "Glossy lobes in direct and cache modes"); path mode sums them (evalSmooth).
+struct Lobes {
+    glm::vec3 diffuse{0.0f}, glossy{0.0f};
+    float glossyPdf = 0.0f;
+};
+
+inline Lobes evalLobes(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
+                       const glm::vec3& wi) {
+    Lobes e;
+    if (m.model == BsdfModel::Classic) {
+        e.diffuse = albedo * kInvPi;
+        if (m.glossy) {
+            const float lobe = phongLobe(m, wo, n, wi);
+            e.glossy = m.ks * (m.phongNorm * lobe);
+            e.glossyPdf = m.phongPdfNorm * lobe;
+        }
+        return e;
+    }
+    if (m.model == BsdfModel::Blend) {
+        e.diffuse = evalBlend(m, n, wo, wi).f;
+        return e;
+    }
     const Frame frame(n);
     const glm::vec3 lo = frame.toLocal(wo), li = frame.toLocal(wi);
-    Eval e{glm::vec3(0.0f), 0.0f};
     if (!(lo.z > 0.0f) || !(li.z > 0.0f)) return e;
     const bool plastic = m.model == BsdfModel::Plastic;
-    const float pickSpecular = !plastic ? 1.0f : m.rough ? plasticSpecularPick(m, lo.z) : 1.0f - diffusePick;
     if (m.rough) {
         const microfacet::Distribution dist = distributionOf(m);
         const glm::vec3 h = glm::normalize(lo + li);
@@ -150,15 +168,57 @@ inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const g
         const float G = g1o * dist.G1(li, h);
         const float cosH = glm::dot(lo, h);
         const glm::vec3 F = plastic ? glm::vec3(dielectricReflectance(cosH, m.ior)) : microfacet::fresnelConductor(cosH, m.eta, m.k);
-        e.f = m.specularTint * F * (D * G / (4.0f * lo.z * li.z));
-        e.pdf = pickSpecular * D * g1o / (4.0f * lo.z);
+        e.glossy = m.specularTint * F * (D * G / (4.0f * lo.z * li.z));
+        e.glossyPdf = D * g1o / (4.0f * lo.z);
     }
     if (plastic) {
         const float tO = m.rough ? coatingTransmittance(m, lo.z) : 1.0f - dielectricReflectance(lo.z, m.ior);
         const float tI = m.rough ? coatingTransmittance(m, li.z) : 1.0f - dielectricReflectance(li.z, m.ior);
-        e.f += plasticBase(m, albedo) * (kInvPi * tO * tI / (m.ior * m.ior));
-        e.pdf += (1.0f - pickSpecular) * li.z * kInvPi;
+        e.diffuse = plasticBase(m, albedo) * (kInvPi * tO * tI / (m.ior * m.ior));
     }
+    return e;
+}
+
+// Samples the glossy lobe alone (Lobes::glossyPdf): the Phong lobe about the mirror direction
+// (cos(alpha) = u^(1 / (ns + 1))), or a visible microfacet normal. False where there is none or
+// the direction is lost below the surface.
+inline bool sampleGlossy(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, glm::vec2 u, glm::vec3& wi) {
+    if (!m.glossy) return false;
+    if (m.model == BsdfModel::Classic) {
+        const glm::vec3 r = reflect(wo, n);
+        const float cosA = std::pow(u.x, 1.0f / (m.ns + 1.0f));
+        const float sinA = std::sqrt(std::max(0.0f, 1.0f - cosA * cosA));
+        const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
+        glm::vec3 t, b;
+        basis(r, t, b);
+        wi = (sinA * std::cos(phi)) * t + (sinA * std::sin(phi)) * b + cosA * r;
+        return glm::dot(wi, n) > 0.0f;
+    }
+    const Frame frame(n);
+    const glm::vec3 lo = frame.toLocal(wo);
+    if (!(lo.z > 0.0f) || !m.rough) return false;
+    const glm::vec3 h = distributionOf(m).sampleVisible(lo, u);
+    const glm::vec3 li = (2.0f * glm::dot(lo, h)) * h - lo;
+    if (!(li.z > 0.0f)) return false;
+    wi = frame.toWorld(li);
+    return true;
+}
+
+// The Mitsuba models' non-delta lobes (evalLobes summed) and the pdf of sampleModel choosing wi.
+// A smooth plastic's only non-delta lobe is its base: its pdf is diffusePick cos / pi,
+// diffusePick the caller's probability of sampling it (path mode: 1 - deltaPick).
+inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
+                      const glm::vec3& wi, float diffusePick = 1.0f) {
+    if (m.model == BsdfModel::Blend) return evalBlend(m, n, wo, wi);
+    const Lobes lobes = evalLobes(m, albedo, n, wo, wi);
+    const float cosO = glm::dot(n, wo), cosI = glm::dot(n, wi);
+    Eval e{glm::vec3(0.0f), 0.0f};
+    if (!(cosO > 0.0f) || !(cosI > 0.0f)) return e;
+    const bool plastic = m.model == BsdfModel::Plastic;
+    const float pickSpecular = !plastic ? 1.0f : m.rough ? plasticSpecularPick(m, cosO) : 1.0f - diffusePick;
+    e.f = lobes.glossy + lobes.diffuse;
+    e.pdf = pickSpecular * lobes.glossyPdf;
+    if (plastic) e.pdf += (1.0f - pickSpecular) * cosI * kInvPi;
     return e;
 }
 
@@ -166,19 +226,14 @@ inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const g
 inline bool sampleModel(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
                         glm::vec3& wi) {
     if (m.model == BsdfModel::Blend) return sampleBlend(m, n, wo, lobeU, u, wi);
-    const Frame frame(n);
-    const glm::vec3 lo = frame.toLocal(wo);
-    if (!(lo.z > 0.0f)) return false;
-    const bool specular = m.rough && (m.model != BsdfModel::Plastic || lobeU < plasticSpecularPick(m, lo.z));
+    const float cosO = glm::dot(n, wo);
+    if (!(cosO > 0.0f)) return false;
+    const bool specular = m.rough && (m.model != BsdfModel::Plastic || lobeU < plasticSpecularPick(m, cosO));
     if (!specular) {
         wi = sampleCosine(n, u);
         return true;
     }
-    const glm::vec3 h = distributionOf(m).sampleVisible(lo, u);
-    const glm::vec3 li = (2.0f * glm::dot(lo, h)) * h - lo;
-    if (!(li.z > 0.0f)) return false;
-    wi = frame.toWorld(li);
-    return true;
+    return sampleGlossy(m, n, wo, u, wi);
 }
 
 // The delta lobe: the probability that a path takes it (the rest goes to the non-delta lobes)
@@ -356,16 +411,11 @@ inline Eval evalRoughDielectric(const ShadingMaterial& m, const glm::vec3& n, co
 inline Eval evalSmooth(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
                        const glm::vec3& wi, float cosI, float diffusePick) {
     if (m.model != BsdfModel::Classic) return evalModel(m, albedo, n, wo, wi, diffusePick);
-    Eval e{albedo * kInvPi, diffusePick * cosI * kInvPi};
-    if (m.glossy) {
-        const float lobe = phongLobe(m, wo, n, wi);
-        e.f += m.ks * (m.phongNorm * lobe);
-        e.pdf += (1.0f - diffusePick) * m.phongPdfNorm * lobe;
-    }
-    return e;
+    const Lobes lobes = evalLobes(m, albedo, n, wo, wi);
+    return {lobes.diffuse + lobes.glossy, diffusePick * cosI * kInvPi + (1.0f - diffusePick) * lobes.glossyPdf};
 }
 
-// Samples the smooth lobes: u.x picks the lobe (and is reused), u.y/uz place the direction.
+// Samples the smooth lobes: lobeU picks the lobe (Lambert or glossy), u places the direction.
 // Returns false for directions below the surface. pdf as in evalSmooth.
 inline bool sampleSmooth(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
                          glm::vec3& wi) {
@@ -374,15 +424,7 @@ inline bool sampleSmooth(const ShadingMaterial& m, const glm::vec3& n, const glm
         wi = sampleCosine(n, u);
         return true;
     }
-    // Around the mirror direction: cos(alpha) = u^(1 / (ns + 1)).
-    const glm::vec3 r = reflect(wo, n);
-    const float cosA = std::pow(u.x, 1.0f / (m.ns + 1.0f));
-    const float sinA = std::sqrt(std::max(0.0f, 1.0f - cosA * cosA));
-    const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
-    glm::vec3 t, b;
-    basis(r, t, b);
-    wi = (sinA * std::cos(phi)) * t + (sinA * std::sin(phi)) * b + cosA * r;
-    return glm::dot(wi, n) > 0.0f;
+    return sampleGlossy(m, n, wo, u, wi);
 }
 
 // ---- Blend (Mitsuba's blendbsdf): the components' BSDFs and pdfs mixed by the weight, and
