@@ -126,11 +126,11 @@ glm::vec3 Integrator::radianceDirect(const glm::vec3& origin, const glm::vec3& d
 }
 
 glm::vec3 Integrator::traceSpecular(const glm::vec3& origin, const glm::vec3& dir, RayCone cone,
-                                    const Sampler& sampler, int depth, int specular, float weight,
+                                    const Sampler& sampler, int depth, int specular, float weight, int grid,
                                     RayCounts& rays) const {
     SurfaceHit hit;
     if (!intersect(origin, dir, hit, rays.other, cone)) return escaped(dir);
-    return shadeDirect(hit, sampler, depth, specular, weight, rays);
+    return shadeDirect(hit, sampler, depth, specular, weight, rays, 1.0f, grid);
 }
 
 int Integrator::glossySampleCount(const ShadingMaterial& m, int specular, float weight) const {
@@ -141,8 +141,9 @@ int Integrator::glossySampleCount(const ShadingMaterial& m, int specular, float 
 }
 
 glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
-                                  RayCounts& rays, float emission) const {
+                                  RayCounts& rays, float emission, int grid) const {
     const ShadingMaterial& m = *hit.material;
+    if (grid == 0) grid = lightGrid_;
     glm::vec3 L(0.0f);
     // One-sided emitters: the front emits Ke; both sides also reflect like their material. The
     // camera's own hit (depth, specular 0 under a primary ray) hides it when emitters are hidden.
@@ -150,11 +151,11 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
     if (m.emissive && hit.front && !(cameraHit && shading_.hideEmitters)) L += m.ke * emission;
     if (m.oneSided && !hit.front) return L;  // a one-sided BSDF's back reflects nothing
     const int glossy = glossySampleCount(m, specular, weight);
-    if (m.diffuse || m.glossy) L += directLight(hit, sampler, depth, rays, glossy);
+    if (m.diffuse || m.glossy) L += directLight(hit, sampler, depth, {grid, glossy}, rays);
     if (m.diffuse && weight > 0.0f && indirect_ && shading_.mode == ShadingMode::Cache)
         L += bsdf::lambertEquivalent(m, hit.albedo, glm::dot(hit.wo, hit.shading)) * bsdf::kInvPi *
              indirect_->indirectIrradiance(*this, hit, sampler, depth, rays);
-    if (glossy > 0) L += glossyReflection(hit, sampler, depth, specular, weight, glossy, rays);
+    if (glossy > 0) L += glossyReflection(hit, sampler, depth, specular, weight, glossy, grid, rays);
     if (specular >= shading_.maxSpecularDepth || m.kind == MaterialKind::Diffuse) return L;
     // Branch weights only cut off specular trees; under radianceDirect (weight 0) use the
     // reflectance alone so the same cutoff applies.
@@ -164,7 +165,7 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
         if (next < kSpecularCutoff) return glm::vec3(0.0f);
         // Planar mirrors and glass keep the cone's angle (curvature is not modelled).
         const glm::vec3 Li = traceSpecular(hit.originFor(dir), dir, hit.cone, sampler, depth + 1, specular + 1,
-                                           weight > 0.0f ? next : 0.0f, rays);
+                                           weight > 0.0f ? next : 0.0f, grid, rays);
         return tint * branch * Li;
     };
     // Mirror: one branch (its reflectance may depend on the angle); glass: the Fresnel-reflected
@@ -177,9 +178,10 @@ glm::vec3 Integrator::shadeDirect(const SurfaceHit& hit, const Sampler& sampler,
 }
 
 glm::vec3 Integrator::glossyReflection(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular,
-                                       float weight, int count, RayCounts& rays) const {
+                                       float weight, int count, int grid, RayCounts& rays) const {
     const ShadingMaterial& m = *hit.material;
     const int g = count == 1 ? 1 : glossyGrid_;  // count is g x g or 1
+    const int below = std::max(1, grid / g);
     const float invG = 1.0f / static_cast<float>(g);
     glm::vec3 sum(0.0f);
     for (int j = 0; j < count; ++j) {
@@ -203,23 +205,22 @@ glm::vec3 Integrator::glossyReflection(const SurfaceHit& hit, const Sampler& sam
             const std::int32_t area = lights_.areaOfTriangle[at.primitive];
             if (area >= 0)
                 emission = powerHeuristic(static_cast<float>(count) * lobes.glossyPdf,
-                                          lightSamplesPdf(hit, at, static_cast<std::size_t>(area)));
+                                          lightSamplesPdf(hit, at, static_cast<std::size_t>(area), grid));
         }
         // Each sample draws from its own stream below, so the g x g subtrees are independent.
         const Sampler branch = count == 1 ? sampler : sampler.branch(static_cast<std::uint64_t>(j));
-        sum += tint * shadeDirect(at, branch, depth + 1, specular + 1, next, rays, emission);
+        sum += tint * shadeDirect(at, branch, depth + 1, specular + 1, next, rays, emission, below);
     }
     return sum * (1.0f / static_cast<float>(count));
 }
 
-float Integrator::lightSamplesPdf(const SurfaceHit& from, const SurfaceHit& at, std::size_t area) const {
+float Integrator::lightSamplesPdf(const SurfaceHit& from, const SurfaceHit& at, std::size_t area, int grid) const {
     const AreaLightSampler& a = lights_.areas[area];
     const float cosLight = glm::dot(at.geometric, at.wo);
     if (!(cosLight > 0.0f)) return 0.0f;
     const float inv = a.inversePdf(viewOf(a, from.position), cosLight, at.distance * at.distance);
     if (!(inv > 0.0f)) return 0.0f;
-    const int m = lightGrid_;
-    const float n = static_cast<float>(m * m);
+    const float n = static_cast<float>(grid * grid);
     if (!lights_.many()) return n / inv;  // m x m samples of every light
     // m x m samples in all, light l taken with its selection probability.
     const std::size_t l = lights_.points.size() + area;
@@ -232,16 +233,21 @@ float Integrator::lightSamplesPdf(const SurfaceHit& from, const SurfaceHit& at, 
     return n * pick / inv;
 }
 
-glm::vec3 Integrator::directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays,
-                                  int glossySamples) const {
+glm::vec3 Integrator::directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
+    return directLight(hit, sampler, depth, {lightGrid_, 0}, rays);
+}
+
+glm::vec3 Integrator::directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
+                                  RayCounts& rays) const {
     glm::vec3 L = lights_.count() == 0 ? glm::vec3(0.0f)
-                  : lights_.many()     ? directManyLights(hit, sampler, depth, glossySamples, rays)
-                                       : directFewLights(hit, sampler, depth, glossySamples, rays);
-    if (!lights_.directionals.empty() || lights_.environment) L += directInfinite(hit, sampler, depth, rays);
+                  : lights_.many()     ? directManyLights(hit, sampler, depth, budget, rays)
+                                       : directFewLights(hit, sampler, depth, budget, rays);
+    if (!lights_.directionals.empty() || lights_.environment) L += directInfinite(hit, sampler, depth, budget.grid, rays);
     return L;
 }
 
-glm::vec3 Integrator::directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const {
+glm::vec3 Integrator::directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, int grid,
+                                     RayCounts& rays) const {
     const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
     glm::vec3 L(0.0f);
     for (const DirectionalSource& d : lights_.directionals) {
@@ -252,19 +258,19 @@ glm::vec3 Integrator::directInfinite(const SurfaceHit& hit, const Sampler& sampl
         const bsdf::Lobes lobes = bsdf::evalLobes(*hit.material, hit.albedo, hit.shading, hit.wo, d.toLight);
         L += (lobes.diffuse + lobes.glossy) * d.irradiance * cosSurface;
     }
-    if (lights_.environment) L += environmentDirect(hit, origin, sampler, depth, rays);
+    if (lights_.environment) L += environmentDirect(hit, origin, sampler, depth, grid, rays);
     return L;
 }
 
 glm::vec3 Integrator::environmentDirect(const SurfaceHit& hit, const glm::vec3& origin, const Sampler& sampler,
-                                        int depth, RayCounts& rays) const {
+                                        int depth, int grid, RayCounts& rays) const {
     // m x m stratified samples of each strategy, MIS-weighted with the power heuristic (equal
     // counts, so the weights take the pdfs alone). A constant environment takes the BSDF samples
     // only, with weight 1: they are its ideal importance (exact for an unoccluded Lambert hit).
     const EnvironmentSampler& env = *lights_.environment;
     const ShadingMaterial& mat = *hit.material;
     const float diffusePick = mat.glossy ? mat.diffuseWeight : 1.0f;
-    const int m = lightGrid_;
+    const int m = grid;
     const float invM = 1.0f / static_cast<float>(m);
     const int count = m * m;
     glm::vec3 sum(0.0f);
@@ -297,8 +303,9 @@ glm::vec3 Integrator::environmentDirect(const SurfaceHit& hit, const glm::vec3& 
     return sum * (invM * invM);
 }
 
-glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, int glossySamples,
+glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
                                      RayCounts& rays) const {
+    const int glossySamples = budget.glossySamples;
     const ShadingMaterial& mat = *hit.material;
     const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
     // A Lambert surface's BRDF does not depend on the direction: it needs the irradiance alone.
@@ -331,7 +338,7 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
         L += E * (lobes.diffuse + lobes.glossy);  // a delta light: BSDF sampling never finds it
     }
 
-    const int m = lightGrid_;
+    const int m = budget.grid;
     const float invM = 1.0f / static_cast<float>(m);
     const float invCount = invM * invM;
     const int count = m * m;
@@ -380,14 +387,14 @@ glm::vec3 Integrator::directFewLights(const SurfaceHit& hit, const Sampler& samp
     return L;
 }
 
-glm::vec3 Integrator::directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, int glossySamples,
+glm::vec3 Integrator::directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
                                       RayCounts& rays) const {
     if (shading_.lightSelection == LightSelection::Contribution && lights_.perHitSelectable())
-        return directPerHitLights(hit, sampler, depth, glossySamples, rays);
+        return directPerHitLights(hit, sampler, depth, budget, rays);
     // N = m x m stratified samples over [0,1)^2; u.x picks a light on the power CDF and, rescaled,
     // also places the point on it, so the pattern stays stratified over lights and their areas.
     const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
-    const int m = lightGrid_;
+    const int m = budget.grid;
     const float invM = 1.0f / static_cast<float>(m);
     glm::vec3 sum(0.0f);
     LastLightView last;
@@ -396,7 +403,7 @@ glm::vec3 Integrator::directManyLights(const SurfaceHit& hit, const Sampler& sam
     for (int j = 0; j < m * m; ++j) {
         glm::vec2 u = sampler.jittered2D(dims::path(depth, dims::PathSlot::ManyLights, j), j % m, j / m, invM);
         const std::size_t l = lights_.select(u.x);
-        if (prepareLightSample(hit, l, u, lights_.selectPdf[l], glossySamples, last, pending[queued]) && ++queued == 8) {
+        if (prepareLightSample(hit, l, u, lights_.selectPdf[l], budget, last, pending[queued]) && ++queued == 8) {
             sum += traceLightSamples(origin, pending, queued, rays);
             queued = 0;
         }
@@ -405,7 +412,7 @@ glm::vec3 Integrator::directManyLights(const SurfaceHit& hit, const Sampler& sam
     return sum * (invM * invM);
 }
 
-glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth, int glossySamples,
+glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
                                          RayCounts& rays) const {
     // Per-hit CDF over each light's estimated contribution here (LightSet::contribution), in a
     // stack array: no allocation. Lights that cannot reach the hit get probability 0, and so
@@ -432,7 +439,7 @@ glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& s
     // N^2 cells (biased); a per-hit random shift of y (Cranley-Patterson) makes each sample's y
     // uniform and independent of its x again.
     const glm::vec3 origin = hit.position + hit.offset * hit.geometric;
-    const int m = lightGrid_;
+    const int m = budget.grid;
     const int count = m * m;
     const float invCount = 1.0f / static_cast<float>(count);
     const float shiftY = sampler.get1D(dims::path(depth, dims::PathSlot::ManyLights, kShiftSample));
@@ -449,7 +456,7 @@ glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& s
         const std::size_t l = selectOnCdf(cdf, n, u.x);
         const float pick = (cdf[l] - (l == 0 ? 0.0f : cdf[l - 1]));
         if (!(pick > 0.0f)) continue;  // unreachable: zero-width intervals are never selected
-        if (prepareLightSample(hit, l, u, pick, glossySamples, last, pending[queued]) && ++queued == 8) {
+        if (prepareLightSample(hit, l, u, pick, budget, last, pending[queued]) && ++queued == 8) {
             sum += traceLightSamples(origin, pending, queued, rays);
             queued = 0;
         }
@@ -458,7 +465,7 @@ glm::vec3 Integrator::directPerHitLights(const SurfaceHit& hit, const Sampler& s
     return sum * invCount;
 }
 
-bool Integrator::prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::vec2 u, float pick, int glossySamples,
+bool Integrator::prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::vec2 u, float pick, LightBudget budget,
                                     LastLightView& last, PendingShadow& out) const {
     // u: the point on an area light; pick: the light's selection probability.
     const ShadingMaterial& mat = *hit.material;
@@ -499,7 +506,7 @@ bool Integrator::prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::v
     // samples draw from the same mixture, density pick / geometry each.
     const float share = l < nPoints || !(lobes.glossyPdf > 0.0f)
                             ? 1.0f
-                            : lightShare(static_cast<float>(lightGrid_ * lightGrid_) * pick / geometry, glossySamples,
+                            : lightShare(static_cast<float>(budget.grid * budget.grid) * pick / geometry, budget.glossySamples,
                                          lobes.glossyPdf);
     out = {target, (lobes.diffuse + share * lobes.glossy) * Le * (geometry * cosSurface / pick), tfar};
     return true;

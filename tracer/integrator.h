@@ -154,11 +154,9 @@ public:
                    RayCone cone = {}) const;
     glm::vec3 radianceDirect(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
                              RayCounts& rays) const;
-    // Reflected radiance towards hit.wo from direct light (all light types), non-delta lobes only.
-    // glossySamples: how many BSDF samples of the glossy lobe the caller takes at this hit (their
-    // emission hits are weighed against these light samples by MIS); 0: light samples alone.
-    glm::vec3 directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays,
-                          int glossySamples = 0) const;
+    // Reflected radiance towards hit.wo from direct light (all light types), non-delta lobes only,
+    // by light samples alone (m x m per area light).
+    glm::vec3 directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
 
     // Radiance of the environment along a ray that leaves the scene in unit direction `dir`
     // (black without one). Every mode returns it for escaping rays that are not hemisphere rays
@@ -175,29 +173,40 @@ public:
     const ShadingSettings& settings() const { return shading_; }
 
 private:
+    // What direct light at a hit spends: grid m (m x m light samples per area light, or in all
+    // with many lights, and for the environment) and the glossy samples taken there, against
+    // which the light samples' glossy part is MIS-weighted (0: light samples alone).
+    struct LightBudget {
+        int grid;
+        int glossySamples;
+    };
+    glm::vec3 directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
+                          RayCounts& rays) const;
     // Direct/Cache shading of a hit, following mirror/glass bounces and glossy samples up to
     // maxSpecularDepth. emission: the weight of the hit's own emission (an MIS weight under a
-    // glossy sample).
+    // glossy sample). grid: the light grid m here (0: ShadingSettings' own).
     glm::vec3 shadeDirect(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
-                          RayCounts& rays, float emission = 1.0f) const;
+                          RayCounts& rays, float emission = 1.0f, int grid = 0) const;
     // How many BSDF samples of the glossy lobe shadeDirect takes at a hit (0: none).
     int glossySampleCount(const ShadingMaterial& m, int specular, float weight) const;
     // The glossy lobe's reflection of the scene: `count` BSDF samples, what each hits shaded as
     // shadeDirect shades (emission MIS-weighted against the light samples); escaping samples add
     // nothing (the environment is direct light, environmentDirect).
+    // Their hits take grid / g light samples per axis (at least 1), so the g x g subtrees together
+    // cost about what the hit's own light samples do.
     glm::vec3 glossyReflection(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
-                               int count, RayCounts& rays) const;
+                               int count, int grid, RayCounts& rays) const;
     // The solid-angle density with which directLight's light samples at `from` reach point `at`
     // (a hit on area light `area`, seen along at.wo), summed over its samples: n_light pdf.
-    float lightSamplesPdf(const SurfaceHit& from, const SurfaceHit& at, std::size_t area) const;
+    float lightSamplesPdf(const SurfaceHit& from, const SurfaceHit& at, std::size_t area, int grid) const;
     glm::vec3 traceSpecular(const glm::vec3& origin, const glm::vec3& dir, RayCone cone, const Sampler& sampler,
-                            int depth, int specular, float weight, RayCounts& rays) const;
-    glm::vec3 directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, int glossySamples,
+                            int depth, int specular, float weight, int grid, RayCounts& rays) const;
+    glm::vec3 directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
                               RayCounts& rays) const;
-    glm::vec3 directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, int glossySamples,
+    glm::vec3 directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
                               RayCounts& rays) const;
     // Many lights, LightSelection::Contribution: samples distributed over a per-hit CDF.
-    glm::vec3 directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth, int glossySamples,
+    glm::vec3 directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
                               RayCounts& rays) const;
     // The view of the last area light sampled from one hit: per-hit selection takes runs of
     // samples from one light, which then share its solid angles and sampling setup.
@@ -213,8 +222,8 @@ private:
         float tfar;
     };
     // False if the sample adds nothing whatever the visibility (faces away, zero weight).
-    // glossySamples: as directLight's (the glossy lobe's part is MIS-weighted against them).
-    bool prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::vec2 u, float pick, int glossySamples,
+    // budget: as directLight's (the glossy lobe's part is MIS-weighted against its glossy samples).
+    bool prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::vec2 u, float pick, LightBudget budget,
                             LastLightView& last, PendingShadow& out) const;
     // Traces the shadow rays of count <= 8 prepared samples from `origin` as one packet; the sum
     // of the contributions of those that reach their light, in sample order.
@@ -222,9 +231,9 @@ private:
                                 RayCounts& rays) const;
     // The lights at infinity (directional lights one shadow ray each, the environment m x m light
     // and m x m BSDF samples with MIS; a constant environment BSDF samples only), for Direct/Cache.
-    glm::vec3 directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
+    glm::vec3 directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, int grid, RayCounts& rays) const;
     glm::vec3 environmentDirect(const SurfaceHit& hit, const glm::vec3& origin, const Sampler& sampler, int depth,
-                                RayCounts& rays) const;
+                                int grid, RayCounts& rays) const;
     // Path mode (path_integrator.cpp): the whole path from a primary hit.
     glm::vec3 tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const;
     // Path mode's steps (path_integrator.cpp). PathState: one path between two vertices;
