@@ -279,30 +279,7 @@ inline void prepareModel(ShadingMaterial& m) {
         return;
     }
     const microfacet::Distribution dist = distributionOf(m);
-    constexpr int q = 32;  // per axis: within 0.2 % of 64 (tests/tracer/test_bsdf.cpp checks the energy it implies)
-    const auto integrate = [&](float mu, bool inside) {
-        const glm::vec3 v(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-        // From inside the coating the relative index is 1 / ior: total internal reflection.
-        const float eta = inside ? 1.0f / m.ior : m.ior;
-        double sum = 0.0;
-        for (int j = 0; j < q; ++j)
-            for (int i = 0; i < q; ++i) {
-                const glm::vec2 u((static_cast<float>(i) + 0.5f) / q, (static_cast<float>(j) + 0.5f) / q);
-                const glm::vec3 h = dist.sampleVisible(v, u);
-                const float c = glm::dot(v, h);
-                float cosT = 0.0f;
-                const float F = microfacet::fresnelDielectricSigned(c, eta, cosT);
-                if (inside) {  // what the coating reflects back down
-                    const glm::vec3 r = (2.0f * c) * h - v;
-                    if (r.z > 0.0f) sum += static_cast<double>(F * dist.G1(r, h));
-                } else {  // what it lets through
-                    const float e = 1.0f / eta;
-                    const glm::vec3 t = h * (c * e + cosT) - v * e;
-                    if (t.z < 0.0f && F < 1.0f) sum += static_cast<double>((1.0f - F) * dist.G1(t, h));
-                }
-            }
-        return static_cast<float>(sum / (q * q));
-    };
+    const auto integrate = [&](float mu, bool inside) { return microfacet::coatingScattering(dist, m.ior, mu, inside); };
     double inside = 0.0, outside = 0.0;
     for (int i = 0; i < res; ++i) {
         const float mu = std::max(1e-6f, static_cast<float>(i) / static_cast<float>(res - 1));
