@@ -22,6 +22,10 @@ constexpr int kShiftSample = (1 << 24) - 1;
 // The most glossy samples per axis at a ray tree's first glossy hit: g = min(m, 4), g x g rays.
 // Each one shades what it hits with the full light budget, so the count is kept small.
 constexpr int kMaxGlossyGrid = 4;
+// Glossy samples are taken at hits reached by fewer specular or glossy bounces than this: the
+// first glossy reflection and a glossy reflection seen in it; deeper ones take light samples alone
+// (each glossy level multiplies the rays by its samples' count of point-light shadow rays).
+constexpr int kMaxGlossyDepth = 2;
 
 // The light sample's share of the glossy lobe: the power heuristic over the two strategies'
 // densities times their sample counts (nLight pdfLight against nGlossy pdfGlossy); 1 when no
@@ -134,9 +138,9 @@ glm::vec3 Integrator::traceSpecular(const glm::vec3& origin, const glm::vec3& di
 }
 
 int Integrator::glossySampleCount(const ShadingMaterial& m, int specular, float weight) const {
-    // Only under a primary ray (weight > 0; the irradiance cache's rays see light-sampled lobes)
-    // and within the specular budget, which glossy and delta bounces share.
-    if (!m.glossy || !(weight > 0.0f) || specular >= shading_.maxSpecularDepth) return 0;
+    // Only under a primary ray (weight > 0; the irradiance cache's rays see light-sampled lobes),
+    // within the specular budget, which glossy and delta bounces share, and kMaxGlossyDepth.
+    if (!m.glossy || !(weight > 0.0f) || specular >= std::min(shading_.maxSpecularDepth, kMaxGlossyDepth)) return 0;
     return specular == 0 ? glossyGrid_ * glossyGrid_ : 1;
 }
 
