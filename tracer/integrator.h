@@ -193,7 +193,7 @@ private:
     // shadeDirect shades (emission MIS-weighted against the light samples); escaping samples add
     // nothing (the environment is direct light, environmentDirect).
     // Their hits take grid / g light samples per axis (at least 1), so the g x g subtrees together
-    // cost about what the hit's own light samples do.
+    // take about as many light samples as the hit itself.
     glm::vec3 glossyReflection(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
                                int count, int grid, RayCounts& rays) const;
     // The solid-angle density with which directLight's light samples at `from` reach point `at`
@@ -204,10 +204,10 @@ private:
     glm::vec3 directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
                               RayCounts& rays) const;
     glm::vec3 directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
-                              RayCounts& rays) const;
+                               RayCounts& rays) const;
     // Many lights, LightSelection::Contribution: samples distributed over a per-hit CDF.
     glm::vec3 directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
-                              RayCounts& rays) const;
+                                 RayCounts& rays) const;
     // The view of the last area light sampled from one hit: per-hit selection takes runs of
     // samples from one light, which then share its solid angles and sampling setup.
     struct LastLightView {
