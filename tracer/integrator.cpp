@@ -23,15 +23,6 @@ constexpr int kShiftSample = (1 << 24) - 1;
 
 }  // namespace
 
-const char* toString(ShadingMode mode) {
-    switch (mode) {
-        case ShadingMode::Direct: return "direct";
-        case ShadingMode::Path: return "path";
-        case ShadingMode::Cache: return "cache";
-    }
-    return "?";
-}
-
 Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading,
                        const IndirectDiffuseSource* indirect)
     : geometry_(geometry),

@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "eval/config.h"
 #include "eval/config_schema.h"
+#include "core/schema.h"
 #include "passes/snapshot_params.h"
 #include "tests/common/read_text.h"
 
@@ -46,18 +47,18 @@ const std::map<std::string, Field>& fields() {
         {"snapshot.flat_range", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.flatRange); }},
         {"snapshot.noise_floor", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.noiseFloor); }},
         {"snapshot.gain", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.gain); }},
-        {"snapshot.map", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.map); }},
+        {"snapshot.map", [](const ExperimentConfig& c) { return ParamValue(passes::toString(c.snapshot.map)); }},
         {"snapshot.subpixel", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.subpixel); }},
         {"shading.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.shading.areaLightSamples); }},
-        {"shading.mode", [](const ExperimentConfig& c) { return ParamValue(c.shading.mode); }},
+        {"shading.mode", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.mode == ShadingMode::Path ? "path" : c.shading.mode == ShadingMode::Cache ? "cache" : "direct")); }},
         {"shading.max_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxDepth); }},
         {"shading.russian_roulette", [](const ExperimentConfig& c) { return ParamValue(c.shading.russianRoulette); }},
         {"shading.roulette_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.rouletteDepth); }},
         {"shading.hide_emitters", [](const ExperimentConfig& c) { return ParamValue(c.shading.hideEmitters); }},
         {"shading.max_specular_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxSpecularDepth); }},
-        {"shading.light_selection", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSelection); }},
-        {"shading.light_sampling", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSampling); }},
-        {"shading.texture_filter", [](const ExperimentConfig& c) { return ParamValue(c.shading.textureFilter); }},
+        {"shading.light_selection", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.lightSelection == LightSelection::Power ? "power" : "contribution")); }},
+        {"shading.light_sampling", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.lightSampling == LightSampling::Area ? "area" : c.shading.lightSampling == LightSampling::SolidAngle ? "solid_angle" : "auto")); }},
+        {"shading.texture_filter", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.textureFilter == TextureFilter::None ? "none" : "anisotropic")); }},
         {"shading.cache.bounces", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.bounces); }},
         {"shading.cache.divisions", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.divisions); }},
         {"shading.cache.supersamples", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.supersamples); }},
@@ -232,17 +233,33 @@ TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
     EXPECT_EQ(snapshotKey(hand), snapshotKey(parsed));
     EXPECT_EQ(hand.hash(), parsed.hash());
 
-    hand.snapshot.map = "subpixel";  // the key names snapshot.subpixel only for this map
-    hand.snapshot.environmentLights = 2;
-    hand.snapshot.softShadows = false;
-    const nlohmann::json key = nlohmann::json::parse(renderKeyJson(hand, hand.renders[0]));
-    std::vector<std::string> names;
-    for (const auto& [name, value] : key.at("snapshot").items()) names.push_back(name);
+    // The keys hold the keys not at their default: each snapshot key enters once set, and only then.
+    const auto snapshotKeyNames = [](const ExperimentConfig& c) {
+        const nlohmann::json key = nlohmann::json::parse(renderKeyJson(c, c.renders[0]));
+        std::vector<std::string> names;
+        for (const auto& item : key.at("snapshot").items()) names.push_back(item.key());
+        return names;
+    };
+    EXPECT_TRUE(snapshotKeyNames(hand).empty());
+    const ExperimentConfig defaults = hand;
     std::vector<std::string> schema;
-    for (const ParamSpec& p : snapshotParams()) schema.push_back(p.name);
-    std::sort(names.begin(), names.end());
+    for (const Schema<SnapshotConfig>::Field& f : snapshotSchema().fields()) {
+        ExperimentConfig one = defaults;
+        const ParamSpec& p = f.spec;
+        const ParamValue other = p.type == ParamType::Bool     ? ParamValue(!std::get<bool>(p.defaultParam()))
+                                 : p.type == ParamType::Choice ? ParamValue(p.choices.back())
+                                 : p.type == ParamType::Int    ? ParamValue(static_cast<int>(p.defaultValue == p.hi ? p.lo : p.hi))
+                                                               : ParamValue(p.defaultValue == p.hi ? p.lo : p.hi);
+        f.set(one.snapshot, other);
+        f.set(hand.snapshot, other);
+        EXPECT_EQ(snapshotKeyNames(one), std::vector<std::string>{p.name}) << p.name;
+        EXPECT_NE(snapshotKey(one), snapshotKey(parsed)) << p.name;
+        schema.push_back(p.name);
+    }
+    std::vector<std::string> all = snapshotKeyNames(hand);
+    std::sort(all.begin(), all.end());
     std::sort(schema.begin(), schema.end());
-    EXPECT_EQ(names, schema);
+    EXPECT_EQ(all, schema);
 }
 
 }  // namespace
