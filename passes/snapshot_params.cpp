@@ -7,20 +7,30 @@ namespace aamap {
 
 namespace passes {
 
+namespace {
+
+// snapshot.map's names, declared once: the schema's choice and toString/parse read this list.
+const std::vector<std::pair<std::string, AamapSource>>& mapNames() {
+    static const std::vector<std::pair<std::string, AamapSource>> names = {
+        {"luminance", AamapSource::Luminance},
+        {"geometric", AamapSource::Geometric},
+        {"combined", AamapSource::Combined},
+        {"subpixel", AamapSource::Subpixel}};
+    return names;
+}
+
+}  // namespace
+
 const char* toString(AamapSource source) {
-    switch (source) {
-        case AamapSource::Luminance: return "luminance";
-        case AamapSource::Geometric: return "geometric";
-        case AamapSource::Combined: return "combined";
-        case AamapSource::Subpixel: return "subpixel";
-    }
+    for (const auto& n : mapNames())
+        if (n.second == source) return n.first.c_str();
     return "?";
 }
 
 bool parse(const std::string& name, AamapSource& source) {
-    for (AamapSource s : {AamapSource::Luminance, AamapSource::Geometric, AamapSource::Combined, AamapSource::Subpixel})
-        if (name == toString(s)) {
-            source = s;
+    for (const auto& n : mapNames())
+        if (n.first == name) {
+            source = n.second;
             return true;
         }
     return false;
@@ -31,7 +41,6 @@ bool parse(const std::string& name, AamapSource& source) {
 // The filter chain's defaults are the GLSL header's (its shaders' specialisation defaults), the
 // subpixel map's k range its header's: one definition each, which the schema names.
 const Schema<SnapshotConfig>& snapshotSchema() {
-    using passes::AamapSource;
     using S = SnapshotConfig;
     static const Schema<S> schema = [] {
         Schema<S> s;
@@ -50,11 +59,7 @@ const Schema<SnapshotConfig>& snapshotSchema() {
                    "blurred edge responses below this are smooth shading")
             .field(&S::gain, "gain", above(0.0, 1e6), AAMAP_DEFAULT_GAIN,
                    "map = clamp(gain * (blurred - noise_floor), 0, 1)")
-            .choice(&S::map, "map",
-                    {{"luminance", AamapSource::Luminance},
-                     {"geometric", AamapSource::Geometric},
-                     {"combined", AamapSource::Combined},
-                     {"subpixel", AamapSource::Subpixel}},
+            .choice(&S::map, "map", passes::mapNames(),
                     "what the map is built from (subpixel: each pixel's predicted one-ray error from k x k samples)")
             .field(&S::subpixel, "subpixel", in(SUBPIXEL_MIN_K, SUBPIXEL_MAX_K), SUBPIXEL_DEFAULT_K,
                    "map subpixel: samples per pixel side k (the raster runs at k x the render resolution)");

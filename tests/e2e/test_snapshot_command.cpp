@@ -105,7 +105,7 @@ TEST_F(SnapshotCommand, SetsEverySnapshotKeyAndRefusesBadValues) {
     const CommandResult range = snapshot(dir_, fmt::format("builtin:cornell -o \"{}\" --blur-radius 17", (dir_ / "bad").string()));
     EXPECT_EQ(range.code, 2) << range.err;
     EXPECT_NE(range.err.find("snapshot.blur_radius"), std::string::npos) << range.err;
-    const CommandResult unknown = snapshot(dir_, fmt::format("builtin:cornell -o \"{}\" --set snapshot.blur=2", (dir_ / "bad").string()));
+    const CommandResult unknown = snapshot(dir_, fmt::format("builtin:cornell -o \"{}\" --set snapshot.blur_radios=2", (dir_ / "bad").string()));
     EXPECT_EQ(unknown.code, 2) << unknown.err;
     EXPECT_NE(unknown.err.find("did you mean 'snapshot.blur_radius'"), std::string::npos) << unknown.err;
     EXPECT_FALSE(fs::exists(dir_ / "bad"));

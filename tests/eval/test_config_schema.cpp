@@ -21,6 +21,7 @@
 #include "eval/config_schema.h"
 #include "core/schema.h"
 #include "passes/snapshot_params.h"
+#include "tracer/shading_params.h"
 #include "tests/common/read_text.h"
 
 namespace aamap {
@@ -309,6 +310,44 @@ TEST(ConfigSchema, DocsTableRowsMatchTheSchema) {
                 << k.dotted << ": " << cell;
         else
             EXPECT_EQ(def, toString(k.spec->defaultParam())) << k.dotted << ": " << cell;
+    }
+}
+
+// A value away from its default, for the key walks below: the other end of the range, the other
+// boolean, the last choice.
+ParamValue otherThanDefault(const ParamSpec& p) {
+    if (p.type == ParamType::Bool) return !std::get<bool>(p.defaultParam());
+    if (p.type == ParamType::Choice) return p.choices.back();
+    const double v = p.defaultValue == p.hi ? p.lo : p.hi;
+    return p.type == ParamType::Int ? ParamValue(static_cast<int>(v)) : ParamValue(v);
+}
+
+// Every shading key, set away from its default, reaches its field and enters the render's cache
+// key under its own name (the cache's keys in cache mode), and changes it.
+TEST(ConfigSchema, EveryShadingKeyEntersTheRenderKey) {
+    const ExperimentConfig base = parseConfig(
+        "scene: builtin:cornell\nrenders:\n  - {name: a, strategy: uniform, rpp: 4}\n", "exp.yaml");
+    const auto shadingKey = [](const ExperimentConfig& c) {
+        return nlohmann::json::parse(renderKeyJson(c, c.renders[0])).at("shading");
+    };
+    for (const Schema<ShadingConfig>::Field& f : shadingSchema().fields()) {
+        ExperimentConfig c = base;
+        const ParamValue v = otherThanDefault(f.spec);
+        f.set(c.shading, v);
+        EXPECT_EQ(f.get(c.shading), v) << f.spec.name;
+        EXPECT_TRUE(shadingKey(c).contains(f.spec.name)) << f.spec.name << ": " << shadingKey(c).dump();
+        EXPECT_NE(renderKey(c, c.renders[0]), renderKey(base, base.renders[0])) << f.spec.name;
+    }
+    for (const Schema<ShadingConfig::Cache>::Field& f : shadingCacheSchema().fields()) {
+        ExperimentConfig c = base;
+        c.shading.mode = ShadingMode::Cache;
+        ExperimentConfig tuned = c;
+        f.set(tuned.shading.cache, otherThanDefault(f.spec));
+        EXPECT_TRUE(shadingKey(tuned).at("cache").contains(f.spec.name)) << f.spec.name;
+        EXPECT_NE(renderKey(tuned, tuned.renders[0]), renderKey(c, c.renders[0])) << f.spec.name;
+        // Outside cache mode the cache is not read, and the key does not name it.
+        tuned.shading.mode = ShadingMode::Direct;
+        EXPECT_EQ(renderKey(tuned, tuned.renders[0]), renderKey(base, base.renders[0])) << f.spec.name;
     }
 }
 
