@@ -2,6 +2,7 @@
 // images, and optionally print or dump the compiled render graph.
 #include "app/snapshot_command.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -14,8 +15,9 @@
 #include "engine/vk/context.h"
 #include "eval/config.h"
 #include "eval/light_list.h"
-#include "glsl/shared/subpixel_map.h"
+#include "core/params.h"
 #include "passes/snapshot.h"
+#include "passes/snapshot_params.h"
 #include "scene/framing.h"
 #include "scene/light_file.h"
 #include "scene/lights.h"
@@ -114,24 +116,26 @@ CLI::App* addSnapshotCommand(CLI::App& app, SnapshotOptions& o) {
                     "Render width (bounding box; the view's aspect ratio fits inside; default: the scene file's, else 512)")
         ->check(CLI::Range(1, 16384));
     cmd->add_option("--height", o.height, "Render height (default: the scene file's, else 512)")->check(CLI::Range(1, 16384));
-    cmd->add_option("--scale", o.scale, "Snapshot resolution / render resolution")->check(CLI::Range(1.0, 4.0))
-        ->capture_default_str();
-    cmd->add_option("--area-light-samples", o.areaLightSamples, "Point samples per area light")
-        ->check(CLI::Range(1, 64))->capture_default_str();
-    cmd->add_option("--environment-lights", o.environmentLights,
-                    "The environment map's brightest regions as this many shadowed directional lights (0: SH ambient only)")
-        ->check(CLI::Range(0, 16))->capture_default_str();
     cmd->add_option("--exposure", o.exposure, "Exposure of snapshot.png and of the aamap's greyscale")
         ->check(CLI::PositiveNumber)->capture_default_str();
     cmd->add_option("--shadow-resolution", o.shadowResolution, "Shadow cube-face size in texels")
         ->check(CLI::Range(1, 8192))->capture_default_str();
     cmd->add_flag("--no-shadows", o.noShadows, "No shadow maps");
-    cmd->add_flag("--hard-shadows", o.hardShadows,
-                  "Area-light samples cast hard shadows (snapshot.soft_shadows: false)");
-    cmd->add_option("--map", o.map, "What the aamap is built from (snapshot.map)")
-        ->check(CLI::IsMember({"luminance", "geometric", "combined", "subpixel"}))->capture_default_str();
-    cmd->add_option("--subpixel", o.subpixel, "Subpixel map: samples per pixel side k (snapshot.subpixel)")
-        ->check(CLI::Range(SUBPIXEL_MIN_K, SUBPIXEL_MAX_K))->capture_default_str();
+    // One option per snapshot key, generated from its declaration: --blur-radius 2 is --set snapshot.blur_radius=2.
+    for (const ParamSpec& p : snapshotParams()) {
+        std::string flag = "--" + p.name;
+        std::replace(flag.begin(), flag.end(), '_', '-');
+        const std::string type = p.type == ParamType::Choice ? fmt::format("{{{}}}", fmt::join(p.choices, ","))
+                                 : p.type == ParamType::Bool ? std::string("BOOL")
+                                                             : fmt::format("{} in {}", p.type == ParamType::Int ? "INT" : "FLOAT",
+                                                                           p.rangeText());
+        cmd->add_option(flag, o.keys[p.name], fmt::format("{} (snapshot.{})", p.doc, p.name))
+            ->type_name(type)
+            ->default_str(toString(p.defaultParam()));
+    }
+    cmd->add_option("--set", o.set, "Set a snapshot key as the config's --set does: --set snapshot.blur_radius=2 "
+                                    "(docs/config.md; every snapshot.* key)")
+        ->type_name("snapshot.KEY=VALUE");
     cmd->add_option("--device", o.device, "Vulkan device: index or name substring (default: best GPU)")
         ->type_name("NAME");
     cmd->add_flag("--validation", o.validation, "Enable the Vulkan validation layer; any message fails (exit 3)");
@@ -151,17 +155,16 @@ int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::str
     const View view = pickView(o, scene, boxWidth, boxHeight);
     const auto [width, height] = fitResolution(view, boxWidth, boxHeight);
 
-    SnapshotSettings settings;
-    settings.scale = o.scale;
-    settings.areaLightSamples = o.areaLightSamples;
-    settings.environmentLights = o.environmentLights;
+    // The generated --KEY options first, then --set: both read as the config's --set.
+    std::vector<std::string> overrides;
+    for (const auto& entry : o.keys)
+        if (!entry.second.empty()) overrides.push_back("snapshot." + entry.first + "=" + entry.second);
+    overrides.insert(overrides.end(), o.set.begin(), o.set.end());
+    SnapshotSettings settings(snapshotFromOverrides(overrides));
     settings.filter.exposure = o.exposure;
     settings.shadows.enabled = !o.noShadows;
-    settings.shadows.softShadows = !o.hardShadows;
     settings.shadows.resolution = o.shadowResolution;
     settings.keepDebugImages = true;
-    passes::parse(o.map, settings.map);  // checked by the option
-    settings.subpixel = o.subpixel;
 
     VulkanContext context(ContextOptions{validation, device});
     if (validation && !context.validationEnabled())

@@ -1,7 +1,9 @@
 #pragma once
 // `aamap snapshot SCENE [--view VF [--view-index N] | --camera YAML] [--lights FILE] [--explain] [--dot FILE]
 // [-o OUTDIR]`: the Snapshot alone (no tracing), its images, and its compiled render graph.
+#include <map>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -12,15 +14,13 @@ struct SnapshotOptions {
     int viewIndex = 0;
     // Render size (bounding box for the view's aspect ratio); 0: the scene file's size, else 512.
     int width = 0, height = 0;
-    float scale = 1.5f;             // snapshot resolution / render resolution
-    int areaLightSamples = 5;
-    int environmentLights = 1;  // SnapshotSettings::environmentLights
     float exposure = 1.0f;
     int shadowResolution = 256;
     bool noShadows = false;
-    bool hardShadows = false;
-    std::string map = "luminance";  // snapshot.map
-    int subpixel = 2;               // snapshot.subpixel
+    // The config's snapshot section (passes/snapshot_params.h): --set snapshot.KEY=V, and an option
+    // --KEY per key generated from its declaration (the text as written, checked as --set is).
+    std::vector<std::string> set;
+    std::map<std::string, std::string> keys;  // key name -> value text of its generated option
     bool explain = false;
     std::string device;       // "" = AAMAP_DEVICE or the best GPU
     bool validation = false;  // or AAMAP_VALIDATION=1

@@ -123,52 +123,22 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
                              c.image.filter));
 
     MapReader snap(ctx, top.node("snapshot"), "snapshot", sectionKeyNames(snapshotParams()));
-    const ParamValues sv = readSection(ctx, snap, snapshotParams());
-    c.snapshot.scale = sv.real("scale");
-    c.snapshot.areaLightSamples = sv.integer("area_light_samples");
-    c.snapshot.environmentLights = sv.integer("environment_lights");
-    c.snapshot.softShadows = sv.boolean("soft_shadows");
-    c.snapshot.blurRadius = sv.integer("blur_radius");
-    c.snapshot.flatRange = sv.real("flat_range");
-    c.snapshot.noiseFloor = sv.real("noise_floor");
-    c.snapshot.gain = sv.real("gain");
-    c.snapshot.map = sv.choice("map");
-    c.snapshot.subpixel = sv.integer("subpixel");
+    readSection(ctx, snap, snapshotSchema(), c.snapshot);
 
     MapReader shading(ctx, top.node("shading"), "shading", sectionKeyNames(shadingParams(), {"cache"}));
-    const ParamValues hv = readSection(ctx, shading, shadingParams());
-    c.shading.areaLightSamples = hv.integer("area_light_samples");
-    c.shading.mode = hv.choice("mode");
-    c.shading.maxDepth = hv.integer("max_depth");
+    readSection(ctx, shading, shadingSchema(), c.shading);
     c.shading.maxDepthGiven = shading.has("max_depth");
     c.shading.rouletteDepthGiven = shading.has("roulette_depth");
-    c.shading.russianRoulette = hv.boolean("russian_roulette");
-    c.shading.rouletteDepth = hv.integer("roulette_depth");
-    c.shading.maxSpecularDepth = hv.integer("max_specular_depth");
-    c.shading.hideEmitters = hv.boolean("hide_emitters");
     c.shading.hideEmittersGiven = shading.has("hide_emitters");
-    c.shading.lightSelection = hv.choice("light_selection");
-    c.shading.lightSampling = hv.choice("light_sampling");
-    c.shading.textureFilter = hv.choice("texture_filter");
     MapReader cache(ctx, shading.node("cache"), "shading.cache", sectionKeyNames(shadingCacheParams()));
-    const ParamValues cv = readSection(ctx, cache, shadingCacheParams());
-    ShadingConfig::Cache& ic = c.shading.cache;
-    ic.bounces = cv.integer("bounces");
-    ic.divisions = cv.integer("divisions");
-    ic.supersamples = cv.integer("supersamples");
-    ic.accuracy = cv.real("accuracy");
-    ic.resolution = cv.integer("resolution");
-    ic.gridStep = cv.integer("grid_step");
+    readSection(ctx, cache, shadingCacheSchema(), c.shading.cache);
 
     c.renders = detail::readRenders(ctx, top.node("renders"));
     c.reference = detail::readReference(ctx, top.node("reference"), c.renders);
     c.metrics = detail::readMetrics(ctx, top.node("metrics"));
     c.report = detail::readReport(ctx, top.node("report"));
     MapReader timing(ctx, top.node("timing"), "timing", sectionKeyNames(timingParams()));
-    const ParamValues tv = readSection(ctx, timing, timingParams());
-    c.timing.repeats = tv.integer("repeats");
-    c.timing.interleave = tv.boolean("interleave");
-    c.timing.sameMachine = tv.boolean("same_machine");
+    readSection(ctx, timing, timingSchema(), c.timing);
     return c;
 }
 
@@ -228,25 +198,13 @@ Json lightsJson(const ExperimentConfig& c) {
     return lights;
 }
 
-// The schema's snapshot keys, in the order the key format fixed. Rule for keys added later: they
-// enter only when not their default, so the keys of configs that do not set them stay as they were.
-Json snapshotJson(const ExperimentConfig& c) {
-    Json j = {{"scale", c.snapshot.scale}, {"area_light_samples", c.snapshot.areaLightSamples},
-              {"blur_radius", c.snapshot.blurRadius}, {"noise_floor", c.snapshot.noiseFloor},
-              {"gain", c.snapshot.gain}};
-    if (c.snapshot.map != "luminance") j["map"] = c.snapshot.map;  // keeps the keys of luminance runs
-    if (c.snapshot.environmentLights != 1) j["environment_lights"] = c.snapshot.environmentLights;  // likewise
-    // 0 is the chain without the flat gate, whose keys do not name it; every other value changes the map.
-    if (c.snapshot.flatRange != 0.0) j["flat_range"] = c.snapshot.flatRange;
-    if (!c.snapshot.softShadows) j["soft_shadows"] = false;  // likewise
-    if (c.snapshot.map == "subpixel") j["subpixel"] = c.snapshot.subpixel;  // the other maps do not read it
-    return j;
-}
+// The snapshot section: every key (canonical form), or for a cache key the keys not at their default.
+Json snapshotJson(const ExperimentConfig& c, bool forKey) { return sectionJson(snapshotSchema(), c.snapshot, forKey); }
 
 // The subpixel map holds its predicted error against the metrics' FLIP threshold, so that
 // threshold is part of its Snapshot (beside the snapshot section: it is a metrics key).
 void addSubpixelThreshold(const ExperimentConfig& c, Json& key) {
-    if (c.snapshot.map == "subpixel") key["subpixel_flip_threshold"] = c.metrics.flipThreshold;
+    if (c.snapshot.map == passes::AamapSource::Subpixel) key["subpixel_flip_threshold"] = c.metrics.flipThreshold;
 }
 
 // A Mitsuba scene file says how it is rendered (film size, integrator depths): what the config
@@ -255,27 +213,25 @@ void addSubpixelThreshold(const ExperimentConfig& c, Json& key) {
 // What every image of the experiment depends on, with paths resolved. forKey: for one render's
 // cache key, which leaves out what its shading mode never reads (the cache outside cache mode).
 Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = "", bool forKey = false) {
-    const ShadingConfig& s = c.shading;
-    const std::string mode = modeOverride.empty() ? s.mode : modeOverride;
-    Json j = {{"area_light_samples", s.areaLightSamples}, {"mode", mode},
-            {"max_depth", s.maxDepth}, {"russian_roulette", s.russianRoulette}, {"roulette_depth", s.rouletteDepth},
-            {"max_specular_depth", s.maxSpecularDepth}, {"light_selection", s.lightSelection},
-            {"light_sampling", s.lightSampling}};
-    // A Mitsuba file's own integrator decides the depths the config leaves out; the key then
-    // follows the file's contents (scene_content) instead of the value.
-    if (forKey && sceneDecidesRendering(c)) {
-        if (!s.maxDepthGiven) j["max_depth"] = "scene";
-        if (!s.rouletteDepthGiven) j["roulette_depth"] = "scene";
+    ShadingConfig s = c.shading;
+    if (!modeOverride.empty()) parse(modeOverride, s.mode);  // the reference's own mode, checked by the reader
+    Json j = sectionJson(shadingSchema(), s, forKey);
+    if (forKey) {
+        // A Mitsuba file's own integrator decides what the config leaves out; the key then follows
+        // the file's contents (scene_content) instead of the value.
+        if (sceneDecidesRendering(c)) {
+            if (!s.maxDepthGiven) j["max_depth"] = "scene";
+            if (!s.rouletteDepthGiven) j["roulette_depth"] = "scene";
+            if (s.hideEmittersGiven) j["hide_emitters"] = s.hideEmitters;
+        }
+        // The cache's settings only in cache mode: a path-traced reference keeps its key when the cache is tuned.
+        if (s.mode == ShadingMode::Cache) {
+            Json cache = sectionJson(shadingCacheSchema(), s.cache, true);
+            if (!cache.empty()) j["cache"] = cache;
+        }
+    } else {
+        j["cache"] = sectionJson(shadingCacheSchema(), s.cache, false);
     }
-    if (s.textureFilter != "anisotropic") j["texture_filter"] = s.textureFilter;  // else configs keep their hash
-    // Only when it can matter, so that other configs keep their hash: true, or given for a file
-    // that could decide otherwise (left out, the file's contents in the key decide).
-    if (s.hideEmitters || (forKey && s.hideEmittersGiven && sceneDecidesRendering(c))) j["hide_emitters"] = s.hideEmitters;
-    // The cache's settings only when they differ from the defaults: other configs keep their keys.
-    if (!(s.cache == ShadingConfig::Cache{}) && (!forKey || mode == "cache"))
-        j["cache"] = {{"bounces", s.cache.bounces}, {"divisions", s.cache.divisions},
-                      {"supersamples", s.cache.supersamples}, {"accuracy", s.cache.accuracy},
-                      {"resolution", s.cache.resolution}, {"grid_step", s.cache.gridStep}};
     return j;
 }
 
@@ -328,7 +284,7 @@ bool sceneDecidesRendering(const ExperimentConfig& c) {
 
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-11";  // bump when the image for the same settings and files changes (tracer or loader)
+    j["format"] = "aamap-render-12";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);
@@ -339,7 +295,7 @@ Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     if (!c.image.filterGiven && sceneDecidesRendering(c)) j["filter"] = "scene";  // the film's, as the file says
     const StrategyDescriptor* s = findStrategy(r.strategy);
     if (s != nullptr && s->usesAamap) {
-        j["snapshot"] = snapshotJson(c);
+        j["snapshot"] = snapshotJson(c, true);
         addSubpixelThreshold(c, j);
     }
     return j;
@@ -354,15 +310,15 @@ Json strategyParamsJson(const RenderConfig& r) {
 
 std::string renderKeyJson(const ExperimentConfig& c, const RenderConfig& r) { return renderKeyObject(c, r).dump(); }
 
-Json snapshotSettingsJson(const ExperimentConfig& c) { return snapshotJson(c); }
+Json snapshotSettingsJson(const ExperimentConfig& c) { return snapshotJson(c, false); }
 
 std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return fnv1a64Hex(renderKeyJson(c, r)); }
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-9";  // bump as the render key
+    j["format"] = "aamap-snapshot-10";  // bump as the render key
     j["scene"] = sceneJson(c);
-    j["snapshot"] = snapshotJson(c);
+    j["snapshot"] = snapshotJson(c, true);
     addSubpixelThreshold(c, j);
     return fnv1a64Hex(j.dump());
 }
@@ -384,7 +340,7 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     }
     j["seed"] = c.seed;
     j["threads"] = c.threads;
-    j["snapshot"] = snapshotJson(c);
+    j["snapshot"] = snapshotJson(c, false);
     j["shading"] = shadingJson(c);
     j["renders"] = Json::array();
     for (const RenderConfig& r : c.renders)
@@ -392,16 +348,9 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
                                 {"params", paramsJson(r)}});
     j["reference"] = {{"type", c.reference.type}, {"rpp", c.reference.rpp}, {"mode", c.reference.mode},
                       {"path", c.reference.path}};
-    const MetricsConfig& m = c.metrics;
-    j["metrics"] = {{"flip", m.flip}, {"flip_hdr", m.flipHdr}, {"flip_threshold", m.flipThreshold},
-                    {"mse_threshold", m.mseThreshold}, {"ppd", m.ppd}, {"map_quality", m.mapQuality}};
-    if (!m.causes) j["metrics"]["causes"] = false;  // only when not the default: older configs keep their hash
-    if (m.oracle) j["metrics"]["oracle"] = true;    // likewise
-    j["report"] = {{"plots", c.report.plots}};
-    // Only when not the default: configs without it keep their hash.
-    if (c.timing.repeats != 1 || !c.timing.interleave)
-        j["timing"] = {{"repeats", c.timing.repeats}, {"interleave", c.timing.interleave}};
-    if (c.timing.sameMachine) j["timing"]["same_machine"] = true;
+    j["metrics"] = sectionJson(metricsSchema(), c.metrics, false);
+    j["report"] = sectionJson(reportSchema(), c.report, false);
+    j["timing"] = sectionJson(timingSchema(), c.timing, false);
     return j;
 }
 
@@ -411,6 +360,18 @@ std::string ExperimentConfig::hash() const {
     nlohmann::ordered_json j = canonical(*this);
     j.erase("threads");
     return fnv1a64Hex(j.dump());
+}
+
+SnapshotConfig snapshotFromOverrides(const std::vector<std::string>& overrides) {
+    yaml::Context ctx("--set");
+    YAML::Node root(YAML::NodeType::Map);
+    std::vector<std::string> keys;
+    for (const ParamSpec& p : snapshotParams()) keys.push_back("snapshot." + p.name);
+    for (const std::string& o : overrides) yaml::applyOverride(root, o, keys, ctx);
+    MapReader snap(ctx, root["snapshot"], "snapshot", sectionKeyNames(snapshotParams()));
+    SnapshotConfig c;
+    readSection(ctx, snap, snapshotSchema(), c);
+    return c;
 }
 
 CameraConfig parseCameraOption(const std::string& text) {

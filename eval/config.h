@@ -12,7 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "passes/snapshot_params.h"
 #include "scene/light_file.h"
+#include "tracer/shading_params.h"
 #include "tracer/strategy_params.h"
 
 namespace aamap {
@@ -47,49 +49,9 @@ struct CameraConfig {
     double fov = 45.0;  // degrees, the full horizontal angle; the vertical one follows the image
 };
 
-struct SnapshotConfig {
-    double scale = 1.5;
-    int areaLightSamples = 5;
-    int blurRadius = 1;
-    double flatRange = 1.0 / 255.0;  // the Laplacian's flat gate (glsl/shared/aamap_filter.h)
-    double noiseFloor = 0.02;
-    double gain = 1.0;
-    std::string map = "luminance";  // luminance | geometric | combined | subpixel (passes/geometric_aamap.h)
-    int subpixel = 2;               // the subpixel map's samples per pixel side (passes/subpixel_map.h)
-    // The environment map's brightest regions as this many shadowed directional lights, 0..16
-    // (0: all of it in the SH ambient term); no effect without an environment map.
-    int environmentLights = 1;
-    // Area-light samples' shadows filtered over the penumbra of their patch of the light
-    // (passes/snapshot.h ShadowSettings::softShadows); false: hard shadows from every sample.
-    bool softShadows = true;
-};
+// SnapshotConfig: the `snapshot` section, declared with its schema in passes/snapshot_params.h.
 
-struct ShadingConfig {
-    int areaLightSamples = 16;
-    std::string mode = "direct";  // direct | path (unbiased, the ground truth) | cache (irradiance cache)
-    int maxDepth = 5;             // path: longest path in segments
-    bool russianRoulette = true;  // path
-    int rouletteDepth = 5;        // path: roulette from this segment on
-    // Written in the config (or --set): else a scene file's own integrator depths win
-    // (withSceneRenderSettings in eval/experiment.h).
-    bool maxDepthGiven = false, rouletteDepthGiven = false;
-    // Camera rays see no emitter (Mitsuba's hide_emitters); unset: a scene file's integrator decides.
-    bool hideEmitters = false, hideEmittersGiven = false;
-    int maxSpecularDepth = 8;     // direct/cache: mirror and glass bounces
-    std::string lightSelection = "contribution";  // contribution | power: which light a shadow ray goes to
-    std::string lightSampling = "auto";           // auto | solid_angle | area: where an area light's samples go
-    std::string textureFilter = "anisotropic";    // anisotropic | none: textures filtered over ray footprints
-    // cache: the irradiance cache (docs/irradiance-cache.md); Radiance's -ab -ad -as -aa -ar.
-    struct Cache {
-        int bounces = 1;          // diffuse bounces through the cache; 0: shades as direct
-        int divisions = 512;      // hemisphere samples of a record
-        int supersamples = 128;   // extra samples to the cells with the largest differences
-        double accuracy = 0.2;    // a record is used where its error is below this
-        int resolution = 64;      // minimum record radius = scene size / resolution (0: none)
-        int gridStep = 4;         // the pre-pass takes one camera ray per grid_step x grid_step pixels
-        bool operator==(const Cache&) const = default;
-    } cache;
-};
+// ShadingConfig: the `shading` section, declared with its schema in tracer/shading_params.h.
 
 // One concrete render, after sweep expansion (a renders[] entry with list values becomes the
 // cartesian product of its lists).
@@ -114,29 +76,33 @@ struct ReferenceConfig {
     std::optional<std::filesystem::path> resolvedPath(const std::filesystem::path& configFile) const;
 };
 
+// The metrics, timing and report sections: every default is its schema's (eval/config_schema.cpp).
 struct MetricsConfig {
-    bool flip = true;            // LDR-FLIP of the displayed images
-    bool flipHdr = false;        // HDR-FLIP of the linear radiance as well
-    double flipThreshold = 0.1;  // % pixels above it; also the "true aliasing" threshold of map quality
-    double mseThreshold = (2.0 / 255.0) * (2.0 / 255.0);  // per-pixel display-space squared error
-    double ppd = 67.0206;        // FLIP viewing condition (pixels per degree)
-    bool mapQuality = true;      // aamap recall/precision; adds a 1-ray uniform render
-    bool causes = true;          // with mapQuality: why pixels are missed or wasted (pixel facts)
-    bool oracle = false;         // with mapQuality: every aamap-driven render again on the oracle map
+    MetricsConfig();
+    bool flip;             // LDR-FLIP of the displayed images
+    bool flipHdr;          // HDR-FLIP of the linear radiance as well
+    double flipThreshold;  // % pixels above it; also the "true aliasing" threshold of map quality
+    double mseThreshold;   // per-pixel display-space squared error
+    double ppd;            // FLIP viewing condition (pixels per degree)
+    bool mapQuality;       // aamap recall/precision; adds a 1-ray uniform render
+    bool causes;           // with mapQuality: why pixels are missed or wasted (pixel facts)
+    bool oracle;           // with mapQuality: every aamap-driven render again on the oracle map
 };
 
 // How traces are timed: the machine drifts, so a trade is timed over several runs, interleaved
 // across renders so that drift hits all of them alike. Images do not depend on it.
 struct TimingConfig {
-    int repeats = 1;         // timed runs of every trace; times_s.trace is their median
-    bool interleave = true;  // round r times every render once before round r + 1
+    TimingConfig();
+    int repeats;      // timed runs of every trace; times_s.trace is their median
+    bool interleave;  // round r times every render once before round r + 1
     // An executor over several machines (--executor ray) traces the renders of one rpp (a speedup's
     // numerator and denominator) on one worker. Ignored by a run on one machine.
-    bool sameMachine = false;
+    bool sameMachine;
 };
 
 struct ReportConfig {
-    bool plots = true;  // run tools/report_plots.py (skipped with a warning if Python is absent)
+    ReportConfig();
+    bool plots;  // run tools/report_plots.py (skipped with a warning if Python is absent)
 };
 
 struct ExperimentConfig {
@@ -195,6 +161,10 @@ std::string snapshotKey(const ExperimentConfig& config);
 // Every key --set can reach, '#' standing for a list index ("renders.#.rpp").
 std::vector<std::string> settableKeys();
 std::string fnv1a64Hex(const std::string& text);
+
+// The `snapshot` section from overrides alone ("snapshot.blur_radius=2", the --set options of
+// `aamap snapshot`), read as `aamap run` reads its --set: the same checks and errors. Throws InputError.
+SnapshotConfig snapshotFromOverrides(const std::vector<std::string>& overrides);
 
 // The --camera option of `aamap snapshot` and `aamap view`: the config's camera mapping as YAML
 // flow text ("{position: [0, 1, 5], look_at: [0, 1, 0], fov: 50}"). Throws InputError.

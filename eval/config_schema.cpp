@@ -32,35 +32,52 @@ const std::vector<ParamSpec>& imageParams() {
     return params;
 }
 
-const std::vector<ParamSpec>& metricsParams() {
-    static const std::vector<ParamSpec> params = {
-        boolParam("flip", true, "LDR-FLIP of the displayed images"),
-        boolParam("flip_hdr", false, "HDR-FLIP of the linear radiance as well"),
-        realParamAbove("flip_threshold", 0.0, 1.0, 0.1, "FLIP above it counts as an error pixel"),
-        realParamAbove("mse_threshold", 0.0, 1.0, (2.0 / 255.0) * (2.0 / 255.0), "per-pixel display-space squared error"),
-        realParamAbove("ppd", 0.0, 1000.0, 67.0206, "FLIP viewing condition, pixels per degree"),
-        boolParam("map_quality", true, "aamap recall/precision; adds a 1-ray uniform render"),
-        boolParam("causes", true, "with map_quality: why pixels are missed or wasted"),
-        boolParam("oracle", false, "with map_quality: each aamap render again with the oracle map, its bound"),
-    };
-    return params;
+const Schema<MetricsConfig>& metricsSchema() {
+    using M = MetricsConfig;
+    static const Schema<M> schema = [] {
+        Schema<M> s;
+        s.field(&M::flip, "flip", true, "LDR-FLIP of the displayed images")
+            .field(&M::flipHdr, "flip_hdr", false, "HDR-FLIP of the linear radiance as well")
+            .field(&M::flipThreshold, "flip_threshold", above(0.0, 1.0), 0.1, "FLIP above it counts as an error pixel")
+            .field(&M::mseThreshold, "mse_threshold", above(0.0, 1.0), (2.0 / 255.0) * (2.0 / 255.0),
+                   "per-pixel display-space squared error")
+            .field(&M::ppd, "ppd", above(0.0, 1000.0), 67.0206, "FLIP viewing condition, pixels per degree")
+            .field(&M::mapQuality, "map_quality", true, "aamap recall/precision; adds a 1-ray uniform render")
+            .field(&M::causes, "causes", true, "with map_quality: why pixels are missed or wasted")
+            .field(&M::oracle, "oracle", false, "with map_quality: each aamap render again with the oracle map, its bound");
+        return s;
+    }();
+    return schema;
 }
 
-const std::vector<ParamSpec>& reportParams() {
-    static const std::vector<ParamSpec> params = {
-        boolParam("plots", true, "run tools/report_plots.py"),
-    };
-    return params;
+const Schema<ReportConfig>& reportSchema() {
+    static const Schema<ReportConfig> schema = [] {
+        Schema<ReportConfig> s;
+        s.field(&ReportConfig::plots, "plots", true, "run tools/report_plots.py");
+        return s;
+    }();
+    return schema;
 }
 
-const std::vector<ParamSpec>& timingParams() {
-    static const std::vector<ParamSpec> params = {
-        intParam("repeats", 1, 100, 1, "timed runs of every trace; the time is their median"),
-        boolParam("interleave", true, "round r times every render once before round r + 1"),
-        boolParam("same_machine", false, "trace the renders of one rpp on one worker"),
-    };
-    return params;
+const Schema<TimingConfig>& timingSchema() {
+    using T = TimingConfig;
+    static const Schema<T> schema = [] {
+        Schema<T> s;
+        s.field(&T::repeats, "repeats", in(1, 100), 1, "timed runs of every trace; the time is their median")
+            .field(&T::interleave, "interleave", true, "round r times every render once before round r + 1")
+            .field(&T::sameMachine, "same_machine", false, "trace the renders of one rpp on one worker");
+        return s;
+    }();
+    return schema;
 }
+
+MetricsConfig::MetricsConfig() { metricsSchema().setDefaults(*this); }
+ReportConfig::ReportConfig() { reportSchema().setDefaults(*this); }
+TimingConfig::TimingConfig() { timingSchema().setDefaults(*this); }
+
+const std::vector<ParamSpec>& metricsParams() { return metricsSchema().specs(); }
+const std::vector<ParamSpec>& reportParams() { return reportSchema().specs(); }
+const std::vector<ParamSpec>& timingParams() { return timingSchema().specs(); }
 
 const std::vector<ConfigSection>& configSections() {
     static const std::vector<ConfigSection> sections = {
@@ -148,6 +165,13 @@ ParamValues readSection(const yaml::Context& ctx, yaml::MapReader& map, const st
         }
     }
     return values;
+}
+
+nlohmann::ordered_json toJson(const ParamValues& values) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::object();
+    for (const auto& entry : values.entries())  // not a structured binding: clang's lambdas cannot capture one
+        std::visit([&j, &entry](const auto& v) { j[entry.first] = v; }, entry.second);
+    return j;
 }
 
 std::vector<std::string> sectionKeyNames(const std::vector<ParamSpec>& params, std::vector<std::string> extra) {

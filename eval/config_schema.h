@@ -5,14 +5,22 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "core/params.h"
+#include "core/schema.h"
+#include "eval/config.h"
 #include "eval/yaml_reader.h"
 
 namespace aamap {
 
 const std::vector<ParamSpec>& topLevelParams();  // view_index, threads
 const std::vector<ParamSpec>& imageParams();
-const std::vector<ParamSpec>& metricsParams();
+// The sections eval/ owns, each bound to its struct (eval/config.h).
+const Schema<MetricsConfig>& metricsSchema();
+const Schema<ReportConfig>& reportSchema();
+const Schema<TimingConfig>& timingSchema();
+const std::vector<ParamSpec>& metricsParams();  // metricsSchema().specs()
 const std::vector<ParamSpec>& reportParams();
 const std::vector<ParamSpec>& timingParams();
 
@@ -31,6 +39,23 @@ std::string sectionHelpLines();
 // Reads every key of `params` from the mapping (absent keys: the default), with the config's
 // file:line:col errors; the reader's allowed keys must include them.
 ParamValues readSection(const yaml::Context& ctx, yaml::MapReader& map, const std::vector<ParamSpec>& params);
+// The generic walk of a bound section: every key of `schema` read from the mapping (absent keys
+// keep the struct's value, its default) into the struct's fields.
+template <class T>
+void readSection(const yaml::Context& ctx, yaml::MapReader& map, const Schema<T>& schema, T& out) {
+    schema.fill(out, readSection(ctx, map, schema.specs()));
+}
+
+// Typed values as JSON: an int stays an integer, a real a number, a choice its name.
+nlohmann::ordered_json toJson(const ParamValues& values);
+// A bound section as JSON: every key in declaration order (the canonical form), or (forKey) only
+// the keys not at their default, so that a key added later leaves the cache keys of the configs
+// that do not set it as they were.
+template <class T>
+nlohmann::ordered_json sectionJson(const Schema<T>& schema, const T& value, bool forKey) {
+    return toJson(forKey ? schema.changed(value) : schema.values(value));
+}
+
 // The names of `params`, plus `extra` keys the section holds (a subsection).
 std::vector<std::string> sectionKeyNames(const std::vector<ParamSpec>& params, std::vector<std::string> extra = {});
 

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "eval/config_schema.h"
 #include "eval/strategies.h"
+#include "tracer/shading_params.h"
 
 namespace aamap::detail {
 namespace {
@@ -219,7 +220,9 @@ void checkOneOf(const yaml::Context& ctx, const YAML::Node& node, const std::str
 }
 
 void checkShadingMode(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& mode) {
-    checkOneOf(ctx, node, path, mode, {"direct", "path", "cache"});
+    const std::vector<std::string>& names = findParam(shadingParams(), "mode")->choices;  // shading.mode's, as declared
+    if (std::find(names.begin(), names.end(), mode) == names.end())
+        ctx.fail(node, path, fmt::format("{}: unknown value '{}' (supported: {})", path, mode, fmt::join(names, ", ")));
 }
 
 std::string lower(std::string s) {
@@ -289,23 +292,15 @@ ReferenceConfig readReference(const yaml::Context& ctx, const YAML::Node& node, 
 
 MetricsConfig readMetrics(const yaml::Context& ctx, const YAML::Node& node) {
     MapReader m(ctx, node, "metrics", sectionKeyNames(metricsParams()));
-    const ParamValues v = readSection(ctx, m, metricsParams());
     MetricsConfig c;
-    c.flip = v.boolean("flip");
-    c.flipHdr = v.boolean("flip_hdr");
-    c.flipThreshold = v.real("flip_threshold");
-    c.mseThreshold = v.real("mse_threshold");
-    c.ppd = v.real("ppd");
-    c.mapQuality = v.boolean("map_quality");
-    c.causes = v.boolean("causes");
-    c.oracle = v.boolean("oracle");
+    readSection(ctx, m, metricsSchema(), c);
     return c;
 }
 
 ReportConfig readReport(const yaml::Context& ctx, const YAML::Node& node) {
     MapReader m(ctx, node, "report", sectionKeyNames(reportParams()));
     ReportConfig c;
-    c.plots = readSection(ctx, m, reportParams()).boolean("plots");
+    readSection(ctx, m, reportSchema(), c);
     return c;
 }
 

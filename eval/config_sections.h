@@ -23,7 +23,6 @@ CameraConfig readCamera(const yaml::Context& ctx, const YAML::Node& node);
 
 std::string lower(std::string s);
 bool readBool(const yaml::Context& ctx, yaml::MapReader& m, const std::string& key, bool fallback);
-// direct | path | cache
 // Fails naming the node's file:line:col unless value is one of `allowed`.
 void checkOneOf(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& value,
                 std::initializer_list<const char*> allowed);

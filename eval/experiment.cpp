@@ -115,18 +115,8 @@ View pickView(const ExperimentConfig& config, const Scene& scene, std::string& l
 void addConfigLights(const ExperimentConfig& config, Scene& scene) { addLights(scene, config.lights); }
 
 SnapshotSettings snapshotSettings(const ExperimentConfig& c) {
-    SnapshotSettings s;
-    s.scale = static_cast<float>(c.snapshot.scale);
-    s.areaLightSamples = c.snapshot.areaLightSamples;
-    s.environmentLights = c.snapshot.environmentLights;
-    s.shadows.softShadows = c.snapshot.softShadows;
+    SnapshotSettings s(c.snapshot);  // the snapshot section, as the passes take it
     s.filter.exposure = static_cast<float>(c.image.exposure);  // edges as the viewer will see them
-    s.filter.blurRadius = c.snapshot.blurRadius;
-    s.filter.flatRange = static_cast<float>(c.snapshot.flatRange);
-    s.filter.noiseFloor = static_cast<float>(c.snapshot.noiseFloor);
-    s.filter.gain = static_cast<float>(c.snapshot.gain);
-    passes::parse(c.snapshot.map, s.map);  // validated by the config reader
-    s.subpixel = c.snapshot.subpixel;
     s.flipThreshold = static_cast<float>(c.metrics.flipThreshold);  // what the metrics count as an error
     s.keepDebugImages = true;
     // The GPU block-sum pass only when a render subsamples (otherwise the graph culls it).
@@ -181,9 +171,9 @@ public:
         } catch (const RequestedDeviceError&) {
             throw;  // the user asked for that device: say so rather than quietly use the CPU
         } catch (const EnvironmentError& e) {
-            if (config_.snapshot.map != "luminance")
+            if (config_.snapshot.map != passes::AamapSource::Luminance)
                 throw EnvironmentError(fmt::format("snapshot.map: {} needs a Vulkan device, and there is none usable ({})",
-                                                   config_.snapshot.map, e.what()));
+                                                   passes::toString(config_.snapshot.map), e.what()));
             spdlog::warn("no usable Vulkan device ({}); building the aamap on the CPU instead", e.what());
             return cpuSnapshot(e.what());
         }
@@ -236,9 +226,9 @@ public:
                                                    vk::resultName(e.result()));
             context.reset();
             gpuBlockSums_.reset();
-            if (config_.snapshot.map != "luminance")
+            if (config_.snapshot.map != passes::AamapSource::Luminance)
                 throw EnvironmentError(fmt::format("snapshot.map: {} needs a Vulkan device, and {} ({})",
-                                                   config_.snapshot.map, reason, e.what()));
+                                                   passes::toString(config_.snapshot.map), reason, e.what()));
             spdlog::warn("{} ({}); building the aamap on the CPU instead", reason, e.what());
             return cpuSnapshot(reason);
         }  // GPU objects freed here, so their destruction is validated too

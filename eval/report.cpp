@@ -281,7 +281,7 @@ std::vector<Table> reportTables(const Json& results) {
     }
     tables.push_back(time);
 
-    Table speed{"speedup", "Table 1/2: speedup over " + (base.empty() ? std::string("uniform") : base),
+    Table speed{"speedup", "Table 1/2: speedup over " + (base.empty() ? baselineStrategyName() : base),
                 base.empty() ? "no uniform render in the experiment: no baseline"
                              : "baseline time / series time at the same rpp; with timing.repeats > 1, the ratio of medians, "
                                "then (min–max): the fastest baseline run over the slowest series run, and the reverse",

@@ -10,6 +10,8 @@
 #include "eval/metrics/magma.h"
 #include "eval/metrics/pixel_causes.h"
 #include "eval/report.h"
+#include "tracer/shading_params.h"
+#include "tracer/strategy.h"
 
 namespace aamap {
 namespace fs = std::filesystem;
@@ -52,7 +54,7 @@ std::string referenceText(const Json& results) {
     const std::string type = ref.value("type", std::string("none"));
     if (type == "uniform" && ref.contains("rpp"))
         return fmt::format("uniform sampling, {} primary rays in every pixel ({} shading)", ref["rpp"].get<int>(),
-                           ref.value("mode", std::string("direct")));
+                           ref.value("mode", std::string(toString(ShadingConfig().mode))));
     if (ref.contains("path")) return fmt::format("the image {}", fs::path(ref["path"].get<std::string>()).filename().string());
     return type;
 }
@@ -97,13 +99,13 @@ Json viewerData(const Json& results, const fs::path& outDir) {
         // Open on the selective render with most error, where there is most to see (or on the
         // render with most error when no selective one has any).
         if (std::isfinite(pct) && pct > worstAnyPct) worstAnyPct = pct, worstAny = list.size();
-        if (r["strategy"] != "uniform" && std::isfinite(pct) && pct > worstSelectivePct)
+        if (r["strategy"] != baselineStrategyName() && std::isfinite(pct) && pct > worstSelectivePct)
             worstSelectivePct = pct, worstSelective = list.size();
         list.push_back({{"name", name},
                         {"series", s},
                         {"strategy", r["strategy"]},
                         {"rpp", rpp},
-                        {"uniform", r["strategy"] == "uniform"},
+                        {"uniform", r["strategy"] == baselineStrategyName()},
                         {"mean_rpp", numberOrNull(number(r, "mean_primary_rpp"))},
                         {"pct_flip", numberOrNull(pct)},
                         {"flip_mean", numberOrNull(number(m, "flip_mean"))},

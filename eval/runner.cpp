@@ -63,13 +63,13 @@ JobList jobsOf(const ExperimentConfig& c) {
     for (const RenderConfig& r : c.renders) list.jobs.push_back({r, renderKey(c, r)});
     list.listed = list.jobs.size();
     if (c.reference.type == "uniform") {
-        RenderConfig r{"reference", "reference", "uniform", c.reference.rpp, {}, c.reference.mode};
+        RenderConfig r{"reference", "reference", baselineStrategyName(), c.reference.rpp, {}, c.reference.mode};
         list.reference = Job{r, renderKey(c, r)};
         list.jobs.push_back(*list.reference);
     }
     list.mapQuality = c.metrics.mapQuality && c.usesAamap() && c.reference.type != "none";
     if (list.mapQuality) {  // true aliasing is what a 1-ray image gets wrong
-        RenderConfig r{"one_ray", "one_ray", "uniform", 1, {}, ""};
+        RenderConfig r{"one_ray", "one_ray", baselineStrategyName(), 1, {}, ""};
         list.oneRay = Job{r, renderKey(c, r)};
         list.jobs.push_back(*list.oneRay);
     }
@@ -224,7 +224,7 @@ void Runner::loadOrRenderSnapshot(bool writeOutputs) {
 // The pixel facts depend on the scene, the view and the image size; the key of a 1-ray render
 // covers them (and more, which only costs a recomputation), under a prefix of its own.
 PixelFacts Runner::loadOrComputeFacts() {
-    RenderConfig probe{"pixel_facts", "pixel_facts", "uniform", 1, {}, ""};
+    RenderConfig probe{"pixel_facts", "pixel_facts", baselineStrategyName(), 1, {}, ""};
     const std::string key = "facts-" + renderKey(c_, probe);
     if (cache_.has(key)) {
         try {
@@ -458,11 +458,11 @@ ImageRGB Runner::loadFileReference(const std::vector<Job>& jobs) {
 // against it, which is its antialiasing share.
 void Runner::addAntialiasingShares(Results& results, const std::vector<Job>& jobs, std::size_t listed,
                                    const ImageRGB& reference) const {
-    const bool groundTruth = c_.reference.type == "file" || (!c_.reference.mode.empty() && c_.reference.mode != c_.shading.mode);
+    const bool groundTruth = c_.reference.type == "file" || (!c_.reference.mode.empty() && c_.reference.mode != toString(c_.shading.mode));
     if (!groundTruth) return;
     std::optional<std::size_t> floor;
     for (std::size_t i = 0; i < listed; ++i)
-        if (jobs[i].render.strategy == "uniform" && (!floor || jobs[i].render.rpp > jobs[*floor].render.rpp)) floor = i;
+        if (jobs[i].render.strategy == baselineStrategyName() && (!floor || jobs[i].render.rpp > jobs[*floor].render.rpp)) floor = i;
     if (!floor) return;
     const ImageRGB& floorImage = traced_.at(jobs[*floor].key).image;
     if (floorImage.width() != reference.width() || floorImage.height() != reference.height()) return;
@@ -600,7 +600,8 @@ void Runner::plan() {
             }
     // Cache mode with B bounces renders paths of up to B + 2 segments (camera, B diffuse bounces,
     // the light): against a path reference of another length the difference is not the cache's.
-    if (list_.reference && c_.shading.mode == "cache" && c_.reference.mode == "path" && c_.shading.cache.bounces > 0 &&
+    if (list_.reference && c_.shading.mode == ShadingMode::Cache && c_.reference.mode == toString(ShadingMode::Path) &&
+        c_.shading.cache.bounces > 0 &&
         c_.shading.maxDepth != c_.shading.cache.bounces + 2)
         warn(fmt::format("shading.cache.bounces {} renders paths of up to {} segments, the path-traced reference up to "
                          "shading.max_depth {}: set shading.max_depth: {} to measure the cache against the same light "
@@ -668,7 +669,7 @@ void Runner::evaluate() {
     if (refJob) {
         reference = traced_.at(refJob->key).image;
         results.referenceInfo.rpp = c_.reference.rpp;
-        results.referenceInfo.mode = c_.reference.mode.empty() ? c_.shading.mode : c_.reference.mode;
+        results.referenceInfo.mode = c_.reference.mode.empty() ? std::string(toString(c_.shading.mode)) : c_.reference.mode;
     } else if (fileReference_) {
         reference = std::move(fileReference_);
         results.referenceInfo.path = c_.reference.resolvedPath(c_.file)->string();

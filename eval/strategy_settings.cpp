@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "core/error.h"
+#include "tracer/shading_params.h"
 
 namespace aamap {
 
@@ -18,19 +19,20 @@ StrategySettings toStrategySettings(const RenderConfig& r, const ImageGrey* aama
 }
 
 ShadingSettings toShadingSettings(const ExperimentConfig& c, const RenderConfig& r) {
+    const ShadingConfig& h = c.shading;
     ShadingSettings s;
-    s.areaLightSamples = c.shading.areaLightSamples;
-    const std::string mode = r.shadingMode.empty() ? c.shading.mode : r.shadingMode;
-    s.mode = mode == "path" ? ShadingMode::Path : mode == "cache" ? ShadingMode::Cache : ShadingMode::Direct;
-    s.maxDepth = c.shading.maxDepth;
-    s.russianRoulette = c.shading.russianRoulette;
-    s.rouletteDepth = c.shading.rouletteDepth;
-    s.maxSpecularDepth = c.shading.maxSpecularDepth;
-    s.hideEmitters = c.shading.hideEmitters;
-    s.lightSelection = c.shading.lightSelection == "power" ? LightSelection::Power : LightSelection::Contribution;
-    parse(c.shading.lightSampling, s.lightSampling);  // the config reader checked the name
-    s.textureFilter = c.shading.textureFilter == "none" ? TextureFilter::None : TextureFilter::Anisotropic;
-    const ShadingConfig::Cache& ic = c.shading.cache;
+    s.areaLightSamples = h.areaLightSamples;
+    s.mode = h.mode;
+    if (!r.shadingMode.empty()) parse(r.shadingMode, s.mode);  // the reference's own; the config reader checked it
+    s.maxDepth = h.maxDepth;
+    s.russianRoulette = h.russianRoulette;
+    s.rouletteDepth = h.rouletteDepth;
+    s.maxSpecularDepth = h.maxSpecularDepth;
+    s.hideEmitters = h.hideEmitters;
+    s.lightSelection = h.lightSelection;
+    s.lightSampling = h.lightSampling;
+    s.textureFilter = h.textureFilter;
+    const ShadingConfig::Cache& ic = h.cache;
     s.cache.bounces = ic.bounces;
     s.cache.divisions = ic.divisions;
     s.cache.supersamples = ic.supersamples;

@@ -77,7 +77,7 @@ std::string planText(const Experiment& experiment, const fs::path& outDir, const
             parts.push_back(experiment.sweptKeys[k] + "=" + experiment.sweptValues[i][k]);
         text += fmt::format("\nvariant {}/{}{}: scene {}, {}x{}, {} shading{}\n", i + 1, experiment.variants.size(),
                             parts.empty() ? "" : fmt::format(" ({})", fmt::join(parts, ", ")), c.scene, c.image.width,
-                            c.image.height, c.shading.mode,
+                            c.image.height, toString(c.shading.mode),
                             plan.repeats > 1 ? fmt::format(", {} timed runs each", plan.repeats) : "");
         if (plan.usesSnapshot)
             text += fmt::format("  {:<24} {:<16} {:>5}  {:>14}  {:<6}  {}\n", "snapshot", "", "", "",

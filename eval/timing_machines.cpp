@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "tracer/strategy.h"
+
 namespace aamap {
 
 namespace {
@@ -20,7 +22,7 @@ bool sameMachine(const MachineInfo& a, const MachineInfo& b) {
 std::vector<std::string> mixedMachineWarnings(const Results& results) {
     const std::vector<RenderRecord>& renders = results.renders;
     // The report's baseline: the first uniform series.
-    const auto base = std::find_if(renders.begin(), renders.end(), [](const RenderRecord& r) { return r.strategy == "uniform"; });
+    const auto base = std::find_if(renders.begin(), renders.end(), [](const RenderRecord& r) { return r.strategy == baselineStrategyName(); });
     if (base == renders.end()) return {};
     std::set<int> rpps;
     std::set<std::string> machines;

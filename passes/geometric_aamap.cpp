@@ -34,25 +34,6 @@ graph::Size sizeOf(int width, int height) {
 
 }  // namespace
 
-const char* toString(AamapSource source) {
-    switch (source) {
-        case AamapSource::Luminance: return "luminance";
-        case AamapSource::Geometric: return "geometric";
-        case AamapSource::Combined: return "combined";
-        case AamapSource::Subpixel: return "subpixel";
-    }
-    return "?";
-}
-
-bool parse(const std::string& name, AamapSource& source) {
-    for (AamapSource s : {AamapSource::Luminance, AamapSource::Geometric, AamapSource::Combined, AamapSource::Subpixel})
-        if (name == toString(s)) {
-            source = s;
-            return true;
-        }
-    return false;
-}
-
 GeometricEdgePass::GeometricEdgePass(VulkanContext& context)
     : context_(&context) {}
 

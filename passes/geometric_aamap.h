@@ -16,15 +16,12 @@
 #include "passes/geometry_buffer.h"
 #include "passes/gpu_aamap.h"
 #include "passes/snapshot_graph.h"
+#include "passes/snapshot_params.h"
 #include "passes/subpixel_map.h"
 
 namespace aamap::passes {
 
-// Which edges the aamap is built from (config snapshot.map).
-// Subpixel: the predicted one-ray error from k x k samples per pixel (passes/subpixel_map.h).
-enum class AamapSource { Luminance, Geometric, Combined, Subpixel };
-const char* toString(AamapSource source);  // "luminance", "geometric", "combined", "subpixel"
-bool parse(const std::string& name, AamapSource& source);  // false for an unknown name
+// AamapSource, which edges the aamap is built from: passes/snapshot_params.h (config snapshot.map).
 
 class GeometricEdgePass {
 public:

@@ -9,6 +9,7 @@
 #include "passes/block_sums.h"
 #include "passes/filter_params.h"
 #include "passes/geometric_aamap.h"
+#include "passes/snapshot_params.h"
 #include "scene/scene.h"
 
 namespace aamap {
@@ -27,12 +28,18 @@ struct ShadowSettings {
     bool softShadows = true;
 };
 
+// What one Snapshot run takes: the config's `snapshot` section (passes/snapshot_params.h, every
+// value and default there) as the passes read it, and the run's own choices beside it.
 struct SnapshotSettings {
-    float scale = 1.5f;          // snapshot resolution / render resolution (768 for 512); not the subpixel map's
-    int areaLightSamples = 5;    // point samples per area light (the paper used 5)
+    SnapshotSettings() : SnapshotSettings(SnapshotConfig()) {}
+    // The config section's values; exposure, flipThreshold and the run's choices keep their defaults.
+    explicit SnapshotSettings(const SnapshotConfig& config);
+
+    float scale;           // snapshot resolution / render resolution (768 for 512); not the subpixel map's
+    int areaLightSamples;  // point samples per area light (the paper used 5)
     // The environment map's brightest regions shaded as this many shadowed directional lights
     // (0..16; 0: the whole map goes to the SH ambient term). passes/environment_lighting.h.
-    int environmentLights = 1;
+    int environmentLights;
     FilterParams filter;
     bool keepDebugImages = true;  // also read back snapshot colour and laplacian
     // Also build and read back the aamap's block-sum tables (passes/block_sums.h) for adaptive
@@ -40,11 +47,11 @@ struct SnapshotSettings {
     bool blockSums = false;
     // Edges the aamap is built from: the luminance Laplacian (the paper), G-buffer
     // discontinuities, or their max (passes/geometric_aamap.h).
-    passes::AamapSource map = passes::AamapSource::Luminance;
+    passes::AamapSource map;
     // The subpixel map: k x k samples per render pixel (the raster runs at k x the render
     // resolution; `scale` does not apply), and the FLIP threshold its predicted error is held
     // against (glsl/shared/subpixel_map.h).
-    int subpixel = 2;
+    int subpixel;
     float flipThreshold = 0.1f;
     ShadowSettings shadows;
 };

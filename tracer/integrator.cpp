@@ -38,15 +38,6 @@ float lightShare(float nLightPdf, int glossySamples, float glossyPdf) {
 
 }  // namespace
 
-const char* toString(ShadingMode mode) {
-    switch (mode) {
-        case ShadingMode::Direct: return "direct";
-        case ShadingMode::Path: return "path";
-        case ShadingMode::Cache: return "cache";
-    }
-    return "?";
-}
-
 Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading,
                        const IndirectDiffuseSource* indirect)
     : geometry_(geometry),

@@ -17,7 +17,7 @@ namespace aamap {
 // no indirect diffuse. Path: unbiased path tracing (NEE + MIS + Russian roulette), the ground
 // truth. Cache: Direct plus indirect diffuse from the irradiance cache.
 enum class ShadingMode { Direct, Path, Cache };
-const char* toString(ShadingMode mode);
+const char* toString(ShadingMode mode);  // shading.mode's name (tracer/shading_params.cpp declares them)
 
 // Direct/Cache with more than LightSet::kFewLights lights: how each shadow sample picks its light.
 // Power: the global power CDF (the pre-existing behaviour, kept for comparison). Contribution: a
@@ -31,6 +31,7 @@ enum class LightSelection { Power, Contribution };
 // one light sample per vertex is a small part of a path's noise. docs/tracer.md, "Light sampling".
 enum class LightSampling { Auto, SolidAngle, Area };
 // shading.light_sampling's names (auto, solid_angle, area); false for an unknown name.
+// Declared with the config section (tracer/shading_params.h).
 bool parse(const std::string& name, LightSampling& sampling);
 
 // How a textured albedo is looked up (ShadingSettings::textureFilter).

@@ -95,8 +95,9 @@ std::string nextViewerStrategy(const std::string& current) {
 
 void ViewerSession::setParams(const ViewerParams& p) {
     ViewerParams c = p;
-    c.blurRadius = std::clamp(c.blurRadius, 0, 16);
-    c.noiseFloor = std::clamp(c.noiseFloor, 0.0, 1.0);
+    // The config's ranges: snapshot.blur_radius and snapshot.noise_floor as declared.
+    c.blurRadius = std::get<int>(snapshotSchema().find("blur_radius")->spec.clamp(c.blurRadius));
+    c.noiseFloor = std::get<double>(snapshotSchema().find("noise_floor")->spec.clamp(c.noiseFloor));
     c.strata = std::clamp(c.strata, 1, 16);
     const StrategyDescriptor* strategy = findStrategy(c.strategy);
     if (strategy == nullptr || !strategy->usesAamap) {  // the viewer tunes the map: strategies that use it
@@ -237,7 +238,7 @@ void ViewerSession::runTrace(TraceJob& job) {
                 std::lock_guard lock(mutex_);
                 referenceStatus_ = fmt::format("tracing the reference ({} rpp)", config_.reference.rpp);
             }
-            const RenderConfig ref{"reference", "reference", "uniform", config_.reference.rpp, {}, config_.reference.mode};
+            const RenderConfig ref{"reference", "reference", baselineStrategyName(), config_.reference.rpp, {}, config_.reference.mode};
             TraceSettings ts = traceSettingsFor(config_, ref, width_, height_, threads_);
             ts.onTileFinished = cancellable;
             reference = tracer_.render(job.view, ts, toStrategySettings(ref, nullptr)).image;

@@ -16,6 +16,8 @@
 #include "eval/config.h"
 #include "eval/experiment.h"
 #include "passes/snapshot.h"
+#include "passes/snapshot_params.h"
+#include "tracer/strategies/subsample.h"
 #include "tracer/tracer.h"
 #include "viewer/camera_rig.h"
 
@@ -29,10 +31,12 @@ bool parse(const std::string& name, ViewMode& mode);  // "snapshot", "laplacian"
 
 // What the keys adjust. Snapshot side: blur radius and noise floor. Trace side: the render's
 // strategy (aamap or aamap-subsample), n (n x n rays per pixel at most), spacing and threshold.
+// The Snapshot side starts at the config section's defaults (passes/snapshot_params.h), the trace
+// side at adaptive subsampling's declaration (tracer/strategies/subsample.h).
 struct ViewerParams {
-    int blurRadius = 1;
-    double noiseFloor = 0.02;
-    std::string strategy = "aamap-subsample";
+    int blurRadius = SnapshotConfig().blurRadius;
+    double noiseFloor = SnapshotConfig().noiseFloor;
+    std::string strategy = kSubsampleStrategyName;
     int strata = 4;
     // Parameters of the traced strategy (spacing, threshold, ...), by name; setParams clamps those
     // the strategy declares into its schema's ranges and keeps the others for a switch back.

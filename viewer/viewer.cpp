@@ -76,7 +76,7 @@ RenderConfig pickRender(const ExperimentConfig& config, const std::string& name)
     }
     RenderConfig r;
     r.name = "view";
-    r.strategy = "aamap-subsample";
+    r.strategy = kSubsampleStrategyName;
     r.rpp = 16;
     return r;
 }
@@ -107,10 +107,10 @@ void onKey(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) 
         case GLFW_KEY_R: s.camera().reset(); break;
         case GLFW_KEY_B: p.blurRadius += shift ? -1 : 1; break;
         case GLFW_KEY_F: p.noiseFloor *= shift ? 1.0 / 1.25 : 1.25; break;
-        case GLFW_KEY_RIGHT_BRACKET: sp.set("spacing", sp.integer("spacing") * 2); break;  // setParams clamps
-        case GLFW_KEY_LEFT_BRACKET: sp.set("spacing", std::max(1, sp.integer("spacing") / 2)); break;
-        case GLFW_KEY_EQUAL: sp.set("threshold", sp.real("threshold") + 0.5); break;
-        case GLFW_KEY_MINUS: sp.set("threshold", sp.real("threshold") - 0.5); break;
+        case GLFW_KEY_RIGHT_BRACKET: sp.set(kSubsampleSpacing, sp.integer(kSubsampleSpacing) * 2); break;  // setParams clamps
+        case GLFW_KEY_LEFT_BRACKET: sp.set(kSubsampleSpacing, std::max(1, sp.integer(kSubsampleSpacing) / 2)); break;
+        case GLFW_KEY_EQUAL: sp.set(kSubsampleThreshold, sp.real(kSubsampleThreshold) + 0.5); break;
+        case GLFW_KEY_MINUS: sp.set(kSubsampleThreshold, sp.real(kSubsampleThreshold) - 0.5); break;
         case GLFW_KEY_PERIOD: p.strata += 1; break;
         case GLFW_KEY_COMMA: p.strata -= 1; break;
         case GLFW_KEY_G: p.strategy = nextViewerStrategy(p.strategy); break;

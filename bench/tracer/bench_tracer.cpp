@@ -22,6 +22,7 @@
 #include "scene/light_file.h"
 #include "scene/load_scene.h"
 #include "scene/view_file.h"
+#include "tracer/shading_params.h"
 #include "tracer/tracer.h"
 
 int main(int argc, char** argv) {
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Tracer throughput benchmark (uniform n x n sampling)"};
     std::string sceneSpec = "builtin:cornell";
     int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3, maxDepth = 5;
-    std::string mode = "direct", filter = "box", lightSampling = "auto";
+    std::string mode = aamap::toString(aamap::ShadingConfig().mode), filter = "box", lightSampling = "auto";
     std::string filterMode = aamap::toString(aamap::PixelFilterSettings{}.mode);
     aamap::IrradianceCacheSettings cache;
     int gridStep = 4;
@@ -51,10 +52,10 @@ int main(int argc, char** argv) {
     app.add_option("--repeat", repeat, "timed runs; the best is reported")->capture_default_str()->check(CLI::Range(1, 100));
     app.add_option("--mode", mode, "shading: direct, path or cache")
         ->capture_default_str()
-        ->check(CLI::IsMember({"direct", "path", "cache"}));
+        ->check(CLI::IsMember(aamap::findParam(aamap::shadingParams(), "mode")->choices));
     app.add_option("--light-sampling", lightSampling, "area lights: auto, solid_angle or area (shading.light_sampling)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"auto", "solid_angle", "area"}));
+        ->check(CLI::IsMember(aamap::findParam(aamap::shadingParams(), "light_sampling")->choices));
     app.add_option("--ab", cache.bounces, "cache mode: diffuse bounces")->capture_default_str()->check(CLI::Range(0, 8));
     app.add_option("--ad", cache.divisions, "cache mode: hemisphere divisions")->capture_default_str()->check(CLI::Range(1, 65536));
     app.add_option("--as", cache.supersamples, "cache mode: supersamples")->capture_default_str()->check(CLI::Range(0, 65536));
@@ -109,9 +110,7 @@ int main(int argc, char** argv) {
     settings.height = height;
     settings.threads = threads;
     settings.shading.areaLightSamples = lightSamples;
-    settings.shading.mode = mode == "path"    ? aamap::ShadingMode::Path
-                            : mode == "cache" ? aamap::ShadingMode::Cache
-                                              : aamap::ShadingMode::Direct;
+    aamap::parse(mode, settings.shading.mode);  // CLI11 checked the name against the schema's
     aamap::parse(lightSampling, settings.shading.lightSampling);  // CLI11 checked the name
     settings.shading.cache = cache;
     settings.shading.cacheGridStep = gridStep;

@@ -92,4 +92,23 @@ TEST_F(SnapshotCommand, BadLightFileNamesFileLineAndColumn) {
     EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// Every snapshot key is settable as the config's --set sets it, and through the option generated
+// from its declaration; a bad value is refused before any work, naming the option and the key.
+TEST_F(SnapshotCommand, SetsEverySnapshotKeyAndRefusesBadValues) {
+    const CommandResult ok = snapshot(dir_, fmt::format("builtin:cornell --width 32 --height 32 -o \"{}\" "
+                                                        "--set snapshot.blur_radius=2 --set snapshot.map=geometric "
+                                                        "--noise-floor 0.05",
+                                                        (dir_ / "out").string()));
+    EXPECT_EQ(ok.code, 0) << ok.err;
+    EXPECT_TRUE(fs::exists(dir_ / "out" / "aamap.png")) << ok.err;
+
+    const CommandResult range = snapshot(dir_, fmt::format("builtin:cornell -o \"{}\" --blur-radius 17", (dir_ / "bad").string()));
+    EXPECT_EQ(range.code, 2) << range.err;
+    EXPECT_NE(range.err.find("snapshot.blur_radius"), std::string::npos) << range.err;
+    const CommandResult unknown = snapshot(dir_, fmt::format("builtin:cornell -o \"{}\" --set snapshot.blur_radios=2", (dir_ / "bad").string()));
+    EXPECT_EQ(unknown.code, 2) << unknown.err;
+    EXPECT_NE(unknown.err.find("did you mean 'snapshot.blur_radius'"), std::string::npos) << unknown.err;
+    EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
 }  // namespace

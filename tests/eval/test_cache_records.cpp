@@ -130,7 +130,9 @@ renders:
     }
     // Only a render driven by the aamap depends on the Snapshot's settings.
     EXPECT_FALSE(renderKeyObject(c, c.renders[0]).contains("snapshot"));
-    EXPECT_EQ(renderKeyObject(c, c.renders[1])["snapshot"], snapshotSettingsJson(c));
+    // The key holds the Snapshot's settings that are not at their default; the records all of them.
+    EXPECT_EQ(renderKeyObject(c, c.renders[1])["snapshot"], Json({{"blur_radius", 3}}));
+    EXPECT_EQ(snapshotSettingsJson(c)["blur_radius"], 3);
     EXPECT_EQ(renderKeyObject(c, c.renders[1])["params"]["spacing"], 8.0);
 }
 

@@ -216,14 +216,18 @@ TEST(ConfigHash, StableUnderFormattingAndDefaults) {
     EXPECT_EQ(ca.canonicalJson(),
               R"({"scene":"builtin:cornell","view":null,"view_index":0,"lights":[],)"
               R"("image":{"width":512,"height":512,"exposure":1.0},"seed":1,"threads":0,)"
-              R"("snapshot":{"scale":1.5,"area_light_samples":5,"blur_radius":1,"noise_floor":0.02,"gain":1.0,)"
-              R"("flat_range":0.00392156862745098},)"
+              R"("snapshot":{"scale":1.5,"area_light_samples":5,"environment_lights":1,"soft_shadows":true,)"
+              R"("blur_radius":1,"flat_range":0.00392156862745098,"noise_floor":0.02,"gain":1.0,"map":"luminance",)"
+              R"("subpixel":2},)"
               R"("shading":{"area_light_samples":16,"mode":"direct","max_depth":5,"russian_roulette":true,)"
-              R"("roulette_depth":5,"max_specular_depth":8,"light_selection":"contribution","light_sampling":"auto"},)"
+              R"("roulette_depth":5,"hide_emitters":false,"max_specular_depth":8,"light_selection":"contribution",)"
+              R"("light_sampling":"auto","texture_filter":"anisotropic","cache":{"bounces":1,"divisions":512,)"
+              R"("supersamples":128,"accuracy":0.2,"resolution":64,"grid_step":4}},)"
               R"("renders":[{"name":"u","series":"uniform","strategy":"uniform","rpp":4,"params":{}}],)"
               R"("reference":{"type":"uniform","rpp":4,"mode":"","path":""},)"
               R"("metrics":{"flip":true,"flip_hdr":false,"flip_threshold":0.1,"mse_threshold":6.151480199923106e-05,)"
-              R"("ppd":67.0206,"map_quality":true},"report":{"plots":true}})");
+              R"("ppd":67.0206,"map_quality":true,"causes":true,"oracle":false},"report":{"plots":true},)"
+              R"("timing":{"repeats":1,"interleave":true,"same_machine":false}})");
 }
 
 TEST(ConfigFile, TheShippedDefaultParses) {

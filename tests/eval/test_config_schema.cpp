@@ -19,7 +19,9 @@
 #include "core/error.h"
 #include "eval/config.h"
 #include "eval/config_schema.h"
+#include "core/schema.h"
 #include "passes/snapshot_params.h"
+#include "tracer/shading_params.h"
 #include "tests/common/read_text.h"
 
 namespace aamap {
@@ -46,18 +48,18 @@ const std::map<std::string, Field>& fields() {
         {"snapshot.flat_range", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.flatRange); }},
         {"snapshot.noise_floor", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.noiseFloor); }},
         {"snapshot.gain", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.gain); }},
-        {"snapshot.map", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.map); }},
+        {"snapshot.map", [](const ExperimentConfig& c) { return ParamValue(passes::toString(c.snapshot.map)); }},
         {"snapshot.subpixel", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.subpixel); }},
         {"shading.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.shading.areaLightSamples); }},
-        {"shading.mode", [](const ExperimentConfig& c) { return ParamValue(c.shading.mode); }},
+        {"shading.mode", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.mode == ShadingMode::Path ? "path" : c.shading.mode == ShadingMode::Cache ? "cache" : "direct")); }},
         {"shading.max_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxDepth); }},
         {"shading.russian_roulette", [](const ExperimentConfig& c) { return ParamValue(c.shading.russianRoulette); }},
         {"shading.roulette_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.rouletteDepth); }},
         {"shading.hide_emitters", [](const ExperimentConfig& c) { return ParamValue(c.shading.hideEmitters); }},
         {"shading.max_specular_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxSpecularDepth); }},
-        {"shading.light_selection", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSelection); }},
-        {"shading.light_sampling", [](const ExperimentConfig& c) { return ParamValue(c.shading.lightSampling); }},
-        {"shading.texture_filter", [](const ExperimentConfig& c) { return ParamValue(c.shading.textureFilter); }},
+        {"shading.light_selection", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.lightSelection == LightSelection::Power ? "power" : "contribution")); }},
+        {"shading.light_sampling", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.lightSampling == LightSampling::Area ? "area" : c.shading.lightSampling == LightSampling::SolidAngle ? "solid_angle" : "auto")); }},
+        {"shading.texture_filter", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.textureFilter == TextureFilter::None ? "none" : "anisotropic")); }},
         {"shading.cache.bounces", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.bounces); }},
         {"shading.cache.divisions", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.divisions); }},
         {"shading.cache.supersamples", [](const ExperimentConfig& c) { return ParamValue(c.shading.cache.supersamples); }},
@@ -232,17 +234,33 @@ TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
     EXPECT_EQ(snapshotKey(hand), snapshotKey(parsed));
     EXPECT_EQ(hand.hash(), parsed.hash());
 
-    hand.snapshot.map = "subpixel";  // the key names snapshot.subpixel only for this map
-    hand.snapshot.environmentLights = 2;
-    hand.snapshot.softShadows = false;
-    const nlohmann::json key = nlohmann::json::parse(renderKeyJson(hand, hand.renders[0]));
-    std::vector<std::string> names;
-    for (const auto& [name, value] : key.at("snapshot").items()) names.push_back(name);
+    // The keys hold the keys not at their default: each snapshot key enters once set, and only then.
+    const auto snapshotKeyNames = [](const ExperimentConfig& c) {
+        const nlohmann::json key = nlohmann::json::parse(renderKeyJson(c, c.renders[0]));
+        std::vector<std::string> names;
+        for (const auto& item : key.at("snapshot").items()) names.push_back(item.key());
+        return names;
+    };
+    EXPECT_TRUE(snapshotKeyNames(hand).empty());
+    const ExperimentConfig defaults = hand;
     std::vector<std::string> schema;
-    for (const ParamSpec& p : snapshotParams()) schema.push_back(p.name);
-    std::sort(names.begin(), names.end());
+    for (const Schema<SnapshotConfig>::Field& f : snapshotSchema().fields()) {
+        ExperimentConfig one = defaults;
+        const ParamSpec& p = f.spec;
+        const ParamValue other = p.type == ParamType::Bool     ? ParamValue(!std::get<bool>(p.defaultParam()))
+                                 : p.type == ParamType::Choice ? ParamValue(p.choices.back())
+                                 : p.type == ParamType::Int    ? ParamValue(static_cast<int>(p.defaultValue == p.hi ? p.lo : p.hi))
+                                                               : ParamValue(p.defaultValue == p.hi ? p.lo : p.hi);
+        f.set(one.snapshot, other);
+        f.set(hand.snapshot, other);
+        EXPECT_EQ(snapshotKeyNames(one), std::vector<std::string>{p.name}) << p.name;
+        EXPECT_NE(snapshotKey(one), snapshotKey(parsed)) << p.name;
+        schema.push_back(p.name);
+    }
+    std::vector<std::string> all = snapshotKeyNames(hand);
+    std::sort(all.begin(), all.end());
     std::sort(schema.begin(), schema.end());
-    EXPECT_EQ(names, schema);
+    EXPECT_EQ(all, schema);
 }
 
 }  // namespace
@@ -292,6 +310,44 @@ TEST(ConfigSchema, DocsTableRowsMatchTheSchema) {
                 << k.dotted << ": " << cell;
         else
             EXPECT_EQ(def, toString(k.spec->defaultParam())) << k.dotted << ": " << cell;
+    }
+}
+
+// A value away from its default, for the key walks below: the other end of the range, the other
+// boolean, the last choice.
+ParamValue otherThanDefault(const ParamSpec& p) {
+    if (p.type == ParamType::Bool) return !std::get<bool>(p.defaultParam());
+    if (p.type == ParamType::Choice) return p.choices.back();
+    const double v = p.defaultValue == p.hi ? p.lo : p.hi;
+    return p.type == ParamType::Int ? ParamValue(static_cast<int>(v)) : ParamValue(v);
+}
+
+// Every shading key, set away from its default, reaches its field and enters the render's cache
+// key under its own name (the cache's keys in cache mode), and changes it.
+TEST(ConfigSchema, EveryShadingKeyEntersTheRenderKey) {
+    const ExperimentConfig base = parseConfig(
+        "scene: builtin:cornell\nrenders:\n  - {name: a, strategy: uniform, rpp: 4}\n", "exp.yaml");
+    const auto shadingKey = [](const ExperimentConfig& c) {
+        return nlohmann::json::parse(renderKeyJson(c, c.renders[0])).at("shading");
+    };
+    for (const Schema<ShadingConfig>::Field& f : shadingSchema().fields()) {
+        ExperimentConfig c = base;
+        const ParamValue v = otherThanDefault(f.spec);
+        f.set(c.shading, v);
+        EXPECT_EQ(f.get(c.shading), v) << f.spec.name;
+        EXPECT_TRUE(shadingKey(c).contains(f.spec.name)) << f.spec.name << ": " << shadingKey(c).dump();
+        EXPECT_NE(renderKey(c, c.renders[0]), renderKey(base, base.renders[0])) << f.spec.name;
+    }
+    for (const Schema<ShadingConfig::Cache>::Field& f : shadingCacheSchema().fields()) {
+        ExperimentConfig c = base;
+        c.shading.mode = ShadingMode::Cache;
+        ExperimentConfig tuned = c;
+        f.set(tuned.shading.cache, otherThanDefault(f.spec));
+        EXPECT_TRUE(shadingKey(tuned).at("cache").contains(f.spec.name)) << f.spec.name;
+        EXPECT_NE(renderKey(tuned, tuned.renders[0]), renderKey(c, c.renders[0])) << f.spec.name;
+        // Outside cache mode the cache is not read, and the key does not name it.
+        tuned.shading.mode = ShadingMode::Direct;
+        EXPECT_EQ(renderKey(tuned, tuned.renders[0]), renderKey(base, base.renders[0])) << f.spec.name;
     }
 }
 

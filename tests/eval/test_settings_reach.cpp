@@ -243,12 +243,12 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                           becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.gain; }, 3.5f)};
     t["snapshot.environment_lights"] = {{}, {"snapshot.environment_lights=3"}, Renders::UsingAamap, true,
                                         becomes([](const ExperimentConfig& c, int) { return snap(c, 0).environmentLights; }, 3)};
-    // Written only when false: the "infinity" base sets it, so the alternative is true.
-    t["snapshot.soft_shadows"] = {{}, {"snapshot.soft_shadows=true"}, Renders::UsingAamap, true,
-                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).shadows.softShadows; }, true)};
+    // The canonical JSON holds every key: the first base ("lists") has each at its default.
+    t["snapshot.soft_shadows"] = {{}, {"snapshot.soft_shadows=false"}, Renders::UsingAamap, true,
+                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).shadows.softShadows; }, false)};
     t["snapshot.map"] = {{}, {"snapshot.map=geometric"}, Renders::UsingAamap, true,
                          becomes([](const ExperimentConfig& c, int) { return snap(c, 0).map; }, passes::AamapSource::Geometric)};
-    // Written only with map: subpixel, which the "infinity" base sets (with k = 3).
+    // Read by the subpixel map only; in the keys whenever it is not at its default.
     t["snapshot.subpixel"] = {{}, {"snapshot.subpixel=4"}, Renders::UsingAamap, true,
                               becomes([](const ExperimentConfig& c, int) { return snap(c, 0).subpixel; }, 4)};
     // Shading: every traced image, never the Snapshot.
@@ -262,8 +262,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                      becomes([](const ExperimentConfig& c, int) { return shade(c, 0).russianRoulette; }, false)};
     t["shading.roulette_depth"] = {{}, {"shading.roulette_depth=2"}, Renders::All, false,
                                    becomes([](const ExperimentConfig& c, int) { return shade(c, 0).rouletteDepth; }, 2)};
-    t["shading.hide_emitters"] = {{}, {"shading.hide_emitters=false"}, Renders::All, false,
-                                  becomes([](const ExperimentConfig& c, int) { return shade(c, 0).hideEmitters; }, false)};
+    t["shading.hide_emitters"] = {{}, {"shading.hide_emitters=true"}, Renders::All, false,
+                                  becomes([](const ExperimentConfig& c, int) { return shade(c, 0).hideEmitters; }, true)};
     t["shading.max_specular_depth"] = {{}, {"shading.max_specular_depth=2"}, Renders::All, false,
                                        becomes([](const ExperimentConfig& c, int) { return shade(c, 0).maxSpecularDepth; }, 2)};
     t["shading.light_selection"] = {{}, {"shading.light_selection=power"}, Renders::All, false,
@@ -272,12 +272,12 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
     t["shading.light_sampling"] = {{}, {"shading.light_sampling=area"}, Renders::All, false,
                                    becomes([](const ExperimentConfig& c, int) { return shade(c, 0).lightSampling; },
                                            LightSampling::Area)};
-    t["shading.texture_filter"] = {{}, {"shading.texture_filter=anisotropic"}, Renders::All, false,
+    t["shading.texture_filter"] = {{}, {"shading.texture_filter=none"}, Renders::All, false,
                                    becomes([](const ExperimentConfig& c, int) { return shade(c, 0).textureFilter; },
-                                           TextureFilter::Anisotropic)};
-    // The irradiance cache (the base that has them shades in cache mode: every render reads it).
+                                           TextureFilter::None)};
+    // The irradiance cache, in cache mode (every render reads it; the other modes' keys leave it out).
     const auto cache = [&](const std::string& key, const std::string& value, auto get, auto expected) {
-        t["shading.cache." + key] = {{}, {"shading.cache." + key + "=" + value}, Renders::All, false,
+        t["shading.cache." + key] = {{"shading.mode=cache"}, {"shading.cache." + key + "=" + value}, Renders::All, false,
                                      becomes([get](const ExperimentConfig& c, int) { return get(shade(c, 0)); }, expected)};
     };
     cache("bounces", "3", [](const ShadingSettings& s) { return s.cache.bounces; }, 3);
@@ -322,11 +322,11 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                         differs([](const ExperimentConfig& c, int) { return figures(c)["flip_mean"].get<double>(); })};
     t["metrics.map_quality"] = {{}, {"metrics.map_quality=false"}, Renders::None, false,
                                 differs([](const ExperimentConfig& c, int) { return tracedJobs(c); })};
-    t["metrics.causes"] = {{}, {"metrics.causes=true"}, Renders::None, false,
+    t["metrics.causes"] = {{}, {"metrics.causes=false"}, Renders::None, false,
                            differs([](const ExperimentConfig& c, int) { return causesReported(c); })};
-    t["metrics.oracle"] = {{}, {"metrics.oracle=false"}, Renders::None, false,
+    t["metrics.oracle"] = {{}, {"metrics.oracle=true"}, Renders::None, false,
                            differs([](const ExperimentConfig& c, int) { return tracedJobs(c); })};
-    t["timing.same_machine"] = {{}, {"timing.same_machine=false"}, Renders::None, false,
+    t["timing.same_machine"] = {{}, {"timing.same_machine=true"}, Renders::None, false,
                                 differs([](const ExperimentConfig& c, int) { return workGroups(c); })};
     t["report.plots"] = {{}, {"report.plots=false"}, Renders::None, false,
                          becomes([](const ExperimentConfig& c, int) { return c.report.plots; }, false)};

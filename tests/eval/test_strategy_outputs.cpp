@@ -61,7 +61,7 @@ TEST(StrategyOutputs, TracedMaskBlockSumSourceAndHybridParameters) {
     const fs::path out = fs::path(::testing::TempDir()) / "strategy_outputs";
     fs::remove_all(out);
     const ExperimentConfig c = parseConfig(kConfig, "exp.yaml", {});
-    EXPECT_EQ(c.snapshot.map, "combined");
+    EXPECT_EQ(c.snapshot.map, passes::AamapSource::Combined);
     SubsamplingBackend backend;
     runExperimentWith(c, out, backend, RunnerOptions{"test-rev", false});
 

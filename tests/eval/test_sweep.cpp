@@ -158,7 +158,7 @@ TEST(Sweep, ReferenceMetricsAndReportSections) {
     EXPECT_EQ(d.reference.rpp, 64);
     EXPECT_EQ(d.reference.mode, "path");
     EXPECT_TRUE(d.metrics.flipHdr);
-    EXPECT_EQ(d.shading.mode, "cache");
+    EXPECT_EQ(d.shading.mode, ShadingMode::Cache);
     EXPECT_FALSE(d.report.plots);
     EXPECT_THROW(parse("  - {strategy: aamap, rpp: 4}\n", {"reference.rpp=5"}), InputError);
     EXPECT_THROW(parse("  - {strategy: aamap, rpp: 4}\n", {"metrics.flip_threshold=0"}), InputError);

@@ -238,12 +238,12 @@ private:
 
 StrategyDescriptor subsampleStrategy() {
     StrategyDescriptor d;
-    d.name = "aamap-subsample";
+    d.name = kSubsampleStrategyName;
     d.doc = "adaptive subsampling guided by the aamap (paper section 4) and by traced gradients, then k x k rays "
             "in traced pixels";
-    d.params = {intParam("spacing", 1, 64, 8, "grid spacing s in pixels (the paper's Space 8 / Space 16)"),
+    d.params = {intParam(kSubsampleSpacing, 1, 64, 8, "grid spacing s in pixels (the paper's Space 8 / Space 16)"),
                 // Infinity: never split (only the grid is traced); the config takes finite values.
-                realParam("threshold", 0, std::numeric_limits<double>::infinity(), 0,
+                realParam(kSubsampleThreshold, 0, std::numeric_limits<double>::infinity(), 0,
                           "blocks whose aamap sum exceeds it are split, the rest interpolated"),
                 realParam("gradient_tolerance", 0, std::numeric_limits<double>::infinity(), kDefaultGradientTolerance,
                           "a block to interpolate is split further while its centre and edge midpoints, traced, "

@@ -17,6 +17,12 @@
 
 namespace aamap {
 
+// The strategy's name and the parameter keys other layers name (the viewer's keys), as its
+// declaration (subsampleStrategy(), strategies/subsample.cpp) gives them.
+inline constexpr const char* kSubsampleStrategyName = "aamap-subsample";
+inline constexpr const char* kSubsampleSpacing = "spacing";
+inline constexpr const char* kSubsampleThreshold = "threshold";
+
 // Pixels [x0, x1] x [y0, y1], inclusive; its four corners are traced.
 struct Block {
     int x0, y0, x1, y1;
