@@ -188,6 +188,7 @@ namespace {
 // texture (a Lambert or Phong colour, a rough conductor or plastic), not a blend itself.
 bool blendable(const Material& c) {
     if (c.diffuseTexture >= 0 || c.alphaMode != AlphaMode::Opaque || !c.blend.empty()) return false;
+    if (c.normalMap >= 0 || c.bumpMap >= 0) return false;  // one shading normal per hit
     if (c.model == BsdfModel::Conductor || c.model == BsdfModel::Plastic) return c.alphaU > 0.0f && c.alphaV > 0.0f;
     return c.model == BsdfModel::Classic && c.kind == MaterialKind::Diffuse;
 }
@@ -226,6 +227,73 @@ Material MaterialBuilder::blend(const Element& bsdf, int depth) {
     // Each component is black from its own back; a mixed pair is one-sided only when both are.
     m.oneSided = a.oneSided && b.oneSided;
     m.blend = {std::move(a), std::move(b)};
+    return m;
+}
+
+// normalmap / bumpmap: the nested BSDF with the map's texture in normalMap or bumpMap. What is
+// missing or unusable is a warning (file:line) that says what is rendered instead.
+Material MaterialBuilder::perturbation(const Element& bsdf, int depth) {
+    const std::string type = bsdf.type();
+    const Element* inner = nullptr;
+    const Element* texture = nullptr;
+    for (const Element& c : bsdf.children) {
+        if (c.tag != "bsdf" && c.tag != "texture" && c.tag != "ref") continue;
+        const Element& r = resolve(c);
+        const Element*& slot = r.tag == "bsdf" ? inner : texture;
+        if (r.tag != "bsdf" && r.tag != "texture") continue;
+        if (slot != nullptr) {
+            warnings_.once(type + "-extra-" + r.tag, fmt::format("{}: {} takes one nested <{}>; this one is ignored",
+                                                                 at(c), type, r.tag));
+            continue;
+        }
+        slot = &c;
+    }
+    Material m;
+    if (inner != nullptr) {
+        m = convert(*inner, depth + 1);
+    } else {
+        warnings_.once(type + "-no-bsdf", fmt::format("{}: {} has no nested <bsdf>; Mitsuba's default (a one-sided "
+                                                      "diffuse of reflectance 0.5) is used",
+                                                      at(bsdf), type));
+        m.name = "default";
+        m.kd = glm::vec3(0.5f);
+        m.oneSided = true;
+    }
+    if (m.normalMap >= 0 || m.bumpMap >= 0) {
+        warnings_.once("nested-maps", fmt::format("{}: a normal or bump map inside another one is ignored; the outer "
+                                                  "{} is used alone",
+                                                  at(bsdf), type));
+        m.normalMap = m.bumpMap = -1;
+        m.mapMirroredOnBack = false;
+    }
+    const bool bump = type == "bumpmap";
+    const float scale = bump ? floatProperty(bsdf, "scale", 1.0f) : 1.0f;
+    if (!std::isfinite(scale)) fail(*bsdf.property("scale"), fmt::format("bumpmap scale {} is not finite", scale));
+    if (texture == nullptr) {
+        warnings_.once(type + "-no-texture", fmt::format("{}: {} has no nested <texture>; the nested BSDF is used "
+                                                         "without it",
+                                                         at(bsdf), type));
+        return m;
+    }
+    const Element& t = resolve(*texture);
+    if (t.type() != "bitmap") {
+        warnings_.once(type + "-texture-type", fmt::format("{}: a {} texture for {} is not supported (only bitmap); "
+                                                           "the nested BSDF is used without the map",
+                                                           at(t), t.type(), type));
+        return m;
+    }
+    if (!bump && texture->name() != "normalmap" && t.name() != "normalmap")
+        warnings_.once("normalmap-name", fmt::format("{}: Mitsuba names a normal map's texture 'normalmap'; this "
+                                                     "one is used as the map",
+                                                     at(*texture)));
+    if (!bump && !booleanProperty(t, "raw", false))
+        warnings_.once("normalmap-srgb", fmt::format("{}: the normal map is decoded from sRGB (raw is false, as Mitsuba "
+                                                     "does by default); normal maps usually want raw=true",
+                                                     at(t)));
+    const int index = bitmap(t, false);
+    if (index < 0) return m;  // unreadable: the loader has warned; no map
+    (bump ? m.bumpMap : m.normalMap) = index;
+    m.bumpScale = scale;
     return m;
 }
 
@@ -318,9 +386,10 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
     } else if (type == "twosided") {
         m = convert(*nested(true), depth + 1);
         m.oneSided = false;
+        // twosided mirrors the directions it hands a map inside it (docs/tracer.md).
+        m.mapMirroredOnBack = m.normalMap >= 0 || m.bumpMap >= 0;
     } else if (type == "bumpmap" || type == "normalmap") {
-        approximated(fmt::format("{} is ignored; the nested BSDF is used without it", type));
-        m = convert(*nested(true), depth + 1);
+        m = perturbation(bsdf, depth);
     } else if (type == "coating" || type == "roughcoating") {
         approximated(fmt::format("{} is approximated by its (first) nested BSDF", type));
         m = convert(*nested(true), depth + 1);

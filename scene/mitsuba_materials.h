@@ -9,8 +9,9 @@
 // roughdielectric is a Glass with a microfacet interface that path mode samples (the direct and
 // cache modes and the Snapshot see it smooth); thindielectric is exact (a thin Glass sheet).
 // What it approximates (one warning per kind, naming the approximation):
-// - bumpmap/normalmap: ignored (the nested BSDF is used); twosided: the nested BSDF (aamap shades
-//   both sides); coating/roughcoating: the (first) nested BSDF; blendbsdf of a smooth, textured or
+// normalmap and bumpmap are exact: the nested BSDF with Material::normalMap / bumpMap, which tilt
+// the shading normal as Mitsuba 3 does (a missing texture or BSDF is a warning, file:line).
+// - twosided: the nested BSDF (aamap shades both sides); coating/roughcoating: the (first) nested BSDF; blendbsdf of a smooth, textured or
 //   masked BSDF (or with a textured weight): the component of larger weight (weight 0.5); null:
 //   fully cut out;
 // - phong/ward: kd plus a Phong lobe.
@@ -45,6 +46,8 @@ private:
     // blendbsdf: the two components and the weight (Material::blend), or, where the tracer cannot
     // mix them, the component of larger weight with a warning.
     Material blend(const Element& bsdf, int depth);
+    // normalmap / bumpmap: the nested BSDF with its map (warnings, file:line, for what is missing).
+    Material perturbation(const Element& bsdf, int depth);
     // A colour or a bitmap texture property: sets kd (or ks) and, for a texture, the texture index.
     glm::vec3 colourOrTexture(const Element& bsdf, const char* name, glm::vec3 fallback, int* texture);
     int bitmap(const Element& texture, bool coverage);

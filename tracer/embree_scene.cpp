@@ -148,6 +148,10 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
     s.alphaCutoff = effectiveAlphaCutoff(mat);
     if (s.alphaTested && mat.alphaTexture >= 0 && static_cast<std::size_t>(mat.alphaTexture) < textureCount)
         s.alphaTexture = mat.alphaTexture;
+    if (mat.normalMap >= 0 && static_cast<std::size_t>(mat.normalMap) < textureCount) s.normalMap = mat.normalMap;
+    if (mat.bumpMap >= 0 && static_cast<std::size_t>(mat.bumpMap) < textureCount) s.bumpMap = mat.bumpMap;
+    s.bumpScale = std::isfinite(mat.bumpScale) ? mat.bumpScale : 0.0f;
+    s.mapMirroredOnBack = mat.mapMirroredOnBack;
     s.ns = std::max(mat.ns, 0.0f);
     s.phongNorm = (s.ns + 2.0f) * 0.5f * std::numbers::inv_pi_v<float>;
     s.phongPdfNorm = (s.ns + 1.0f) * 0.5f * std::numbers::inv_pi_v<float>;
@@ -227,6 +231,11 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
                          scene.materials[i].name);
             s.alphaTexture = -1;
         }
+        if (s.perturbed() && !hasUvs) {
+            spdlog::warn("material '{}' has a normal or bump map but the mesh has no uvs; the map is ignored",
+                         scene.materials[i].name);
+            s.normalMap = s.bumpMap = -1;
+        }
         // A constant coverage at or above the cutoff never cuts: no filter calls for it.
         if (s.alphaTested && s.alphaTexture < 0 && s.alpha >= s.alphaCutoff) s.alphaTested = false;
         features_.alphaMask |= s.alphaTested;
@@ -241,7 +250,14 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
         if (used[i] && materials_[i].alphaTested && materials_[i].alphaTexture >= 0)
             coverageUsed[static_cast<std::size_t>(materials_[i].alphaTexture)] = 1;
     const bool alphaTextures = std::find(coverageUsed.begin(), coverageUsed.end(), 1) != coverageUsed.end();
-    const bool needUvs = features_.textures || alphaTextures;
+    // Textures that a normal or bump map reads (level 0, unfiltered, as Mitsuba's bitmap).
+    std::vector<char> mapUsed(scene.textures.size(), 0);
+    for (std::size_t i = 0; i < materials_.size(); ++i)
+        if (used[i])
+            for (int t : {materials_[i].normalMap, materials_[i].bumpMap})
+                if (t >= 0) mapUsed[static_cast<std::size_t>(t)] = 1;
+    const bool maps = std::find(mapUsed.begin(), mapUsed.end(), 1) != mapUsed.end();
+    const bool needUvs = features_.textures || alphaTextures || maps;
     if (needUvs) textures_.resize(scene.textures.size());
     for (std::size_t i = 0; i < coverageUsed.size(); ++i) {
         const Texture& t = scene.textures[i];
@@ -252,9 +268,10 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
         textures_[i].alpha.resize(texels);
         for (std::size_t k = 0; k < texels; ++k) textures_[i].alpha[k] = t.rgba[4 * k + 3];
     }
-    if (features_.textures) {
+    if (features_.textures || maps) {
         for (std::size_t i = 0; i < scene.textures.size(); ++i) {
             const Texture& t = scene.textures[i];
+            if (!features_.textures && !mapUsed[i]) continue;
             TextureData& d = textures_[i];
             const std::size_t texels = static_cast<std::size_t>(std::max(t.width, 0)) * std::max(t.height, 0);
             if (t.rgba.size() < 4 * texels || texels == 0) continue;  // unusable: albedo stays kd
@@ -362,6 +379,40 @@ glm::vec3 EmbreeScene::shadingNormal(std::uint32_t id, float u, float v) const {
     const float len2 = glm::dot(interp, interp);
     if (!(len2 > 1e-12f) || !std::isfinite(len2)) return tri.normal;
     return interp / std::sqrt(len2);
+}
+
+glm::vec3 EmbreeScene::perturbedNormal(const ShadingMaterial& m, std::uint32_t id, float u, float v,
+                                       const glm::vec3& n) const {
+    const int map = m.normalMap >= 0 ? m.normalMap : m.bumpMap;
+    if (map < 0 || vertexUvs_.empty()) return n;
+    const TextureData& t = textures_[static_cast<std::size_t>(map)];
+    if (t.rgb.empty()) return n;
+    // dp/du and dp/dv of the triangle's uv parameterisation (Mitsuba's mesh rule).
+    const Triangle& tri = triangles_[id];
+    const glm::vec2* uv = &vertexUvs_[3 * static_cast<std::size_t>(id)];
+    const glm::vec2 duv1 = uv[1] - uv[0], duv2 = uv[2] - uv[0];
+    const float det = duv1.x * duv2.y - duv1.y * duv2.x;
+    if (!(std::abs(det) > 0.0f) || !std::isfinite(det)) return n;  // degenerate uvs: no tangent frame
+    const glm::vec3 dpdu = (duv2.y * tri.e1 - duv1.y * tri.e2) / det;
+    const glm::vec3 dpdv = (duv1.x * tri.e2 - duv2.x * tri.e1) / det;
+    const glm::vec2 st = textureCoordinates(id, u, v);
+    glm::vec3 result;
+    if (m.normalMap >= 0) {
+        const glm::vec3 c = 2.0f * bilinear(t.rgb[0], st) - 1.0f;
+        if (c.x == 0.0f && c.y == 0.0f && c.z > 0.0f) return n;  // the exact untilted case
+        const glm::vec3 s = glm::normalize(dpdu - glm::dot(n, dpdu) * n);
+        result = glm::normalize(c.x * s + c.y * glm::cross(n, s) + c.z * n);
+    } else {
+        const glm::vec2 g = m.bumpScale * bilinearLuminanceGradient(t.rgb[0], st);
+        // A flat height field leaves the normal as it is, turned to the geometric normal's side.
+        if (g.x == 0.0f && g.y == 0.0f) return glm::dot(tri.normal, n) < 0.0f ? -n : n;
+        const glm::vec3 pu = dpdu + (g.x - glm::dot(n, dpdu)) * n;
+        const glm::vec3 pv = dpdv + (g.y - glm::dot(n, dpdv)) * n;
+        result = glm::normalize(glm::cross(pu, pv));
+        if (glm::dot(tri.normal, result) < 0.0f) result = -result;  // Mitsuba turns it to the face's side
+    }
+    const bool finite = std::isfinite(result.x) && std::isfinite(result.y) && std::isfinite(result.z);
+    return finite ? result : n;
 }
 
 glm::vec2 EmbreeScene::textureCoordinates(std::uint32_t id, float u, float v) const {

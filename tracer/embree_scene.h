@@ -44,6 +44,11 @@ struct ShadingMaterial {
     bool alphaTested = false;
     float alpha = 1.0f, alphaCutoff = 0.5f;
     int alphaTexture = -1;  // index into the scene's textures, -1: constant alpha
+    // Normal and bump maps (scene.h): indices into the scene's textures, -1: none.
+    int normalMap = -1, bumpMap = -1;
+    float bumpScale = 1.0f;
+    bool mapMirroredOnBack = false;
+    bool perturbed() const { return normalMap >= 0 || bumpMap >= 0; }
 
     // Mitsuba's BSDFs (model != Classic; tracer/bsdf.h). kind is Mirror for the smooth conductor and
     // plastic (their delta lobe goes through the mirror paths), Diffuse for the rough ones.
@@ -124,6 +129,10 @@ public:
     // Unit interpolated vertex normal at barycentrics (u, v); the geometric normal if the mesh has
     // no usable normals there.
     glm::vec3 shadingNormal(std::uint32_t id, float u, float v) const;
+    // The shading normal `n` (shadingNormal's, not turned to a side) tilted by m's normal or bump
+    // map as Mitsuba 3 does (docs/tracer.md, "Normal and bump maps"); `n` itself where m has no
+    // map, the triangle's uvs are degenerate or the result is not finite.
+    glm::vec3 perturbedNormal(const ShadingMaterial& m, std::uint32_t id, float u, float v, const glm::vec3& n) const;
     // Diffuse albedo at barycentrics (u, v): kd, times the texture for a textured material (only
     // those fetch). footprint: the width of the ray's cone at the hit, arriving along unit `dir`;
     // the texture is filtered over the cone's footprint on the triangle (core/texture_filter.h),

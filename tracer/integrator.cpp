@@ -65,7 +65,16 @@ void Integrator::fillHit(std::uint32_t primID, float u, float v, float tfar, con
     hit.position = tri.v0 + u * tri.e1 + v * tri.e2;
     hit.geometric = hit.front ? tri.normal : -tri.normal;
     hit.shading = geometry_.shadingNormal(primID, u, v);
-    if (glm::dot(hit.shading, hit.geometric) < 0.0f) hit.shading = -hit.shading;  // normals may disagree with the winding
+    const bool back = glm::dot(hit.shading, hit.geometric) < 0.0f;  // normals may disagree with the winding
+    if (mat.perturbed()) {
+        // A normal or bump map tilts Mitsuba's shading frame, which is not turned to the viewer;
+        // seen from its back, twosided mirrors the tilt, otherwise the tilted normal turns over.
+        const glm::vec3 n = hit.shading;
+        hit.shading = geometry_.perturbedNormal(mat, primID, u, v, n);
+        if (back) hit.shading = mat.mapMirroredOnBack ? hit.shading - 2.0f * glm::dot(hit.shading, n) * n : -hit.shading;
+    } else if (back) {
+        hit.shading = -hit.shading;
+    }
     hit.wo = -dir;
     hit.cone = {cone.at(tfar), cone.spread};
     hit.albedo = mat.diffuse ? geometry_.albedo(mat, primID, u, v, dir, hit.cone.width) : glm::vec3(0.0f);
