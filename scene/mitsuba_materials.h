@@ -4,7 +4,8 @@
 // BSDF outside twosided is black from the back), and for the tracer Mitsuba's conductor,
 // roughconductor, plastic and roughplastic (Material::model, docs/tracer.md "BSDFs"; the Snapshot
 // shows them through kd, ks, ns: Lambert plus a Phong lobe, ns = 2 / alpha^2 - 2, ks = F0).
-// Their unknown parameters are warnings, out-of-range roughness or indices errors (file:line).
+// Their unknown parameters are warnings, out-of-range roughness or indices errors (file:line); a
+// bitmap `alpha` is a per-texel roughness (Material::roughnessTexture).
 // blendbsdf of two rough or diffuse BSDFs with a float weight is exact in the tracer (BsdfModel::Blend).
 // roughdielectric is a Glass with a microfacet interface that path mode samples (the direct and
 // cache modes and the Snapshot see it smooth); thindielectric is exact (a thin Glass sheet).
@@ -55,6 +56,8 @@ private:
     void warnUnknownParameters(const Element& bsdf, const std::string& type);
     // distribution, alpha or alpha_u / alpha_v (anisotropic types only) into m; errors at file:line.
     void microfacetParameters(const Element& bsdf, Material& m, bool anisotropic);
+    // A bitmap roughness texture into m.roughnessTexture; returns its mean alpha (warnings, file:line).
+    float texturedRoughness(const Element& property, Material& m);
     // int_ior / ext_ior: positive and different, or an error at file:line.
     float relativeIor(const Element& bsdf, float interior);
 

@@ -73,6 +73,9 @@ struct Material {
     BsdfModel model = BsdfModel::Classic;
     MicrofacetType distribution = MicrofacetType::Beckmann;
     float alphaU = 0.0f, alphaV = 0.0f;  // microfacet roughness along tangent / bitangent; 0: smooth
+    // Conductor, Plastic: a textured isotropic roughness (Mitsuba's `alpha` as a texture): alpha is
+    // the texel's luminance; alphaU = alphaV hold the texture's mean (the Snapshot's). -1: none.
+    int roughnessTexture = -1;
     glm::vec3 eta{0.0f}, k{1.0f};        // Conductor: complex index of refraction per channel
     glm::vec3 specularReflectance{1.0f}; // Conductor, Plastic, Dielectric: tint of the specular lobes
     bool nonlinear = false;              // Plastic: the diffuse base's colour shifts with internal scattering

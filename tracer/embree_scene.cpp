@@ -159,7 +159,11 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
         const float d = luminance(kd), g = luminance(ks);
         s.diffuseWeight = d + g > 0.0f ? d / (d + g) : 0.0f;
     }
-    if (mat.model == BsdfModel::Conductor || mat.model == BsdfModel::Plastic) convertModel(mat, s);
+    if (mat.model == BsdfModel::Conductor || mat.model == BsdfModel::Plastic) {
+        convertModel(mat, s);
+        if (s.rough && mat.roughnessTexture >= 0 && static_cast<std::size_t>(mat.roughnessTexture) < textureCount)
+            s.roughnessTexture = mat.roughnessTexture;
+    }
     if (mat.model == BsdfModel::Blend && mat.blend.size() == 2) {
         // Its components scatter; kd (their mix) is only the albedo the cache mode's Lambert
         // stand-in reads. One non-delta lobe to the integrators: diffuse, never glossy.
@@ -231,6 +235,11 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
                          scene.materials[i].name);
             s.alphaTexture = -1;
         }
+        if (s.roughnessTexture >= 0 && !hasUvs) {
+            spdlog::warn("material '{}' has a roughness texture but the mesh has no uvs; its mean roughness is used",
+                         scene.materials[i].name);
+            s.roughnessTexture = -1;
+        }
         if (s.perturbed() && !hasUvs) {
             spdlog::warn("material '{}' has a normal or bump map but the mesh has no uvs; the map is ignored",
                          scene.materials[i].name);
@@ -254,7 +263,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
     std::vector<char> mapUsed(scene.textures.size(), 0);
     for (std::size_t i = 0; i < materials_.size(); ++i)
         if (used[i])
-            for (int t : {materials_[i].normalMap, materials_[i].bumpMap})
+            for (int t : {materials_[i].normalMap, materials_[i].bumpMap, materials_[i].roughnessTexture})
                 if (t >= 0) mapUsed[static_cast<std::size_t>(t)] = 1;
     const bool maps = std::find(mapUsed.begin(), mapUsed.end(), 1) != mapUsed.end();
     const bool needUvs = features_.textures || alphaTextures || maps;
@@ -294,6 +303,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             sm.specularWeight = sm3 + dm > 0.0f ? sm3 / (sm3 + dm) : 0.5f;
         }
     }
+    buildRoughnessLevels(used);
     spdlog::info("tracer features: {}", features_.describe());
 
     triangles_.reserve(m.triangles.size());
@@ -379,6 +389,58 @@ glm::vec3 EmbreeScene::shadingNormal(std::uint32_t id, float u, float v) const {
     const float len2 = glm::dot(interp, interp);
     if (!(len2 > 1e-12f) || !std::isfinite(len2)) return tri.normal;
     return interp / std::sqrt(len2);
+}
+
+namespace {
+float alphaOf(const glm::vec3& c) { return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z; }  // Mitsuba's eval_1
+}  // namespace
+
+void EmbreeScene::buildRoughnessLevels(const std::vector<char>& used) {
+    std::vector<std::size_t> textured;
+    for (std::size_t i = 0; i < materials_.size(); ++i) {
+        const int t = materials_[i].roughnessTexture;
+        if (used[i] && t >= 0 && static_cast<std::size_t>(t) < textures_.size() &&
+            !textures_[static_cast<std::size_t>(t)].rgb.empty())
+            textured.push_back(i);
+        else
+            materials_[i].roughnessTexture = -1;
+    }
+    // Reserved whole first: materials point into the vector.
+    roughnessLevels_.reserve(textured.size() * ShadingMaterial::kRoughnessLevels);
+    for (std::size_t i : textured) {
+        ShadingMaterial& m = materials_[i];
+        const MipLevel& level = textures_[static_cast<std::size_t>(m.roughnessTexture)].rgb[0];
+        float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
+        for (const glm::vec3& c : level.rgb) {
+            lo = std::min(lo, alphaOf(c));
+            hi = std::max(hi, alphaOf(c));
+        }
+        // Mitsuba clamps alpha to 1e-4: the levels stay rough.
+        lo = std::max(lo, 1e-4f);
+        hi = std::max(hi, lo);
+        const int count = hi > lo ? ShadingMaterial::kRoughnessLevels : 1;
+        m.roughnessMin = lo;
+        m.roughnessStep = count > 1 ? (hi - lo) / static_cast<float>(count - 1) : 0.0f;
+        const std::size_t first = roughnessLevels_.size();
+        for (int k = 0; k < count; ++k) {
+            ShadingMaterial l = m;
+            l.alphaU = l.alphaV = k + 1 == count ? hi : lo + m.roughnessStep * static_cast<float>(k);
+            l.roughnessTexture = -1;
+            l.roughnessLevels = nullptr;
+            bsdf::prepareModel(l);
+            roughnessLevels_.push_back(l);
+        }
+        m.roughnessLevels = &roughnessLevels_[first];
+    }
+}
+
+const ShadingMaterial& EmbreeScene::roughnessLevel(const ShadingMaterial& m, std::uint32_t id, float u, float v) const {
+    const TextureData& t = textures_[static_cast<std::size_t>(m.roughnessTexture)];
+    if (!(m.roughnessStep > 0.0f)) return m.roughnessLevels[0];
+    const float a = alphaOf(bilinear(t.rgb[0], textureCoordinates(id, u, v)));
+    const float k = std::round((a - m.roughnessMin) / m.roughnessStep);
+    const int last = ShadingMaterial::kRoughnessLevels - 1;
+    return m.roughnessLevels[k >= 0.0f ? (k <= static_cast<float>(last) ? static_cast<int>(k) : last) : 0];
 }
 
 glm::vec3 EmbreeScene::perturbedNormal(const ShadingMaterial& m, std::uint32_t id, float u, float v,

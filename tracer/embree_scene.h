@@ -65,6 +65,13 @@ struct ShadingMaterial {
     // Rough plastic: the coating's transmittance (1 - its directional albedo) at cos = i / (N - 1).
     static constexpr int kTransmittanceRes = 64;
     std::array<float, kTransmittanceRes> transmittance{};
+    // Textured roughness (scene.h, Material::roughnessTexture): the material at kRoughnessLevels
+    // alphas from roughnessMin in steps of roughnessStep (owned by the EmbreeScene); a hit takes
+    // the level nearest its texel's alpha (EmbreeScene::atHit). nullptr: one alpha.
+    static constexpr int kRoughnessLevels = 64;
+    int roughnessTexture = -1;
+    const ShadingMaterial* roughnessLevels = nullptr;
+    float roughnessMin = 0.0f, roughnessStep = 0.0f;
     // Blend: the two components (owned by the EmbreeScene, which cannot be copied) and the
     // second one's weight.
     const ShadingMaterial* blendA = nullptr;
@@ -125,6 +132,11 @@ public:
     const Triangle& triangle(std::uint32_t id) const { return triangles_[id]; }
     std::size_t triangleCount() const { return triangles_.size(); }
     const ShadingMaterial& material(std::uint32_t id) const { return materials_[id]; }
+    // The material that shades a hit on triangle `id` at barycentrics (u, v): m, or for a textured
+    // roughness the level of m nearest the texel's alpha (bilinear, level 0, as Mitsuba's bitmap).
+    const ShadingMaterial& atHit(const ShadingMaterial& m, std::uint32_t id, float u, float v) const {
+        return m.roughnessLevels == nullptr ? m : roughnessLevel(m, id, u, v);
+    }
     std::size_t materialCount() const { return materials_.size(); }
     // Unit interpolated vertex normal at barycentrics (u, v); the geometric normal if the mesh has
     // no usable normals there.
@@ -147,6 +159,9 @@ public:
 
 private:
     glm::vec3 texel(int texture, std::uint32_t id, float u, float v, const glm::vec3& dir, float footprint) const;
+    const ShadingMaterial& roughnessLevel(const ShadingMaterial& m, std::uint32_t id, float u, float v) const;
+    // The levels of each used material with a roughness texture (after the textures are read).
+    void buildRoughnessLevels(const std::vector<char>& used);
     float coverage(int texture, std::uint32_t id, float u, float v) const;
     glm::vec2 textureCoordinates(std::uint32_t id, float u, float v) const;
 
@@ -157,6 +172,7 @@ private:
     std::vector<Triangle> triangles_;
     std::vector<ShadingMaterial> materials_;
     std::vector<ShadingMaterial> blendComponents_;  // what Blend materials point to, two each
+    std::vector<ShadingMaterial> roughnessLevels_;  // what textured-roughness materials point to
     std::vector<glm::vec3> vertexNormals_;  // 3 per triangle, empty without normals
     std::vector<glm::vec2> vertexUvs_;      // 3 per triangle, only when a used material is textured
                                             // or alpha-tested with a texture

@@ -59,7 +59,7 @@ Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, cons
 void Integrator::fillHit(std::uint32_t primID, float u, float v, float tfar, const glm::vec3& dir, RayCone cone,
                          SurfaceHit& hit) const {
     const Triangle& tri = geometry_.triangle(primID);
-    const ShadingMaterial& mat = geometry_.material(tri.material);
+    const ShadingMaterial& mat = geometry_.atHit(geometry_.material(tri.material), primID, u, v);
     hit.front = glm::dot(tri.normal, dir) < 0.0f;
     // Rebuild the hit point from the triangle (error relative to its vertices, not to t * |dir|).
     hit.position = tri.v0 + u * tri.e1 + v * tri.e2;

@@ -5,7 +5,7 @@ Each scene in bench/peers/conformance/ exercises one feature with tiny procedura
 (constant sky, a rotated and scaled envmap, a room lit through an opening, dielectric and
 thindielectric panes, directional, rectangle and sphere emitters, bitmap textures in sRGB and raw,
 a Mitsuba 0.5 file, the materials of furnished interiors, serialized meshes with hidden emitters,
-blendbsdf, and normal and bump maps). Both renderers render it at the same
+blendbsdf, normal and bump maps, and a textured roughness). Both renderers render it at the same
 size, spp and path depth (the file's max_depth) with a box pixel filter: Mitsuba 3 in llvm_ad_rgb,
 aamap with bench_tracer in path mode. One line per scene: the mean linear RGB of each, aamap /
 Mitsuba per channel, the LDR (clamped sRGB, 0-255) mean absolute difference, the LDR-FLIP mean
@@ -19,8 +19,8 @@ mitsuba==3.6.4), then
         [--bench build/release/bench/tracer/bench_tracer] [--spp-scale 2] [--keep OUTDIR]
 
 The scenes' maps (sky.exr: a sky gradient, a dark ground and a soft "sun"; checker.png; leaf.png;
-normal.png, a grid of domes; height.png, ripples) are written next to them on the first run
-(--make-assets rewrites them).
+normal.png, a grid of domes; height.png, ripples; roughness.png, a ramp) are written next to them
+on the first run (--make-assets rewrites them).
 """
 import argparse
 import math
@@ -63,6 +63,7 @@ SCENES = {
     "t_blendbsdf": (64, 256),
     "s_normalmap": (64, 256),
     "t_bumpmap": (64, 256),
+    "u_roughness_texture": (64, 256),
 }
 
 # The sky's sun, in world space: up 38.7 degrees, towards -z (through the rooms' window), and the
@@ -133,6 +134,13 @@ def make_assets(mi, force):
         v, u = (np.mgrid[0:n, 0:n] + 0.5) / n
         h = 0.5 + 0.5 * np.sin(2 * np.pi * 3 * u) * np.cos(2 * np.pi * 2 * v)
         Image.fromarray((h * 255).round().astype(np.uint8), "L").save(height)
+    roughness = os.path.join(SCENES_DIR, "roughness.png")
+    if force or not os.path.exists(roughness):
+        # A roughness ramp along u, modulated along v: alpha 0.05 to 0.55, grey (raw).
+        n = 64
+        v, u = (np.mgrid[0:n, 0:n] + 0.5) / n
+        a = 0.05 + 0.5 * u * (0.5 + 0.5 * np.cos(2 * np.pi * v))
+        Image.fromarray((a * 255).round().astype(np.uint8), "L").save(roughness)
     make_serialized(force)
 
 

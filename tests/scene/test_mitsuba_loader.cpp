@@ -553,6 +553,45 @@ TEST_F(Mitsuba, NormalAndBumpMapBadInputWarnsWithFileAndLine) {
     EXPECT_EQ(s.materials[4].bumpMap, -1);
 }
 
+TEST_F(Mitsuba, TexturedRoughnessReadsABitmapAndKeepsItsMean) {
+    // Two texels, raw: alpha 0.2 and 0.6 (51 and 153 of 255), mean 0.4.
+    std::ofstream(dir / "alpha.ppm", std::ios::binary) << "P6 2 1 255\n" << std::string("\x33\x33\x33\x99\x99\x99", 6);
+    MitsubaLoadReport report;
+    const Scene s = load(R"(<shape type="rectangle"><bsdf type="roughconductor">
+  <texture name="alpha" type="bitmap"><string name="filename" value="alpha.ppm"/><boolean name="raw" value="true"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughplastic">
+  <texture name="alpha" type="bitmap"><string name="filename" value="alpha.ppm"/><boolean name="raw" value="true"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughconductor"><float name="alpha_v" value="0.3"/>
+  <texture name="alpha_u" type="bitmap"><string name="filename" value="alpha.ppm"/><boolean name="raw" value="true"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughconductor"><texture name="alpha" type="checkerboard"/></bsdf></shape>
+)",
+                         &report);
+    ASSERT_EQ(s.materials.size(), 4u);
+    for (int i = 0; i < 2; ++i) {
+        const Material& m = s.materials[static_cast<std::size_t>(i)];
+        ASSERT_GE(m.roughnessTexture, 0);
+        EXPECT_NEAR(m.alphaU, 0.4f, 1e-5f);  // the mean: the Snapshot's stand-in
+        EXPECT_EQ(m.alphaV, m.alphaU);
+        EXPECT_NEAR(s.textures[static_cast<std::size_t>(m.roughnessTexture)].rgba[0], 0.2f, 1e-6f);
+    }
+    // Anisotropic: the texture's mean on its axis, with a warning.
+    EXPECT_EQ(s.materials[2].roughnessTexture, -1);
+    EXPECT_NEAR(s.materials[2].alphaU, 0.4f, 1e-5f);
+    EXPECT_FLOAT_EQ(s.materials[2].alphaV, 0.3f);
+    // Not a bitmap: Mitsuba's default alpha.
+    EXPECT_EQ(s.materials[3].roughnessTexture, -1);
+    EXPECT_FLOAT_EQ(s.materials[3].alphaU, 0.1f);
+    const auto warned = [&](const std::string& where, const std::string& what) {
+        return std::any_of(report.warnings.begin(), report.warnings.end(), [&](const std::string& w) {
+            return w.find(where) != std::string::npos && w.find(what) != std::string::npos;
+        });
+    };
+    EXPECT_TRUE(warned("scene.xml:7:", "textured alpha_u is replaced by its mean"));
+    EXPECT_TRUE(warned("scene.xml:8:", "only a bitmap texture can give the roughness"));
+    EXPECT_TRUE(warned("scene.xml:5:", "Mitsuba 3 takes no texture for roughplastic's alpha"));
+    EXPECT_EQ(report.warnings.size(), 3u);
+}
+
 TEST_F(Mitsuba, LoadSceneDispatchesXml) {
     const fs::path file = write("room.xml", "<scene version=\"2.1.0\"><shape type=\"cube\"/></scene>");
     EXPECT_EQ(loadScene(file.string()).mesh.triangles.size(), 12u);
