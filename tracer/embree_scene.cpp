@@ -303,6 +303,23 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             sm.specularWeight = sm3 + dm > 0.0f ? sm3 / (sm3 + dm) : 0.5f;
         }
     }
+    // Each mapped material's unlit twin, before the roughness levels copy the pointer.
+    unlit_.reserve(materials_.size());
+    for (ShadingMaterial& sm : materials_) {
+        if (!sm.perturbed()) continue;
+        ShadingMaterial u = sm;
+        u.kind = MaterialKind::Diffuse;
+        u.model = BsdfModel::Classic;
+        u.diffuse = u.glossy = u.rough = false;
+        u.kd = u.kdOverPi = u.ks = glm::vec3(0.0f);
+        u.texture = -1;
+        u.blendA = u.blendB = nullptr;
+        u.roughnessTexture = -1;
+        u.roughnessLevels = nullptr;
+        u.unlit = nullptr;
+        unlit_.push_back(u);
+        sm.unlit = &unlit_.back();
+    }
     buildRoughnessLevels(used);
     spdlog::info("tracer features: {}", features_.describe());
 

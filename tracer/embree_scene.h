@@ -49,6 +49,9 @@ struct ShadingMaterial {
     float bumpScale = 1.0f;
     bool mapMirroredOnBack = false;
     bool perturbed() const { return normalMap >= 0 || bumpMap >= 0; }
+    // A mapped material as seen from below its tilted normal: its emission and cut-outs, no
+    // reflection (owned by the EmbreeScene). nullptr for unmapped materials.
+    const ShadingMaterial* unlit = nullptr;
 
     // Mitsuba's BSDFs (model != Classic; tracer/bsdf.h). kind is Mirror for the smooth conductor and
     // plastic (their delta lobe goes through the mirror paths), Diffuse for the rough ones.
@@ -173,10 +176,12 @@ private:
     std::vector<ShadingMaterial> materials_;
     std::vector<ShadingMaterial> blendComponents_;  // what Blend materials point to, two each
     std::vector<ShadingMaterial> roughnessLevels_;  // what textured-roughness materials point to
+    std::vector<ShadingMaterial> unlit_;            // what mapped materials point to, one each
     std::vector<glm::vec3> vertexNormals_;  // 3 per triangle, empty without normals
-    std::vector<glm::vec2> vertexUvs_;      // 3 per triangle, only when a used material is textured
-                                            // or alpha-tested with a texture
-    std::vector<TextureData> textures_;     // only when a used material is textured or alpha-tested
+    std::vector<glm::vec2> vertexUvs_;      // 3 per triangle, only when a used material is textured,
+                                            // alpha-tested with a texture, or has a map (normal,
+                                            // bump, roughness)
+    std::vector<TextureData> textures_;     // only when a used material is textured, alpha-tested or mapped
 };
 
 }  // namespace aamap

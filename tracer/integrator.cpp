@@ -56,6 +56,27 @@ Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, cons
                   shading_.maxSpecularDepth);
 }
 
+namespace {
+
+// A normal or bump map at a hit (docs/tracer.md, "Normal and bump maps"): the tilted normal of
+// Mitsuba's shading frame, which the map does not turn to the viewer. Seen from the back, a
+// twosided outside the map mirrors the tilt through the tangent plane, otherwise the tilted normal
+// turns over. Where the viewer is below the tilted normal, the hit reflects nothing: Mitsuba's
+// BSDFs need the viewer above it, and a twosided inside the map, which turns it to the viewer,
+// then passes only light from below the surface, which the side tests keep out.
+void applyMap(const EmbreeScene& geometry, std::uint32_t primID, float u, float v, SurfaceHit& hit) {
+    const ShadingMaterial& m = *hit.material;
+    const glm::vec3 n = geometry.shadingNormal(primID, u, v);
+    const glm::vec3 tilted = geometry.perturbedNormal(m, primID, u, v, n);
+    const bool back = glm::dot(n, hit.geometric) < 0.0f;
+    hit.shading = !back ? tilted : m.mapMirroredOnBack ? tilted - 2.0f * glm::dot(tilted, n) * n : -tilted;
+    if (m.kind == MaterialKind::Glass || glm::dot(hit.wo, hit.shading) > 0.0f || m.unlit == nullptr) return;
+    hit.material = m.unlit;
+    hit.albedo = glm::vec3(0.0f);
+}
+
+}  // namespace
+
 void Integrator::fillHit(std::uint32_t primID, float u, float v, float tfar, const glm::vec3& dir, RayCone cone,
                          SurfaceHit& hit) const {
     const Triangle& tri = geometry_.triangle(primID);
@@ -65,16 +86,7 @@ void Integrator::fillHit(std::uint32_t primID, float u, float v, float tfar, con
     hit.position = tri.v0 + u * tri.e1 + v * tri.e2;
     hit.geometric = hit.front ? tri.normal : -tri.normal;
     hit.shading = geometry_.shadingNormal(primID, u, v);
-    const bool back = glm::dot(hit.shading, hit.geometric) < 0.0f;  // normals may disagree with the winding
-    if (mat.perturbed()) {
-        // A normal or bump map tilts Mitsuba's shading frame, which is not turned to the viewer;
-        // seen from its back, twosided mirrors the tilt, otherwise the tilted normal turns over.
-        const glm::vec3 n = hit.shading;
-        hit.shading = geometry_.perturbedNormal(mat, primID, u, v, n);
-        if (back) hit.shading = mat.mapMirroredOnBack ? hit.shading - 2.0f * glm::dot(hit.shading, n) * n : -hit.shading;
-    } else if (back) {
-        hit.shading = -hit.shading;
-    }
+    if (glm::dot(hit.shading, hit.geometric) < 0.0f) hit.shading = -hit.shading;  // normals may disagree with the winding
     hit.wo = -dir;
     hit.cone = {cone.at(tfar), cone.spread};
     hit.albedo = mat.diffuse ? geometry_.albedo(mat, primID, u, v, dir, hit.cone.width) : glm::vec3(0.0f);
@@ -82,6 +94,7 @@ void Integrator::fillHit(std::uint32_t primID, float u, float v, float tfar, con
     hit.distance = tfar;
     hit.primitive = primID;
     hit.material = &mat;
+    if (mat.perturbed()) applyMap(geometry_, primID, u, v, hit);
 }
 
 bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit, std::uint64_t& counter,

@@ -144,6 +144,33 @@ TEST(NormalMap, TwosidedMirrorsTheTiltOnTheBack) {
     }
 }
 
+// A map may tilt the normal past the surface (Mitsuba does not turn it back). A camera above
+// then sees it from below, and the hit reflects nothing, with a one-sided BSDF under the map or a
+// twosided (Mitsuba's twosided there turns the normal to the viewer, but the map then passes only
+// light from below the surface), although a sun on either side lights the plane.
+TEST(NormalMap, ViewerBelowTheTiltedNormalSeesNoReflection) {
+    const float theta = glm::radians(120.0f), E = 2.0f;  // past the view's 15 degrees off the vertical
+    const glm::vec3 tilt(std::sin(theta), 0.0f, std::cos(theta));
+    for (ShadingMode mode : kModes) {
+        for (bool oneSided : {true, false}) {
+            for (float side : {1.0f, -1.0f}) {
+                Scene s = planeScene(
+                    [&](Material& m) {
+                        m.normalMap = 0;
+                        m.oneSided = oneSided;
+                        m.ke = glm::vec3(0.25f);  // emission stays
+                    },
+                    {constantTexture(encode(tilt))});
+                addSun(s, glm::vec3(side * std::sin(glm::radians(60.0f)), std::cos(glm::radians(60.0f)), 0.0f), E);
+                const ImageRGB img = render(s, mode);
+                for (int y = 0; y < kSize; ++y)
+                    for (int x = 0; x < kSize; ++x)
+                        ASSERT_EQ(img.at(x, y), glm::vec3(0.25f)) << toString(mode) << " one-sided " << oneSided;
+            }
+        }
+    }
+}
+
 TEST(NormalMap, DegenerateUvsKeepTheUnperturbedNormal) {
     Scene s = normalMapped(glm::normalize(glm::vec3(0.5f, 0.2f, 1.0f)));
     s.mesh.uvs.assign(4, glm::vec2(0.25f));  // every corner at one uv: no tangent frame
