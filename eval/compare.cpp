@@ -206,7 +206,17 @@ struct Headline {
     std::string series;
     int rpp = 0;
     double speedup = NAN, error = NAN, baselineError = NAN;
+    // With metrics.oracle: the speedup as a fraction of the same render's on the oracle map.
+    double efficiency = NAN;
 };
+
+// The render `name` traced again on the oracle map (results.json "oracle"), or null.
+const Json* oracleTwin(const Json& results, const std::string& name) {
+    if (!results.contains("oracle") || !results["oracle"].contains("runs")) return nullptr;
+    for (const Json& run : results["oracle"]["runs"])
+        if (run.value("map_render", std::string()) == name && run.contains("render")) return &run["render"];
+    return nullptr;
+}
 
 double metricOf(const Json& render, const std::string& key) {
     if (!render.contains("metrics") || !render["metrics"].contains(key) || !render["metrics"][key].is_number()) return NAN;
@@ -247,6 +257,8 @@ std::vector<Headline> headlines(const ComparedRun& run, const std::string& error
         const Json& s = *at(series, h.rpp);
         const Json& b = *at(base, h.rpp);
         if (renderSeconds(s) > 0) h.speedup = renderSeconds(b) / renderSeconds(s);
+        if (const Json* o = oracleTwin(run.results, s.value("name", std::string())); o && renderSeconds(*o) > 0)
+            h.efficiency = h.speedup / (renderSeconds(b) / renderSeconds(*o));
         if (!noisy) {
             h.error = metricOf(s, errorMetric);
             h.baselineError = metricOf(b, errorMetric);
@@ -266,8 +278,9 @@ Table summaryTable(const std::vector<ComparedRun>& runs) {
     Table t{"summary", "Summary: one row per run",
             fmt::format("speedup: the baseline's time over the series' at the largest rpp both have (time = trace + "
                         "Snapshot); {}: pixels in error against the run's reference there; recall, precision, "
-                        "flagged: the aamap against true aliasing; time: all the run's renders. Bold: the best of the "
-                        "column among the runs of one scene",
+                        "flagged: the aamap against true aliasing; oracle efficiency: the speedup as a fraction of "
+                        "the same render's on the oracle map (metrics.oracle); time: all the run's renders. Bold: the "
+                        "best of the column among the runs of one scene",
                         errorName),
             {}, {}};
     for (const auto& [k, v] : runs.front().shortDiffers) t.header.push_back(k);
@@ -284,10 +297,16 @@ Table summaryTable(const std::vector<ComparedRun>& runs) {
         for (const Json& r : run.results["renders"])
             if (baseline.empty() && r.value("strategy", std::string()) == baselineStrategyName())
                 baseline = r.value("series", std::string());
+    // A series measured against the oracle map in some run also gets its efficiency there.
+    std::set<std::string> withOracle;
+    for (const ComparedRun& run : runs)
+        for (const Headline& h : headlines(run, metric))
+            if (std::isfinite(h.efficiency)) withOracle.insert(h.series);
     for (const auto& [name, rpp] : series) {
         const std::string at = rpp > 0 ? fmt::format(" @{}", rpp) : "";
         t.header.push_back(fmt::format("{} speedup{}", name, at));
         t.header.push_back(fmt::format("{} {}", name, errorName));
+        if (withOracle.count(name)) t.header.push_back(fmt::format("{} oracle efficiency", name));
     }
     if (!series.empty()) t.header.push_back(fmt::format("{} {}", baseline.empty() ? "baseline" : baseline, errorName));
     const std::vector<std::string> mapKeys = {"recall", "precision", "flagged_fraction"};
@@ -312,6 +331,10 @@ Table summaryTable(const std::vector<ComparedRun>& runs) {
             vals.push_back(h != hs.end() ? h->speedup : NAN);
             vals.push_back(h != hs.end() ? h->error : NAN);
             higherIsBetter.insert(higherIsBetter.end(), {true, false});
+            if (withOracle.count(name)) {
+                vals.push_back(h != hs.end() ? h->efficiency : NAN);
+                higherIsBetter.push_back(true);
+            }
             if (h != hs.end() && std::isfinite(h->baselineError)) baselineError = h->baselineError;
         }
         if (!series.empty()) {

@@ -25,7 +25,8 @@ namespace aamap {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
-namespace {
+// The runner's parts; ExperimentRun (eval/runner.h) holds a Runner.
+namespace runner_detail {
 
 // A render the experiment needs: a listed one, the reference or the 1-ray probe.
 struct Job {
@@ -102,7 +103,12 @@ public:
         : c_(config), out_(outDir), backend_(backend), options_(options), cache_(options.cacheDir.empty() ? outDir / "cache" : options.cacheDir, outDir),
           machine_(currentMachine()) {}
 
-    Results run();
+    // The run's stages, in order (ExperimentRun in eval/runner.h).
+    void plan();
+    void execute();
+    void evaluate();
+    Results report();
+    const Results& results() const { return results_; }
     void computeOnly(const std::string& key);
 
 private:
@@ -155,6 +161,16 @@ private:
     // A sweep's estimate over all its variants (RunnerOptions::estimate), else ownEstimate_.
     WorkEstimate& estimate() { return options_.estimate != nullptr ? *options_.estimate : ownEstimate_; }
     std::vector<std::string> warnings_;  // for the top of the report
+
+    // The stages' shared state: what plan() decided and read, the results as they fill.
+    enum class Stage { None, Planned, Executed, Evaluated, Reported };
+    void require(Stage before, const char* stage) const;
+    void copyRepeatedTimes();
+    Stage stage_ = Stage::None;
+    JobList list_;
+    std::optional<ImageRGB> fileReference_;
+    bool oracleLater_ = false;
+    Results results_;
 };
 
 void Runner::loadOrRenderSnapshot(bool writeOutputs) {
@@ -563,23 +579,18 @@ void Runner::writeNamedOutputs(const std::string& name, const Traced& t, int rpp
     }
 }
 
-Results Runner::run() {
-    Results results;
-    results.gitRevision = options_.gitRevision;
-    results.configHash = c_.hash();
-    results.configJson = c_.canonicalJson();
-
-    const JobList list = jobsOf(c_);
-    const std::vector<Job>& jobs = list.jobs;
-    const std::size_t listed = list.listed;
-    const std::optional<Job>& refJob = list.reference;
-    const std::optional<Job>& oneRayJob = list.oneRay;
-    const bool mapQuality = list.mapQuality;
+void Runner::plan() {
+    results_ = Results{};
+    results_.gitRevision = options_.gitRevision;
+    results_.configHash = c_.hash();
+    results_.configJson = c_.canonicalJson();
+    list_ = jobsOf(c_);
+    const std::vector<Job>& jobs = list_.jobs;
 
     // Every input file is read before any work, so a bad one leaves the output folder as it was.
-    std::optional<ImageRGB> fileReference;
-    if (c_.reference.type == "file") fileReference = loadFileReference(jobs);
-    if (refJob)
+    fileReference_.reset();
+    if (c_.reference.type == "file") fileReference_ = loadFileReference(jobs);
+    if (list_.reference)
         for (const Job& job : jobs)
             if (job.render.rpp > c_.reference.rpp) {
                 warn(fmt::format("the reference traces {} rays per pixel, fewer than render '{}' ({}): its error is "
@@ -589,17 +600,33 @@ Results Runner::run() {
             }
     // Cache mode with B bounces renders paths of up to B + 2 segments (camera, B diffuse bounces,
     // the light): against a path reference of another length the difference is not the cache's.
-    if (refJob && c_.shading.mode == "cache" && c_.reference.mode == "path" && c_.shading.cache.bounces > 0 &&
+    if (list_.reference && c_.shading.mode == "cache" && c_.reference.mode == "path" && c_.shading.cache.bounces > 0 &&
         c_.shading.maxDepth != c_.shading.cache.bounces + 2)
         warn(fmt::format("shading.cache.bounces {} renders paths of up to {} segments, the path-traced reference up to "
                          "shading.max_depth {}: set shading.max_depth: {} to measure the cache against the same light "
                          "transport",
                          c_.shading.cache.bounces, c_.shading.cache.bounces + 2, c_.shading.maxDepth,
                          c_.shading.cache.bounces + 2));
+    // With the oracle, the repeated runs wait for its renders, so that they are timed in the same
+    // rounds as the renders they are compared with (the machine's drift hits them alike).
+    oracleLater_ = list_.mapQuality && c_.metrics.oracle && (list_.reference || fileReference_);
+    stage_ = Stage::Planned;
+}
 
+void Runner::copyRepeatedTimes() {
+    // The records were taken before the repeated runs.
+    if (c_.timing.repeats <= 1) return;
+    for (std::size_t i = 0; i < list_.listed; ++i) results_.renders[i].times = traced_.at(list_.jobs[i].key).record.times;
+    if (list_.reference && results_.reference) results_.reference->times = traced_.at(list_.reference->key).record.times;
+    if (list_.oneRay && results_.oneRay) results_.oneRay->times = traced_.at(list_.oneRay->key).record.times;
+}
+
+void Runner::execute() {
+    require(Stage::Planned, "execute");
+    const std::vector<Job>& jobs = list_.jobs;
     if (c_.usesAamap()) loadOrRenderSnapshot();
     else spdlog::info("no render uses the aamap: snapshot skipped");
-    results.snapshot = snapshotRecord_;
+    results_.snapshot = snapshotRecord_;
 
     if (options_.estimate == nullptr) planTraces(jobs);  // a sweep planned every variant's already
     const int count = static_cast<int>(jobs.size());
@@ -609,22 +636,13 @@ Results Runner::run() {
         const bool cached = reused_[job.key];
         RenderRecord rec = recordFor(job, t, cached);
         writeNamedOutputs(job.render.name, t, job.render.rpp, rec.outputs);
-        if (i < listed) results.renders.push_back(std::move(rec));
-        else if (refJob && job.key == refJob->key && job.render.name == "reference") results.reference = std::move(rec);
-        else results.oneRay = std::move(rec);
-        writeResults(out_ / "results.json", results);
+        if (i < list_.listed) results_.renders.push_back(std::move(rec));
+        else if (list_.reference && job.key == list_.reference->key && job.render.name == "reference")
+            results_.reference = std::move(rec);
+        else results_.oneRay = std::move(rec);
+        writeResults(out_ / "results.json", results_);
     }
-    // The records above were taken before the repeated runs.
-    const auto copyRepeatedTimes = [&] {
-        if (c_.timing.repeats <= 1) return;
-        for (std::size_t i = 0; i < listed; ++i) results.renders[i].times = traced_.at(jobs[i].key).record.times;
-        if (refJob && results.reference) results.reference->times = traced_.at(refJob->key).record.times;
-        if (oneRayJob && results.oneRay) results.oneRay->times = traced_.at(oneRayJob->key).record.times;
-    };
-    // With the oracle, the repeated runs wait for its renders, so that they are timed in the same
-    // rounds as the renders they are compared with (the machine's drift hits them alike).
-    const bool oracleLater = mapQuality && c_.metrics.oracle && (refJob || fileReference);
-    if (!oracleLater) {
+    if (!oracleLater_) {
         repeatTraces(jobs);
         copyRepeatedTimes();
     }
@@ -632,6 +650,17 @@ Results Runner::run() {
     const std::size_t reused = traced_.size() - static_cast<std::size_t>(tracedNow_);
     spdlog::info("{} job(s): {} traced, {} reused from {}, {} shared with an identical job", jobs.size(), tracedNow_,
                  reused, cache_.dir().string(), jobs.size() - traced_.size());
+    stage_ = Stage::Executed;
+}
+
+void Runner::evaluate() {
+    require(Stage::Executed, "evaluate");
+    const std::vector<Job>& jobs = list_.jobs;
+    const std::size_t listed = list_.listed;
+    const std::optional<Job>& refJob = list_.reference;
+    const std::optional<Job>& oneRayJob = list_.oneRay;
+    const bool mapQuality = list_.mapQuality;
+    Results& results = results_;
 
     // The reference every render is measured against.
     std::optional<ImageRGB> reference;
@@ -640,8 +669,8 @@ Results Runner::run() {
         reference = traced_.at(refJob->key).image;
         results.referenceInfo.rpp = c_.reference.rpp;
         results.referenceInfo.mode = c_.reference.mode.empty() ? c_.shading.mode : c_.reference.mode;
-    } else if (fileReference) {
-        reference = std::move(fileReference);
+    } else if (fileReference_) {
+        reference = std::move(fileReference_);
         results.referenceInfo.path = c_.reference.resolvedPath(c_.file)->string();
     }
     if (reference) checkReference(*reference);
@@ -674,7 +703,7 @@ Results Runner::run() {
                                                              rec.name, rec.outputs);
         }
         addAntialiasingShares(results, jobs, listed, *reference);
-        if (mapQuality && c_.metrics.oracle) {
+        if (oracleLater_) {
             traceOracle(results, jobs, listed, *reference, traced_.at(oneRayJob->key).image);
             copyRepeatedTimes();
         }
@@ -686,11 +715,23 @@ Results Runner::run() {
     } else {
         results.warnings.push_back("reference.type is 'none': no error metrics, Table 3 is empty");
     }
-    for (const std::string& w : mixedMachineWarnings(results)) warn(w);
-    results.warnings.insert(results.warnings.begin(), warnings_.begin(), warnings_.end());
-    writeResults(out_ / "results.json", results);
-    writeReport(out_, toJson(results), options_.plots && c_.report.plots);
-    return results;
+    stage_ = Stage::Evaluated;
+}
+
+Results Runner::report() {
+    require(Stage::Evaluated, "report");
+    for (const std::string& w : mixedMachineWarnings(results_)) warn(w);
+    results_.warnings.insert(results_.warnings.begin(), warnings_.begin(), warnings_.end());
+    writeResults(out_ / "results.json", results_);
+    writeReport(out_, toJson(results_), options_.plots && c_.report.plots);
+    stage_ = Stage::Reported;
+    return results_;
+}
+
+void Runner::require(Stage before, const char* stage) const {
+    if (stage_ != before)
+        throw std::logic_error(fmt::format("experiment run: {} called out of order (plan, execute, evaluate, report)",
+                                           stage));
 }
 
 void Runner::computeOnly(const std::string& key) {
@@ -723,7 +764,26 @@ bool complete(const RenderCache& cache, const std::string& key, int repeats) {
     }
 }
 
-}  // namespace
+}  // namespace runner_detail
+
+using runner_detail::complete;
+using runner_detail::jobsOf;
+using runner_detail::Job;
+using runner_detail::JobList;
+using runner_detail::median;
+using runner_detail::planMissingTraces;
+using runner_detail::Runner;
+using runner_detail::usesAamap;
+
+ExperimentRun::ExperimentRun(const ExperimentConfig& config, const fs::path& outDir, RenderBackend& backend,
+                             const RunnerOptions& options)
+    : runner_(std::make_unique<Runner>(config, outDir, backend, options)) {}
+ExperimentRun::~ExperimentRun() = default;
+void ExperimentRun::plan() { runner_->plan(); }
+void ExperimentRun::execute() { runner_->execute(); }
+void ExperimentRun::evaluate() { runner_->evaluate(); }
+Results ExperimentRun::report() { return runner_->report(); }
+const Results& ExperimentRun::results() const { return runner_->results(); }
 
 std::vector<WorkItem> missingWork(const ExperimentConfig& config, const fs::path& cacheDir, int threads) {
     const RenderCache cache(cacheDir);
@@ -805,8 +865,11 @@ Results runExperimentWith(const ExperimentConfig& config, const fs::path& outDir
     fs::create_directories(outDir, ec);
     if (ec) throw EnvironmentError(fmt::format("{}: cannot create output folder: {}", outDir.string(), ec.message()));
     try {
-        Runner runner(config, outDir, backend, options);
-        return runner.run();
+        ExperimentRun run(config, outDir, backend, options);
+        run.plan();
+        run.execute();
+        run.evaluate();
+        return run.report();
     } catch (...) {
         // A run that fails before finishing anything leaves no trace: drop the folders it made
         // if they are still empty. fs::remove never deletes a non-empty folder, so finished

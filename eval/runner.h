@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -88,8 +89,36 @@ struct RunnerOptions {
 void planWork(const ExperimentConfig& config, const std::filesystem::path& cacheDir, WorkEstimate& estimate,
               std::set<std::string>& planned);
 
-// Throws InputError, EnvironmentError, or whatever the backend throws. results.json is rewritten
-// after every render; report.html, report.md and results.csv at the end.
+namespace runner_detail {
+class Runner;
+}
+
+// One run of an experiment in its four stages, each callable (and tested) alone, in this order:
+//   plan      the renders it needs (listed, reference, 1-ray probe) with their cache keys; every input
+//             file read and checked, the warnings that need no image; nothing traced or written;
+//   execute   the Snapshot and every render, from the cache or traced (with timing.repeats, unless
+//             the oracle's renders must join the same rounds); results.json after each;
+//   evaluate  the reference, each render's error, map quality and causes, the oracle map and its
+//             renders (timed with the others);
+//   report    results.json, report.html, report.md and results.csv.
+// A stage called out of order throws std::logic_error.
+class ExperimentRun {
+public:
+    ExperimentRun(const ExperimentConfig& config, const std::filesystem::path& outDir, RenderBackend& backend,
+                  const RunnerOptions& options);
+    ~ExperimentRun();
+    void plan();
+    void execute();
+    void evaluate();
+    Results report();
+    const Results& results() const;  // as the stages so far filled it
+
+private:
+    std::unique_ptr<runner_detail::Runner> runner_;
+};
+
+// The four stages in a row. Throws InputError, EnvironmentError, or whatever the backend throws.
+// results.json is rewritten after every render; report.html, report.md and results.csv at the end.
 Results runExperimentWith(const ExperimentConfig& config, const std::filesystem::path& outDir, RenderBackend& backend,
                           const RunnerOptions& options);
 

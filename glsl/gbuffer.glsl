@@ -17,12 +17,16 @@
 #include "snapshot_interface.h"
 #include "lights.glsl"
 #include "shadow_cube.glsl"
+#include "microfacet.glsl"
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) flat in vec3 vertexKd;
 layout(location = 3) flat in vec3 ke;
-layout(location = 7) flat in vec4 specular;  // ks, ns (gbuffer_vertex.glsl)
+layout(location = 7) flat in vec4 specular;  // ks, ns (gbuffer_vertex.glsl); a microfacet lobe: its tint
+layout(location = 8) flat in vec4 lobe;       // GBUFFER_LOBE_* model, alpha_u, alpha_v, distribution
+layout(location = 9) flat in vec4 lobeEta;    // conductor eta, plastic ior in w
+layout(location = 10) flat in vec4 lobeK;     // conductor k
 #ifdef GBUFFER_TEXTURED
 // kd times the base-colour texture (filtered over the pixel's footprint); alpha-tested materials
 // discard where the level-0 coverage < threshold.
@@ -68,12 +72,22 @@ float visibility(GpuLight l, uint light, vec3 r, vec3 n) {
 #endif
 
 // The glossy lobe's direction (the view reflected about n) and the tracer's modified Phong
-// normalisation (ns + 2) / (2 pi), set in main for materials with ks > 0.
+// normalisation (ns + 2) / (2 pi), set in main for materials with ks > 0; for a microfacet lobe
+// the view in the shading frame of n (the tracer's frame, so anisotropic lobes align).
 vec3 mirrorOfView = vec3(0.0);
 vec3 phongKs = vec3(0.0);
+MicrofacetFrame lobeFrame;
+vec3 lobeView = vec3(0.0, 0.0, 1.0);
 
-// kd / pi plus the tracer's glossy lobe ks (ns + 2) / (2 pi) cos^ns(alpha) for light direction wi.
+// kd / pi plus the glossy lobe for light direction wi: the tracer's Phong ks (ns + 2) / (2 pi)
+// cos^ns(alpha), or its microfacet lobe (glsl/microfacet.glsl) with a plastic's base through the
+// coating.
 vec3 brdf(vec3 kd, vec3 wi) {
+    if (lobe.x != float(GBUFFER_LOBE_PHONG)) {
+        const vec3 li = toLocal(lobeFrame, wi);
+        if (li.z <= 0.0 || lobeView.z <= 0.0) return vec3(0.0);
+        return microfacetLobe(lobeView, li, lobe, lobeEta, lobeK, specular.xyz, kd);
+    }
     vec3 f = kd * kInvPi;
     if (specular.x > 0.0 || specular.y > 0.0 || specular.z > 0.0) {
         const float c = dot(mirrorOfView, wi);
@@ -160,6 +174,10 @@ void main() {
 #endif
     mirrorOfView = reflect(-normalize(toCamera), n);
     phongKs = specular.xyz * ((specular.w + 2.0) * 0.5 * kInvPi);
+    if (lobe.x != float(GBUFFER_LOBE_PHONG)) {
+        lobeFrame = microfacetFrame(n);
+        lobeView = toLocal(lobeFrame, normalize(toCamera));
+    }
     // Emitters are one-sided along their normal.
     vec3 colour = (front ? ke : vec3(0.0)) + lighting(n, kd);
     colour += kd * kInvPi * ambientIrradiance(n);  // the environment's remainder (unshadowed)

@@ -14,12 +14,18 @@ layout(location = GBUFFER_LOCATION_NORMAL) in vec3 inNormal;
 layout(location = GBUFFER_LOCATION_KD) in vec3 inKd;
 layout(location = GBUFFER_LOCATION_KE) in vec3 inKe;
 layout(location = GBUFFER_LOCATION_SPECULAR) in vec4 inSpecular;
+layout(location = GBUFFER_LOCATION_LOBE) in vec4 inLobe;
+layout(location = GBUFFER_LOCATION_LOBE_ETA) in vec4 inLobeEta;
+layout(location = GBUFFER_LOCATION_LOBE_K) in vec4 inLobeK;
 
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) flat out vec3 kd;
 layout(location = 3) flat out vec3 ke;
 layout(location = 7) flat out vec4 specular;  // after the textured outputs 4..6
+layout(location = 8) flat out vec4 lobe;
+layout(location = 9) flat out vec4 lobeEta;
+layout(location = 10) flat out vec4 lobeK;
 
 #ifdef GBUFFER_TEXTURED
 layout(location = GBUFFER_LOCATION_UV) in vec2 inUv;
@@ -41,6 +47,9 @@ void main() {
     kd = inKd;
     ke = inKe;
     specular = inSpecular;
+    lobe = inLobe;
+    lobeEta = inLobeEta;
+    lobeK = inLobeK;
 #ifdef GBUFFER_TEXTURED
     uv = inUv;
     texRect = inTexRect;

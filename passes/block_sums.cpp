@@ -44,12 +44,13 @@ void BlockSumPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, c
     graph.addResource(graph::bufferResource(kBlockCounts, table * sizeof(std::uint32_t)));
     const gpu::BlockSumPush push{{width, height}, {0, 0}};
 
-    graph.addPass({kBlockSumRowsPass,
-                   graph::QueueKind::Compute,
-                   {graph::reads(map, graph::Usage::StorageRead), graph::writes(kBlockSumRowPrefixes, graph::Usage::StorageWrite),
-                    graph::writes(kBlockCountRowPrefixes, graph::Usage::StorageWrite)},
-                   purpose + " (row prefixes)"});
-    executor.setRecord(kBlockSumRowsPass, [this, map, push](vk::PassContext& pc) {
+    vk::PassDeclaration rows;
+    rows.desc = {kBlockSumRowsPass,
+                 graph::QueueKind::Compute,
+                 {graph::reads(map, graph::Usage::StorageRead), graph::writes(kBlockSumRowPrefixes, graph::Usage::StorageWrite),
+                  graph::writes(kBlockCountRowPrefixes, graph::Usage::StorageWrite)},
+                 purpose + " (row prefixes)"};
+    rows.record = [this, map, push](vk::PassContext& pc) {
         rows_.bind(pc.cmd());
         vk::DescriptorPush()
             .storageImage(BLOCKSUM_ROWS_BINDING_MAP, pc.image(map).view())
@@ -58,16 +59,18 @@ void BlockSumPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, c
             .push(*context_, pc.cmd(), rows_);
         rows_.pushConstants(pc.cmd(), push);
         vk::dispatch2D(pc.cmd(), static_cast<std::uint32_t>(push.size.y), 1, BLOCKSUM_GROUP, 1);
-    });
+    };
+    vk::declarePass(graph, executor, std::move(rows));
 
-    graph.addPass({kBlockSumColumnsPass,
-                   graph::QueueKind::Compute,
-                   {graph::reads(kBlockSumRowPrefixes, graph::Usage::StorageRead),
-                    graph::reads(kBlockCountRowPrefixes, graph::Usage::StorageRead),
-                    graph::writes(kBlockSums, graph::Usage::StorageWrite),
-                    graph::writes(kBlockCounts, graph::Usage::StorageWrite)},
-                   std::move(purpose)});
-    executor.setRecord(kBlockSumColumnsPass, [this, push](vk::PassContext& pc) {
+    vk::PassDeclaration columns;
+    columns.desc = {kBlockSumColumnsPass,
+                    graph::QueueKind::Compute,
+                    {graph::reads(kBlockSumRowPrefixes, graph::Usage::StorageRead),
+                     graph::reads(kBlockCountRowPrefixes, graph::Usage::StorageRead),
+                     graph::writes(kBlockSums, graph::Usage::StorageWrite),
+                     graph::writes(kBlockCounts, graph::Usage::StorageWrite)},
+                    std::move(purpose)};
+    columns.record = [this, push](vk::PassContext& pc) {
         columns_.bind(pc.cmd());
         vk::DescriptorPush()
             .storageBuffer(BLOCKSUM_COLUMNS_BINDING_ROW_SUMS, pc.buffer(kBlockSumRowPrefixes).handle())
@@ -77,7 +80,8 @@ void BlockSumPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, c
             .push(*context_, pc.cmd(), columns_);
         columns_.pushConstants(pc.cmd(), push);
         vk::dispatch2D(pc.cmd(), static_cast<std::uint32_t>(push.size.x + 1), 1, BLOCKSUM_GROUP, 1);
-    });
+    };
+    vk::declarePass(graph, executor, std::move(columns));
 }
 
 BlockSumTables toBlockSumTables(const vk::HostData& sums, const vk::HostData& counts, int width, int height) {

@@ -24,6 +24,9 @@ std::vector<VkVertexInputAttributeDescription> baseVertexAttributes() {
         {GBUFFER_LOCATION_KD, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKdOffset},
         {GBUFFER_LOCATION_KE, 0, VK_FORMAT_R32G32B32_SFLOAT, SceneGpu::kKeOffset},
         {GBUFFER_LOCATION_SPECULAR, 0, VK_FORMAT_R32G32B32A32_SFLOAT, SceneGpu::kSpecularOffset},
+        {GBUFFER_LOCATION_LOBE, 0, VK_FORMAT_R16G16B16A16_SFLOAT, SceneGpu::kLobeOffset},
+        {GBUFFER_LOCATION_LOBE_ETA, 0, VK_FORMAT_R16G16B16A16_SFLOAT, SceneGpu::kLobeEtaOffset},
+        {GBUFFER_LOCATION_LOBE_K, 0, VK_FORMAT_R16G16B16A16_SFLOAT, SceneGpu::kLobeKOffset},
     };
 }
 

@@ -64,15 +64,15 @@ graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecuto
                                         graph::reads(ids, graph::Usage::StorageRead),
                                         graph::writes(output, graph::Usage::StorageWrite)};
     if (combined) accesses.push_back(graph::reads(laplacian, graph::Usage::StorageRead));
-    const graph::PassId id = graph.addPass(
-        {kGeometricEdgesPass, graph::QueueKind::Compute, accesses,
-         combined ? "edges: max of G-buffer discontinuities and the luminance |L|"
-                  : "edges: G-buffer discontinuities (depth, normal, object and material id, shadow mask)"});
-    executor.setPrepare(kGeometricEdgesPass, [this, combined] {
+    vk::PassDeclaration pass;
+    pass.desc = {kGeometricEdgesPass, graph::QueueKind::Compute, accesses,
+                 combined ? "edges: max of G-buffer discontinuities and the luminance |L|"
+                          : "edges: G-buffer discontinuities (depth, normal, object and material id, shadow mask)"};
+    pass.prepare = [this, combined] {
         vk::Pipeline& pipeline = combined ? combined_ : geometric_;
         if (!pipeline.handle()) pipeline = edgePipeline(*context_, combined);
-    });
-    executor.setRecord(kGeometricEdgesPass, [this, normalDepth, ids, laplacian, output, combined](vk::PassContext& pc) {
+    };
+    pass.record = [this, normalDepth, ids, laplacian, output, combined](vk::PassContext& pc) {
         const vk::Image& out = pc.image(output);
         gpu::FilterPush push{};
         push.inSize = {static_cast<int>(out.info().width), static_cast<int>(out.info().height)};
@@ -87,7 +87,8 @@ graph::PassId GeometricEdgePass::add(graph::RenderGraph& graph, vk::GraphExecuto
         descriptors.push(*context_, pc.cmd(), pipeline);
         pipeline.pushConstants(pc.cmd(), push);
         vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, AAMAP_FILTER_GROUP_X, AAMAP_FILTER_GROUP_Y);
-    });
+    };
+    const graph::PassId id = vk::declarePass(graph, executor, std::move(pass));
     return id;
 }
 
@@ -108,17 +109,13 @@ void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const
         edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds, "", kEdges);
         return;
     }
-    if (!in.greyFromGBuffer)
-        graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(graph::imageResource(kMap, graph::Format::R32Float, graph::Size::relative(in.colour)));
-    graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
-    if (!in.greyFromGBuffer) chain.luminance.add(graph, executor, in.colour, kGrey, in.params.exposure);
-    chain.laplacian.add(graph, executor, kGrey, kLaplacian, in.params.flatRange);  // geometric: a debug output only
-    edges.add(graph, executor, kGeometryNormalDepth, kGeometryIds,
-              source == AamapSource::Combined ? kLaplacian : "", kEdges);
-    chain.blur.add(graph, executor, kEdges, kMap, in.params.blurRadius, in.params.noiseFloor, in.params.gain);
-    chain.reduce.add(graph, executor, kMap, kAamap);
+    // The Laplacian stays declared for the geometric map: a debug output only (the combined map reads it).
+    const bool combined = source == AamapSource::Combined;
+    chain.add(graph, executor, in.colour, in.width, in.height, in.params, in.greyFromGBuffer,
+              [&executor, &edges, combined](graph::RenderGraph& g) {
+                  edges.add(g, executor, kGeometryNormalDepth, kGeometryIds, combined ? kLaplacian : "", kEdges);
+                  return std::string(kEdges);
+              });
 }
 
 GpuGeometricEdges::GpuGeometricEdges(VulkanContext& context)

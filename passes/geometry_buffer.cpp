@@ -106,10 +106,6 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
                                         graph::writes(kGeometryIds, graph::Usage::ColorAttachment),
                                         graph::writes(kGeometryDepth, graph::Usage::DepthAttachment)};
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
-    graph.addPass({kGeometryBufferPass, graph::QueueKind::Graphics, accesses,
-                   shadowed ? "rasterise normals, view depth, object/material ids and the shadow occlusion mask "
-                              "for the geometric aamap"
-                            : "rasterise normals, view depth and object/material ids for the geometric or subpixel aamap"});
     shadowed_ = shadowed;
     constants_ = scene_->lightingConstants(shadows.pcf);
     const vk::Pipeline& pipeline = pipelines_[shadowed ? 1 : 0];  // built by prepare()
@@ -119,8 +115,13 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
     push.cameraForward = glm::vec4(view.camera.forward, 0.0f);
     push.shadow =
         glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias, static_cast<float>(shadows.faceSize));
-    executor.setPrepare(kGeometryBufferPass, [this] { prepare(); });
-    executor.setRecord(kGeometryBufferPass, [this, push, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
+    vk::PassDeclaration pass;
+    pass.desc = {kGeometryBufferPass, graph::QueueKind::Graphics, accesses,
+                 shadowed ? "rasterise normals, view depth, object/material ids and the shadow occlusion mask "
+                            "for the geometric aamap"
+                          : "rasterise normals, view depth and object/material ids for the geometric or subpixel aamap"};
+    pass.prepare = [this] { prepare(); };
+    pass.record = [this, push, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
         if (!prepared() || !pipeline.handle())
             throw std::logic_error("GeometryBufferPass recorded before its prepare step");
         const vk::Image& normalDepth = pc.image(kGeometryNormalDepth);
@@ -164,7 +165,8 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
             vkCmdDraw(cmd, triangleCount_ * 3, 1, 0, 0);
         }
         vkCmdEndRendering(cmd);
-    });
+    };
+    vk::declarePass(graph, executor, std::move(pass));
 }
 
 }  // namespace aamap::passes

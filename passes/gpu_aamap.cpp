@@ -18,7 +18,7 @@ graph::Size sizeOf(const auto& image) {
 }  // namespace
 
 void FilterChain::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour, int width,
-                      int height, const FilterParams& params, bool greyFromGBuffer) const {
+                      int height, const FilterParams& params, bool greyFromGBuffer, const BlurInput& blurInput) const {
     if (!greyFromGBuffer)
         graph.addResource(graph::imageResource(kGrey, graph::Format::R32Float, graph::Size::relative(colour)));
     graph.addResource(graph::imageResource(kLaplacian, graph::Format::R32Float, graph::Size::relative(colour)));
@@ -27,7 +27,8 @@ void FilterChain::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, co
                             absoluteSize(width, height)));
     if (!greyFromGBuffer) luminance.add(graph, executor, colour, kGrey, params.exposure);
     laplacian.add(graph, executor, kGrey, kLaplacian, params.flatRange);
-    blur.add(graph, executor, kLaplacian, kMap, params.blurRadius, params.noiseFloor, params.gain);
+    const std::string blurred = blurInput ? blurInput(graph) : std::string(kLaplacian);
+    blur.add(graph, executor, blurred, kMap, params.blurRadius, params.noiseFloor, params.gain);
     reduce.add(graph, executor, kMap, kAamap);
 }
 

@@ -2,6 +2,7 @@
 // The aamap filter chain on the GPU: the graph fragment the Snapshot appends after its raster,
 // and a stand-alone runner on host images (the GPU counterpart of passes/cpu_aamap.h, used by
 // the GPU-vs-CPU tests and benchmarks). The images go up as imported graph resources.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,8 +30,11 @@ struct FilterChain {
     // Declares grey, laplacian, map (sized like `colour`) and aamap (width x height), and the
     // four passes from the RGBA32F image `colour` to the aamap. greyFromGBuffer: grey is already
     // declared and written (passes/gbuffer.h, GBufferGrey), so there is no luminance pass.
+    // blurInput (the geometric and combined maps): declares, after the Laplacian, the pass that
+    // writes what the blur reads instead of the Laplacian, and returns that resource's name.
+    using BlurInput = std::function<std::string(graph::RenderGraph&)>;
     void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour, int width, int height,
-             const FilterParams& params, bool greyFromGBuffer = false) const;
+             const FilterParams& params, bool greyFromGBuffer = false, const BlurInput& blurInput = {}) const;
 };
 
 // Runs the chain, or one stage of it, on host images.

@@ -165,16 +165,17 @@ void MirrorProbes::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, G
                          fmt::format("the scene seen from the centre of {} curved mirror group(s), 6 cube faces each: {}",
                                      selected.size(), names));
 
-    graph.addPass({kMirrorProbeCompositePass,
-                   graph::QueueKind::Graphics,
-                   {graph::updates(snapshot, graph::Usage::ColorAttachment), graph::reads(depth, graph::Usage::Sampled),
-                    graph::reads(kMirrorProbeColour, graph::Usage::Sampled)},
-                   "add what each curved mirror's probe sees in the reflected direction, times its reflectance"});
     gpu::MirrorProbePush push{};
     push.viewProj = view.reversedViewProjection();
     push.cameraPos = glm::vec4(view.camera.origin, static_cast<float>(kFaceSize));
-    executor.setPrepare(kMirrorProbeCompositePass, [this] { buildCompositePipeline(); });
-    executor.setRecord(kMirrorProbeCompositePass, [this, snapshot, depth, push](vk::PassContext& pc) {
+    vk::PassDeclaration pass;
+    pass.desc = {kMirrorProbeCompositePass,
+                 graph::QueueKind::Graphics,
+                 {graph::updates(snapshot, graph::Usage::ColorAttachment), graph::reads(depth, graph::Usage::Sampled),
+                  graph::reads(kMirrorProbeColour, graph::Usage::Sampled)},
+                 "add what each curved mirror's probe sees in the reflected direction, times its reflectance"};
+    pass.prepare = [this] { buildCompositePipeline(); };
+    pass.record = [this, snapshot, depth, push](vk::PassContext& pc) {
         const vk::Image& target = pc.image(snapshot);
         const VkExtent2D extent{target.info().width, target.info().height};
         VkCommandBuffer cmd = pc.cmd();
@@ -191,7 +192,8 @@ void MirrorProbes::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, G
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
         vkCmdDraw(cmd, vertexCount_, 1, 0, 0);
         vkCmdEndRendering(cmd);
-    });
+    };
+    vk::declarePass(graph, executor, std::move(pass));
 }
 
 }  // namespace aamap::passes

@@ -14,10 +14,12 @@
 #include <fmt/format.h>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include "engine/vk/context.h"
 #include "passes/gbuffer_textures.h"
 #include "passes/mirror.h"
+#include "tracer/microfacet.h"
 
 namespace aamap::passes {
 namespace {
@@ -30,9 +32,17 @@ struct Vertex {
     glm::vec3 normal;
     glm::vec3 kd;
     glm::vec3 ke;
-    glm::vec4 specular;  // ks, ns: the glossy lobe of a diffuse material (ks 0: none)
+    glm::vec4 specular;  // ks, ns: the glossy lobe of a diffuse material (ks 0: none); a microfacet lobe's tint
+    std::uint16_t lobe[4], eta[4], k[4];  // GpuLobe as 16-bit floats
 };
 static_assert(sizeof(Vertex) == SceneGpu::kVertexStride);
+static_assert(offsetof(Vertex, lobe) == SceneGpu::kLobeOffset && offsetof(Vertex, eta) == SceneGpu::kLobeEtaOffset &&
+              offsetof(Vertex, k) == SceneGpu::kLobeKOffset);
+
+void packHalves(const glm::vec4& v, std::uint16_t out[4]) {
+    const glm::u16vec4 h(glm::packHalf1x16(v.x), glm::packHalf1x16(v.y), glm::packHalf1x16(v.z), glm::packHalf1x16(v.w));
+    for (int i = 0; i < 4; ++i) out[i] = h[i];
+}
 static_assert(offsetof(Vertex, normal) == SceneGpu::kNormalOffset && offsetof(Vertex, kd) == SceneGpu::kKdOffset &&
               offsetof(Vertex, ke) == SceneGpu::kKeOffset && offsetof(Vertex, specular) == SceneGpu::kSpecularOffset);
 
@@ -52,6 +62,7 @@ static_assert(offsetof(TexturedVertex, params) == SceneGpu::kTexParamsOffset);
 struct MaterialSampling {
     glm::vec3 kd{0.0f};    // mirrors: the diffuse part the tracer keeps (passes/mirror.h)
     glm::vec4 specular{0.0f};  // glossy diffuse materials: ks and ns, as the tracer scales them
+    gpu::GpuLobe lobe;         // a rough conductor's or plastic's microfacet lobe
     bool dropped = false;  // constant coverage below the cutoff: the triangles are never seen
     TexturedVertex fields{};  // rect and params (uv and base filled per vertex)
 };
@@ -70,6 +81,27 @@ MaterialSampling sampling(const Material& m, const Scene& scene, const TextureAt
         const float most = std::max({sum.x, sum.y, sum.z, 1.0f});
         out.kd /= most;
         out.specular = glm::vec4(ks / most, std::max(m.ns, 0.0f));
+    }
+    // Mitsuba's rough conductor and plastic: their microfacet lobe, as the tracer evaluates it
+    // (tracer/bsdf.h); the smooth ones are mirrors (passes/mirror.h).
+    const bool rough = m.alphaU > 0.0f && m.alphaV > 0.0f;
+    if (m.kind == MaterialKind::Diffuse && rough && (m.model == BsdfModel::Conductor || m.model == BsdfModel::Plastic)) {
+        const bool conductor = m.model == BsdfModel::Conductor;
+        const float ior = m.ior > 0.0f && m.ior != 1.0f ? m.ior : 1.49f;  // the tracer's default
+        out.lobe.model = conductor ? GBUFFER_LOBE_CONDUCTOR : GBUFFER_LOBE_PLASTIC;
+        out.lobe.alphaU = std::max(m.alphaU, microfacet::kMinAlpha);
+        out.lobe.alphaV = std::max(m.alphaV, microfacet::kMinAlpha);
+        out.lobe.distribution = m.distribution == MicrofacetType::GGX ? 1.0f : 0.0f;
+        out.lobe.eta = glm::vec4(m.eta, ior);
+        out.lobe.k = glm::vec4(m.k, 0.0f);
+        out.specular = glm::vec4(glm::max(m.specularReflectance, glm::vec3(0.0f)), 0.0f);
+        // The plastic's base seen through the coating: kd / (1 - R_int) / ior^2 (nonlinear: kd
+        // R_int), R_int the rough coating's internal reflectance as the tracer computes it, times
+        // the coating's transmittances the shader takes as 1 - F at both ends.
+        const microfacet::Distribution dist(m.distribution, m.alphaU, m.alphaV);
+        const float internal = conductor ? 0.0f : microfacet::coatingHemisphericalAverage(dist, ior, true);
+        out.kd = conductor ? glm::vec3(0.0f)
+                           : (m.nonlinear ? m.kd / (1.0f - m.kd * internal) : m.kd / (1.0f - internal)) / (ior * ior);
     }
     const auto key = atlasKey(m, scene);
     const auto entry = atlas.entries.find(key);
@@ -152,7 +184,11 @@ FlatMesh flatten(const Scene& scene, const TextureAtlas& atlas, bool textured) {
             if (!(glm::dot(n, n) > 0.0f)) n = face;  // zero or NaN normals in the file
             TexturedVertex v = ms.fields;
             v.base = {p[k], n, isGlass(t) ? glassKd(m) : id < materials.size() ? ms.kd : m.kd, m.ke,
-                      id < materials.size() ? ms.specular : glm::vec4(0.0f)};
+                      id < materials.size() ? ms.specular : glm::vec4(0.0f), {}, {}, {}};
+            const gpu::GpuLobe lobe = id < materials.size() ? ms.lobe : gpu::GpuLobe{};
+            packHalves({lobe.model, lobe.alphaU, lobe.alphaV, lobe.distribution}, v.base.lobe);
+            packHalves(lobe.eta, v.base.eta);
+            packHalves(lobe.k, v.base.k);
             v.uv = hasUvs ? mesh.uvs[tri[k]] : glm::vec2(0.0f);
             const auto* bytes = reinterpret_cast<const std::byte*>(&v);
             out.insert(out.end(), bytes, bytes + stride);

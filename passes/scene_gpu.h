@@ -36,12 +36,14 @@ namespace aamap::passes {
 class SceneGpu {
 public:
     // Vertex layout: position, normal, kd, ke (vec3 each), then the glossy lobe (ks, Phong
-    // exponent ns; ks 0: none) as the tracer's modified Phong; the textured layout adds uv, the
+    // exponent ns; ks 0: none) as the tracer's modified Phong, or a microfacet lobe's tint; then
+    // the microfacet lobe's parameters (GpuLobe, 3 x 4 16-bit floats); the textured layout adds uv, the
     // atlas entry (4 x u16) and its parameters (layer, alpha threshold) at the offsets below.
-    static constexpr std::uint32_t kVertexStride = 64;
+    static constexpr std::uint32_t kVertexStride = 88;
     static constexpr std::uint32_t kNormalOffset = 12, kKdOffset = 24, kKeOffset = 36, kSpecularOffset = 48;
-    static constexpr std::uint32_t kTexturedVertexStride = 88;
-    static constexpr std::uint32_t kUvOffset = 64, kTexRectOffset = 72, kTexParamsOffset = 80;
+    static constexpr std::uint32_t kLobeOffset = 64, kLobeEtaOffset = 72, kLobeKOffset = 80;
+    static constexpr std::uint32_t kTexturedVertexStride = 112;
+    static constexpr std::uint32_t kUvOffset = 88, kTexRectOffset = 96, kTexParamsOffset = 104;
 
     SceneGpu(VulkanContext& context, const Scene& scene);  // uploads the mesh with its materials
 

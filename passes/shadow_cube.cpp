@@ -146,18 +146,17 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
     std::string names;
     for (std::uint32_t i = 0; i < lights && i < 6; ++i) names += fmt::format("{}'{}'", i ? ", " : "", lightNames[i]);
     if (lights > 6) names += fmt::format(", ... ({} more)", lights - 6);
-    const graph::PassId id = graph.addPass(
-        {kShadowPass, graph::QueueKind::Graphics, {graph::writes(resource, graph::Usage::DepthAttachment)},
-         fmt::format("shadow cube maps ({}^2 per face, 6 layers each; a directional light's orthographic map fills "
-                     "the first) for {} light{}: {}; per-face culling draws {:.1f}% of triangles x faces{}",
-                     faceSize, lights, lights == 1 ? "" : "s", names, 100.0 * keptShare,
-                     scene.alphaMasked() ? "; alpha test from the texture atlas (the scene has masks)" : "")});
-
     gpu::ShadowPush push{};
     push.nearPlane = nearPlane;
     const vk::Pipeline& pipeline = pipelineSlot(scene);
-    executor.setPrepare(kShadowPass, [this, &scene] { buildPipeline(scene); });
-    executor.setRecord(kShadowPass, [this, &scene, &pipeline, resource, push, layers](vk::PassContext& pc) {
+    vk::PassDeclaration pass;
+    pass.desc = {kShadowPass, graph::QueueKind::Graphics, {graph::writes(resource, graph::Usage::DepthAttachment)},
+                 fmt::format("shadow cube maps ({}^2 per face, 6 layers each; a directional light's orthographic map fills "
+                             "the first) for {} light{}: {}; per-face culling draws {:.1f}% of triangles x faces{}",
+                             faceSize, lights, lights == 1 ? "" : "s", names, 100.0 * keptShare,
+                             scene.alphaMasked() ? "; alpha test from the texture atlas (the scene has masks)" : "")};
+    pass.prepare = [this, &scene] { buildPipeline(scene); };
+    pass.record = [this, &scene, &pipeline, resource, push, layers](vk::PassContext& pc) {
         const vk::Image& target = pc.image(resource);
         const VkExtent2D extent{target.info().width, target.info().height};
         VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -193,7 +192,8 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
             }
         }
         vkCmdEndRendering(cmd);
-    });
+    };
+    const graph::PassId id = vk::declarePass(graph, executor, std::move(pass));
     return id;
 }
 

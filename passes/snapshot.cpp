@@ -286,7 +286,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
 
 std::vector<std::string> snapshotLimitations(const Scene& scene) {
     std::vector<std::string> notes;
-    const passes::MirrorGroups mirrors = passes::findPlanarMirrors(scene);
+    const MirrorGroups mirrors = findPlanarMirrors(scene);
     if (!mirrors.curved.empty())
         notes.push_back(fmt::format("{} mirror group(s) are not planar everywhere ({}{}): the Snapshot reflects their "
                                     "curved triangles through a cube probe from the group's centre, without parallax",

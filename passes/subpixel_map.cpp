@@ -33,13 +33,13 @@ graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor&
                                    const SubpixelSettings& settings) const {
     if (settings.k < SUBPIXEL_MIN_K || settings.k > SUBPIXEL_MAX_K)
         throw std::invalid_argument("SubpixelSettings::k must be in [2, 4], got " + std::to_string(settings.k));
-    const graph::PassId id = graph.addPass(
-        {kSubpixelMapPass, graph::QueueKind::Compute,
-         {graph::reads(colour, graph::Usage::StorageRead), graph::reads(normalDepth, graph::Usage::StorageRead),
-          graph::reads(ids, graph::Usage::StorageRead), graph::writes(output, graph::Usage::StorageWrite)},
-         "aamap: each pixel's predicted one-ray display error from its k x k samples"});
     const int k = settings.k;
-    executor.setPrepare(kSubpixelMapPass, [this, k] {
+    vk::PassDeclaration pass;
+    pass.desc = {kSubpixelMapPass, graph::QueueKind::Compute,
+                 {graph::reads(colour, graph::Usage::StorageRead), graph::reads(normalDepth, graph::Usage::StorageRead),
+                  graph::reads(ids, graph::Usage::StorageRead), graph::writes(output, graph::Usage::StorageWrite)},
+                 "aamap: each pixel's predicted one-ray display error from its k x k samples"};
+    pass.prepare = [this, k] {
         vk::Pipeline& pipeline = pipelines_[k];
         if (pipeline.handle()) return;
         std::vector<std::uint32_t> constants(SUBPIXEL_SPEC_K + 1, 0u);
@@ -49,8 +49,8 @@ graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor&
                                                static_cast<std::uint32_t>(sizeof(gpu::SubpixelPush)),
                                                VK_SHADER_STAGE_COMPUTE_BIT},
                                 constants);
-    });
-    executor.setRecord(kSubpixelMapPass, [this, colour, normalDepth, ids, output, settings](vk::PassContext& pc) {
+    };
+    pass.record = [this, colour, normalDepth, ids, output, settings](vk::PassContext& pc) {
         const vk::Image& out = pc.image(output);
         gpu::SubpixelPush push{};
         push.outSize = {static_cast<int>(out.info().width), static_cast<int>(out.info().height)};
@@ -67,7 +67,8 @@ graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor&
         descriptors.push(*context_, pc.cmd(), pipeline);
         pipeline.pushConstants(pc.cmd(), push);
         vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, SUBPIXEL_GROUP_X, SUBPIXEL_GROUP_Y);
-    });
+    };
+    const graph::PassId id = vk::declarePass(graph, executor, std::move(pass));
     return id;
 }
 

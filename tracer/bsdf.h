@@ -130,18 +130,36 @@ inline Eval evalBlend(const ShadingMaterial& m, const glm::vec3& n, const glm::v
 inline bool sampleBlend(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
                         glm::vec3& wi);
 
-// Non-delta lobes of the Mitsuba models and the pdf of sampleModel choosing wi. A smooth
-// plastic's only non-delta lobe is its base: its pdf is diffusePick cos / pi, diffusePick the
-// caller's probability of sampling it (path mode: 1 - deltaPick; direct mode samples it alone).
-inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
-                      const glm::vec3& wi, float diffusePick = 1.0f) {
-    if (m.model == BsdfModel::Blend) return evalBlend(m, n, wo, wi);
+// The non-delta lobes split in two, the one interface every mode evaluates: `diffuse` (Lambert,
+// a plastic's base, a blend as a whole) and `glossy` (Phong, the microfacet lobes of a rough
+// conductor or a rough plastic's coating) with glossyPdf, the density of sampleGlossy choosing wi
+// (solid angle). Direct and cache modes light-sample both and BSDF-sample the glossy one
+// (docs/tracer.md, "Glossy lobes in direct and cache modes"); path mode sums them (evalSmooth).
+struct Lobes {
+    glm::vec3 diffuse{0.0f}, glossy{0.0f};
+    float glossyPdf = 0.0f;
+};
+
+inline Lobes evalLobes(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
+                       const glm::vec3& wi) {
+    Lobes e;
+    if (m.model == BsdfModel::Classic) {
+        e.diffuse = albedo * kInvPi;
+        if (m.glossy) {
+            const float lobe = phongLobe(m, wo, n, wi);
+            e.glossy = m.ks * (m.phongNorm * lobe);
+            e.glossyPdf = m.phongPdfNorm * lobe;
+        }
+        return e;
+    }
+    if (m.model == BsdfModel::Blend) {
+        e.diffuse = evalBlend(m, n, wo, wi).f;
+        return e;
+    }
     const Frame frame(n);
     const glm::vec3 lo = frame.toLocal(wo), li = frame.toLocal(wi);
-    Eval e{glm::vec3(0.0f), 0.0f};
     if (!(lo.z > 0.0f) || !(li.z > 0.0f)) return e;
     const bool plastic = m.model == BsdfModel::Plastic;
-    const float pickSpecular = !plastic ? 1.0f : m.rough ? plasticSpecularPick(m, lo.z) : 1.0f - diffusePick;
     if (m.rough) {
         const microfacet::Distribution dist = distributionOf(m);
         const glm::vec3 h = glm::normalize(lo + li);
@@ -150,15 +168,57 @@ inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const g
         const float G = g1o * dist.G1(li, h);
         const float cosH = glm::dot(lo, h);
         const glm::vec3 F = plastic ? glm::vec3(dielectricReflectance(cosH, m.ior)) : microfacet::fresnelConductor(cosH, m.eta, m.k);
-        e.f = m.specularTint * F * (D * G / (4.0f * lo.z * li.z));
-        e.pdf = pickSpecular * D * g1o / (4.0f * lo.z);
+        e.glossy = m.specularTint * F * (D * G / (4.0f * lo.z * li.z));
+        e.glossyPdf = D * g1o / (4.0f * lo.z);
     }
     if (plastic) {
         const float tO = m.rough ? coatingTransmittance(m, lo.z) : 1.0f - dielectricReflectance(lo.z, m.ior);
         const float tI = m.rough ? coatingTransmittance(m, li.z) : 1.0f - dielectricReflectance(li.z, m.ior);
-        e.f += plasticBase(m, albedo) * (kInvPi * tO * tI / (m.ior * m.ior));
-        e.pdf += (1.0f - pickSpecular) * li.z * kInvPi;
+        e.diffuse = plasticBase(m, albedo) * (kInvPi * tO * tI / (m.ior * m.ior));
     }
+    return e;
+}
+
+// Samples the glossy lobe alone (Lobes::glossyPdf): the Phong lobe about the mirror direction
+// (cos(alpha) = u^(1 / (ns + 1))), or a visible microfacet normal. False where there is none or
+// the direction is lost below the surface.
+inline bool sampleGlossy(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, glm::vec2 u, glm::vec3& wi) {
+    if (!m.glossy) return false;
+    if (m.model == BsdfModel::Classic) {
+        const glm::vec3 r = reflect(wo, n);
+        const float cosA = std::pow(u.x, 1.0f / (m.ns + 1.0f));
+        const float sinA = std::sqrt(std::max(0.0f, 1.0f - cosA * cosA));
+        const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
+        glm::vec3 t, b;
+        basis(r, t, b);
+        wi = (sinA * std::cos(phi)) * t + (sinA * std::sin(phi)) * b + cosA * r;
+        return glm::dot(wi, n) > 0.0f;
+    }
+    const Frame frame(n);
+    const glm::vec3 lo = frame.toLocal(wo);
+    if (!(lo.z > 0.0f) || !m.rough) return false;
+    const glm::vec3 h = distributionOf(m).sampleVisible(lo, u);
+    const glm::vec3 li = (2.0f * glm::dot(lo, h)) * h - lo;
+    if (!(li.z > 0.0f)) return false;
+    wi = frame.toWorld(li);
+    return true;
+}
+
+// The Mitsuba models' non-delta lobes (evalLobes summed) and the pdf of sampleModel choosing wi.
+// A smooth plastic's only non-delta lobe is its base: its pdf is diffusePick cos / pi,
+// diffusePick the caller's probability of sampling it (path mode: 1 - deltaPick).
+inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
+                      const glm::vec3& wi, float diffusePick = 1.0f) {
+    if (m.model == BsdfModel::Blend) return evalBlend(m, n, wo, wi);
+    const Lobes lobes = evalLobes(m, albedo, n, wo, wi);
+    const float cosO = glm::dot(n, wo), cosI = glm::dot(n, wi);
+    Eval e{glm::vec3(0.0f), 0.0f};
+    if (!(cosO > 0.0f) || !(cosI > 0.0f)) return e;
+    const bool plastic = m.model == BsdfModel::Plastic;
+    const float pickSpecular = !plastic ? 1.0f : m.rough ? plasticSpecularPick(m, cosO) : 1.0f - diffusePick;
+    e.f = lobes.glossy + lobes.diffuse;
+    e.pdf = pickSpecular * lobes.glossyPdf;
+    if (plastic) e.pdf += (1.0f - pickSpecular) * cosI * kInvPi;
     return e;
 }
 
@@ -166,19 +226,14 @@ inline Eval evalModel(const ShadingMaterial& m, const glm::vec3& albedo, const g
 inline bool sampleModel(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
                         glm::vec3& wi) {
     if (m.model == BsdfModel::Blend) return sampleBlend(m, n, wo, lobeU, u, wi);
-    const Frame frame(n);
-    const glm::vec3 lo = frame.toLocal(wo);
-    if (!(lo.z > 0.0f)) return false;
-    const bool specular = m.rough && (m.model != BsdfModel::Plastic || lobeU < plasticSpecularPick(m, lo.z));
+    const float cosO = glm::dot(n, wo);
+    if (!(cosO > 0.0f)) return false;
+    const bool specular = m.rough && (m.model != BsdfModel::Plastic || lobeU < plasticSpecularPick(m, cosO));
     if (!specular) {
         wi = sampleCosine(n, u);
         return true;
     }
-    const glm::vec3 h = distributionOf(m).sampleVisible(lo, u);
-    const glm::vec3 li = (2.0f * glm::dot(lo, h)) * h - lo;
-    if (!(li.z > 0.0f)) return false;
-    wi = frame.toWorld(li);
-    return true;
+    return sampleGlossy(m, n, wo, u, wi);
 }
 
 // The delta lobe: the probability that a path takes it (the rest goes to the non-delta lobes)
@@ -224,30 +279,7 @@ inline void prepareModel(ShadingMaterial& m) {
         return;
     }
     const microfacet::Distribution dist = distributionOf(m);
-    constexpr int q = 32;  // per axis: within 0.2 % of 64 (tests/tracer/test_bsdf.cpp checks the energy it implies)
-    const auto integrate = [&](float mu, bool inside) {
-        const glm::vec3 v(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
-        // From inside the coating the relative index is 1 / ior: total internal reflection.
-        const float eta = inside ? 1.0f / m.ior : m.ior;
-        double sum = 0.0;
-        for (int j = 0; j < q; ++j)
-            for (int i = 0; i < q; ++i) {
-                const glm::vec2 u((static_cast<float>(i) + 0.5f) / q, (static_cast<float>(j) + 0.5f) / q);
-                const glm::vec3 h = dist.sampleVisible(v, u);
-                const float c = glm::dot(v, h);
-                float cosT = 0.0f;
-                const float F = microfacet::fresnelDielectricSigned(c, eta, cosT);
-                if (inside) {  // what the coating reflects back down
-                    const glm::vec3 r = (2.0f * c) * h - v;
-                    if (r.z > 0.0f) sum += static_cast<double>(F * dist.G1(r, h));
-                } else {  // what it lets through
-                    const float e = 1.0f / eta;
-                    const glm::vec3 t = h * (c * e + cosT) - v * e;
-                    if (t.z < 0.0f && F < 1.0f) sum += static_cast<double>((1.0f - F) * dist.G1(t, h));
-                }
-            }
-        return static_cast<float>(sum / (q * q));
-    };
+    const auto integrate = [&](float mu, bool inside) { return microfacet::coatingScattering(dist, m.ior, mu, inside); };
     double inside = 0.0, outside = 0.0;
     for (int i = 0; i < res; ++i) {
         const float mu = std::max(1e-6f, static_cast<float>(i) / static_cast<float>(res - 1));
@@ -356,16 +388,11 @@ inline Eval evalRoughDielectric(const ShadingMaterial& m, const glm::vec3& n, co
 inline Eval evalSmooth(const ShadingMaterial& m, const glm::vec3& albedo, const glm::vec3& n, const glm::vec3& wo,
                        const glm::vec3& wi, float cosI, float diffusePick) {
     if (m.model != BsdfModel::Classic) return evalModel(m, albedo, n, wo, wi, diffusePick);
-    Eval e{albedo * kInvPi, diffusePick * cosI * kInvPi};
-    if (m.glossy) {
-        const float lobe = phongLobe(m, wo, n, wi);
-        e.f += m.ks * (m.phongNorm * lobe);
-        e.pdf += (1.0f - diffusePick) * m.phongPdfNorm * lobe;
-    }
-    return e;
+    const Lobes lobes = evalLobes(m, albedo, n, wo, wi);
+    return {lobes.diffuse + lobes.glossy, diffusePick * cosI * kInvPi + (1.0f - diffusePick) * lobes.glossyPdf};
 }
 
-// Samples the smooth lobes: u.x picks the lobe (and is reused), u.y/uz place the direction.
+// Samples the smooth lobes: lobeU picks the lobe (Lambert or glossy), u places the direction.
 // Returns false for directions below the surface. pdf as in evalSmooth.
 inline bool sampleSmooth(const ShadingMaterial& m, const glm::vec3& n, const glm::vec3& wo, float lobeU, glm::vec2 u,
                          glm::vec3& wi) {
@@ -374,15 +401,7 @@ inline bool sampleSmooth(const ShadingMaterial& m, const glm::vec3& n, const glm
         wi = sampleCosine(n, u);
         return true;
     }
-    // Around the mirror direction: cos(alpha) = u^(1 / (ns + 1)).
-    const glm::vec3 r = reflect(wo, n);
-    const float cosA = std::pow(u.x, 1.0f / (m.ns + 1.0f));
-    const float sinA = std::sqrt(std::max(0.0f, 1.0f - cosA * cosA));
-    const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
-    glm::vec3 t, b;
-    basis(r, t, b);
-    wi = (sinA * std::cos(phi)) * t + (sinA * std::sin(phi)) * b + cosA * r;
-    return glm::dot(wi, n) > 0.0f;
+    return sampleGlossy(m, n, wo, u, wi);
 }
 
 // ---- Blend (Mitsuba's blendbsdf): the components' BSDFs and pdfs mixed by the weight, and

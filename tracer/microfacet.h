@@ -196,6 +196,47 @@ inline float fresnelDielectricSigned(float cosI, float eta, float& cosT) {
     return 0.5f * (rs * rs + rp * rp);
 }
 
+// A rough dielectric coating (relative index eta, the distribution's roughness) seen along a
+// direction at cosine mu, single scattering: from outside, the share it lets through; from inside
+// (inside = true; relative index 1 / eta, total internal reflection), the share it reflects back
+// down. By quadrature over the visible-normal sample square (32 x 32: within 0.2 % of 64,
+// tests/tracer/test_bsdf.cpp checks the energy it implies). Rough plastic's tables (tracer/bsdf.h
+// prepareModel) and the Snapshot's plastic base (passes/scene_gpu.cpp) are built from it.
+inline float coatingScattering(const Distribution& dist, float eta, float mu, bool inside) {
+    constexpr int q = 32;
+    const glm::vec3 v(std::sqrt(std::max(0.0f, 1.0f - mu * mu)), 0.0f, mu);
+    const float e = inside ? 1.0f / eta : eta;
+    double sum = 0.0;
+    for (int j = 0; j < q; ++j)
+        for (int i = 0; i < q; ++i) {
+            const glm::vec2 u((static_cast<float>(i) + 0.5f) / q, (static_cast<float>(j) + 0.5f) / q);
+            const glm::vec3 h = dist.sampleVisible(v, u);
+            const float c = glm::dot(v, h);
+            float cosT = 0.0f;
+            const float F = fresnelDielectricSigned(c, e, cosT);
+            if (inside) {  // what the coating reflects back down
+                const glm::vec3 r = (2.0f * c) * h - v;
+                if (r.z > 0.0f) sum += static_cast<double>(F * dist.G1(r, h));
+            } else {  // what it lets through
+                const float ie = 1.0f / e;
+                const glm::vec3 t = h * (c * ie + cosT) - v * ie;
+                if (t.z < 0.0f && F < 1.0f) sum += static_cast<double>((1.0f - F) * dist.G1(t, h));
+            }
+        }
+    return static_cast<float>(sum / (q * q));
+}
+
+// The hemispherical average 2 * integral of coatingScattering(mu) mu dmu over res cosines
+// i / (res - 1) (the tables' points), e.g. a rough coating's internal reflectance (inside).
+inline float coatingHemisphericalAverage(const Distribution& dist, float eta, bool inside, int res = 64) {
+    double sum = 0.0;
+    for (int i = 0; i < res; ++i) {
+        const float mu = std::max(1e-6f, static_cast<float>(i) / static_cast<float>(res - 1));
+        sum += static_cast<double>(coatingScattering(dist, eta, mu, inside) * mu);
+    }
+    return static_cast<float>(2.0 * sum / res);
+}
+
 // Hemispherical average 2 * integral of F(mu) mu dmu of the dielectric Fresnel reflectance, for
 // light arriving from the side where the relative index is eta (Mitsuba's fresnel_diffuse_
 // reflectance; here by quadrature instead of its polynomial fit).

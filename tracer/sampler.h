@@ -40,6 +40,14 @@ public:
     Sampler(std::uint64_t pixelIndex, std::uint32_t sampleIndex, std::uint64_t seed)
         : key_(mix64(mix64(mix64(seed + 0x9e3779b97f4a7c15ULL) ^ pixelIndex) ^ sampleIndex)) {}
 
+    // An independent stream for branch `index` of a sample's ray tree (direct mode's glossy rays):
+    // the branches below it then draw their own numbers for the same dimensions.
+    Sampler branch(std::uint64_t index) const {
+        Sampler s;
+        s.key_ = mix64(key_ ^ (0x8cb92ba72f3d8dd7ULL * (index + 1)));
+        return s;
+    }
+
     std::uint64_t bits(std::uint64_t dim) const { return mix64(key_ ^ (0xd1b54a32d192ed03ULL * (dim + 1))); }
 
     // Uniform in [0, 1): the top 24 bits, so the value is exact in a float and never rounds to 1.

@@ -23,6 +23,7 @@ normal.png, a grid of domes; height.png, ripples; roughness.png, a ramp) are wri
 on the first run (--make-assets rewrites them).
 """
 import argparse
+import json
 import math
 import os
 import subprocess
@@ -252,6 +253,7 @@ def main():
     ap.add_argument("--spp-scale", type=int, default=1, help="multiply every scene's spp by this square (1, 4, ...)")
     ap.add_argument("--make-assets", action="store_true", help="rewrite sky.exr and the PNG maps")
     ap.add_argument("--keep", help="write both renders of each scene here (EXR)")
+    ap.add_argument("--json", help="write one row per scene here (tools/results_tables.py reads it)")
     args = ap.parse_args()
     if not os.path.exists(args.bench):
         sys.exit(f"{args.bench}: build it first (cmake --build --preset release), or pass --bench")
@@ -328,6 +330,14 @@ def main():
               f"{dldr:7.2f} {flip_mean:6.3f} {noise:7.2f}{flag}   ({t_mi:.0f} s / {t_aa:.0f} s)", flush=True)
     bad = [r[0] for r in rows if np.any(np.abs(r[6] - 1.0) > 0.02)]
     print(f"{len(rows)} scenes; off by more than 2 % in a channel: {', '.join(bad) if bad else 'none'}")
+    if args.json:
+        out = [{"scene": r[0], "size": r[1], "spp": r[2], "depth": r[3], "mitsuba": list(map(float, r[4])),
+                "aamap": list(map(float, r[5])), "ratio": list(map(float, r[6])), "ldr_abs_diff": float(r[7]),
+                "noise": float(r[8]) / 100.0, "flip_mean": float(r[9])} for r in rows]
+        tmp = args.json + ".tmp"
+        with open(tmp, "w") as f:
+            json.dump({"mitsuba": mi.__version__, "rows": out}, f, indent=2)
+        os.replace(tmp, args.json)
 
 
 if __name__ == "__main__":

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Time to an error level: aamap's path mode against Mitsuba 3 on the same machine and scene.
 
-Each renderer is measured against its own converged reference (the two project spectra to RGB
-differently, so one's reference is biased for the other): Mitsuba 3 (llvm_ad_rgb, path integrator)
+Each renderer is measured against its own converged reference, and both against one common
+reference (--common-reference: Mitsuba's or aamap's --reference-spp render, said in the output),
+which shows a renderer's bias as well as its noise; the mean per channel of every image over the
+common reference's says how much of the error is bias. Mitsuba 3 (llvm_ad_rgb, path integrator)
 renders a ladder of samples per pixel and its --reference-spp image; aamap runs one experiment in
 path mode with uniform and variance-driven renders at a ladder of rays per pixel and its own
 path-traced reference of --reference-spp. Both use the same maximum path depth and pixel filter,
@@ -12,9 +14,12 @@ experiment, again ...): aamap's later rounds reuse its first reference as a file
 render again. Prints each setting's median time, its spread and its error, and the fastest setting
 of each renderer at or below --target % pixels in error.
 
+Both render at the film's aspect ratio (--size is the width), so a scene such as the Modern Hall
+(`--scene ../shared/scenes/modern-hall/scene.xml --depth 65`) keeps its framing.
+
 Setup as bench/peers/mitsuba_throughput.py (libllvm19, pip mitsuba==3.6.4 in .venv), then
     .venv/bin/python bench/peers/mitsuba_time_to_error.py [--size 256] [--filter gaussian]
-        [--filter-mode convolution]
+        [--filter-mode convolution] [--common-reference mitsuba] [--reference-spp 4096]
 """
 import argparse
 import json
@@ -26,7 +31,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from mitsuba_throughput import load_mitsuba, mitsuba_scene_file  # noqa: E402
+from mitsuba_throughput import film_aspect, load_mitsuba, mitsuba_scene_file  # noqa: E402
 
 
 def ladder(text):
@@ -37,7 +42,7 @@ def ladder(text):
     return values
 
 
-def aamap_config(scene, size, depth, rfilter, filter_mode, uniform, variance, thresholds, min_samples, reference,
+def aamap_config(scene, size, height, depth, rfilter, filter_mode, uniform, variance, thresholds, min_samples, reference,
                  light_sampling):
     """The experiment: path mode with one light sample per hit (as Mitsuba's one emitter sample per
     bounce), Russian roulette from depth 5 on as Mitsuba's default rr_depth."""
@@ -48,7 +53,7 @@ def aamap_config(scene, size, depth, rfilter, filter_mode, uniform, variance, th
                        f'min_samples: {min_samples}, sample_step: 8}}')
     return "\n".join([
         f"scene: {json.dumps(os.path.abspath(scene))}",
-        f"image: {{width: {size}, height: {size}, filter: {rfilter}, filter_mode: {filter_mode}}}",
+        f"image: {{width: {size}, height: {height}, filter: {rfilter}, filter_mode: {filter_mode}}}",
         f"shading: {{mode: path, max_depth: {depth}, area_light_samples: 1, light_sampling: {light_sampling}}}",
         "renders:", *renders,
         f"reference: {reference}",
@@ -74,7 +79,9 @@ def main():
     ap.add_argument("--variance-threshold", default="0.01,0.04,0.08",
                     help="its noise_threshold values (0.01: Cycles' default)")
     ap.add_argument("--variance-min-samples", type=int, default=16)
-    ap.add_argument("--reference-spp", type=int, default=1024)
+    ap.add_argument("--reference-spp", type=int, default=1024, help="each renderer's own reference")
+    ap.add_argument("--common-reference", default="mitsuba", choices=["mitsuba", "aamap"],
+                    help="whose --reference-spp render every image is also measured against")
     ap.add_argument("--target", type=float, default=1.0, help="%% pixels above FLIP 0.1")
     ap.add_argument("--light-sampling", default="auto", choices=["auto", "solid_angle", "area"],
                     help="aamap's shading.light_sampling")
@@ -85,11 +92,22 @@ def main():
     if not os.path.exists(args.aamap):
         sys.exit(f"{args.aamap}: build it first (cmake --build --preset release)")
     mi, dr = load_mitsuba(args.scene)
+    import numpy as np
+    height = max(1, round(args.size * film_aspect(args.scene)))
+
+    def diff(reference, test):
+        return json.loads(subprocess.run([args.aamap, "diff", reference, test, "--json"], check=True,
+                                         capture_output=True, text=True).stdout)
+
+    def channel_means(path):
+        return np.array(mi.Bitmap(path))[:, :, :3].astype(np.float64).reshape(-1, 3).mean(0)
 
     times = {}  # (renderer, setting) -> [seconds per round]
     errors = {}  # (renderer, setting) -> aamap diff / results.json metrics
+    common = {}  # (renderer, setting) -> aamap diff against the common reference, with channel ratios
     with tempfile.TemporaryDirectory() as tmp:
-        scene = mi.load_file(mitsuba_scene_file(args.scene, args.size, args.reference_spp, args.depth, args.filter, tmp))
+        scene = mi.load_file(mitsuba_scene_file(args.scene, args.size, args.reference_spp, args.depth, args.filter, tmp,
+                                                height))
 
         def render(spp):
             t0 = time.perf_counter()
@@ -101,12 +119,14 @@ def main():
         reference, t_ref = render(args.reference_spp)  # also compiles the kernels
         mitsuba_ref = os.path.join(tmp, "mitsuba_reference.exr")
         mi.Bitmap(reference).write(mitsuba_ref)
-        print(f"mitsuba {mi.__version__} llvm_ad_rgb, {args.size}x{args.size}, depth {args.depth}, {args.filter} "
+        print(f"mitsuba {mi.__version__} llvm_ad_rgb, {args.size}x{height}, depth {args.depth}, {args.filter} "
               f"filter; reference {args.reference_spp} spp in {t_ref:.1f} s", flush=True)
         for spp in args.mitsuba_spp:
             render(spp)  # kernels for every sample count before the timed rounds
 
         aamap_ref = os.path.join(tmp, "aamap_reference.exr")
+        mitsuba_images = {}  # spp -> EXR of the first round
+        aamap_images = {}  # render name -> EXR of the first round
         for r in range(args.rounds):
             for spp in args.mitsuba_spp:
                 image, seconds = render(spp)
@@ -114,14 +134,13 @@ def main():
                 if r == 0:
                     test = os.path.join(tmp, f"mitsuba_{spp}.exr")
                     mi.Bitmap(image).write(test)
-                    errors[("mitsuba", f"{spp} spp")] = json.loads(subprocess.run(
-                        [args.aamap, "diff", mitsuba_ref, test, "--json"], check=True, capture_output=True,
-                        text=True).stdout)
+                    errors[("mitsuba", f"{spp} spp")] = diff(mitsuba_ref, test)
+                    mitsuba_images[spp] = test
             reference_yaml = (f"{{type: uniform, mode: path, rpp: {args.reference_spp}}}" if r == 0
                               else f"{{type: file, path: {json.dumps(aamap_ref)}}}")
             config = os.path.join(tmp, f"aamap_{r}.yaml")
             with open(config, "w") as f:
-                f.write(aamap_config(args.scene, args.size, args.depth, args.filter, args.filter_mode,
+                f.write(aamap_config(args.scene, args.size, height, args.depth, args.filter, args.filter_mode,
                                      args.uniform_rpp, args.variance_rpp, [float(t) for t in args.variance_threshold.split(",") if t],
                                      args.variance_min_samples, reference_yaml, args.light_sampling))
             out = os.path.join(tmp, f"aamap_{r}")
@@ -134,41 +153,71 @@ def main():
                 key = ("aamap path", rec["name"])
                 times.setdefault(key, []).append(rec["times_s"]["trace"])
                 errors[key] = dict(rec["metrics"], mean_rpp=rec["mean_primary_rpp"])
+                if r == 0:
+                    kept = os.path.join(tmp, f"aamap_{rec['name']}.exr")
+                    os.replace(os.path.join(out, rec["name"] + ".exr"), kept)
+                    aamap_images[rec["name"]] = kept
             done = ", ".join(f"{k[0]} {k[1]} {v[-1]:.2f} s" for k, v in times.items())
             print(f"round {r + 1}: {done}", flush=True)
+
+        # One reference for both: every first-round image against it, with its channel means.
+        common_ref = mitsuba_ref if args.common_reference == "mitsuba" else aamap_ref
+        ref_means = channel_means(common_ref)
+        images = [(("mitsuba", f"{spp} spp"), p) for spp, p in mitsuba_images.items()]
+        images += [(("aamap path", name), p) for name, p in aamap_images.items()]
+        other_ref = aamap_ref if args.common_reference == "mitsuba" else mitsuba_ref
+        images.append(((("aamap path" if args.common_reference == "mitsuba" else "mitsuba"),
+                        f"reference {args.reference_spp}"), other_ref))
+        for key, path in images:
+            common[key] = dict(diff(common_ref, path), ratio=list(channel_means(path) / np.maximum(ref_means, 1e-12)))
 
     rows = []
     for key, ts in times.items():
         e = errors[key]
         spp = e.get("mean_rpp", int(key[1].split()[0]) if key[0] == "mitsuba" else 0)
+        c = common.get(key, {})
         rows.append({"renderer": key[0], "setting": key[1], "mean_spp": spp, "median_s": statistics.median(ts),
                      "min_s": min(ts), "max_s": max(ts), "pct_error_flip": e["pct_error_flip"],
-                     "flip_mean": e["flip_mean"]})
-    print(f"\n{'renderer':<12} {'setting':<20} {'mean spp':>8} {'median s':>9} {'range s':>13} {'% > 0.1':>8} "
-          f"{'FLIP mean':>10}")
+                     "flip_mean": e["flip_mean"], "common_pct_error_flip": c.get("pct_error_flip"),
+                     "common_flip_mean": c.get("flip_mean"), "common_channel_ratio": c.get("ratio")})
+    print(f"\nown: each against its own {args.reference_spp}-spp reference; common: against "
+          f"{args.common_reference}'s, with the image's mean per channel over the reference's")
+    print(f"{'renderer':<12} {'setting':<20} {'mean spp':>8} {'median s':>9} {'range s':>13} {'own %>0.1':>9} "
+          f"{'own FLIP':>9} {'common %':>9} {'common FLIP':>11}  mean r/g/b ratio")
     for row in rows:
+        ratio = row["common_channel_ratio"]
         print(f"{row['renderer']:<12} {row['setting']:<20} {row['mean_spp']:8.1f} {row['median_s']:9.2f} "
-              f"{row['min_s']:6.2f}-{row['max_s']:<6.2f} {row['pct_error_flip']:8.2f} {row['flip_mean']:10.4f}")
-    fastest = {}
-    for row in rows:
-        if row["pct_error_flip"] <= args.target:
-            best = fastest.get(row["renderer"])
-            if best is None or row["median_s"] < best["median_s"]:
-                fastest[row["renderer"]] = row
+              f"{row['min_s']:6.2f}-{row['max_s']:<6.2f} {row['pct_error_flip']:9.2f} {row['flip_mean']:9.4f} "
+              f"{row['common_pct_error_flip'] if row['common_pct_error_flip'] is not None else float('nan'):9.2f} "
+              f"{row['common_flip_mean'] if row['common_flip_mean'] is not None else float('nan'):11.4f}  "
+              + (" ".join(f"{x:.4f}" for x in ratio) if ratio else ""))
+    for key, c in common.items():
+        if key[1].startswith("reference"):
+            print(f"{key[0]} {key[1]} against {args.common_reference}'s: {c['pct_error_flip']:.2f} % > 0.1, "
+                  f"FLIP mean {c['flip_mean']:.4f}, mean r/g/b ratio " + " ".join(f"{x:.4f}" for x in c["ratio"]))
     print()
-    for renderer in ("mitsuba", "aamap path"):
-        best = fastest.get(renderer)
-        print(f"fastest to <= {args.target} % ({renderer}): " +
-              (f"{best['setting']}, {best['median_s']:.2f} s, {best['pct_error_flip']:.2f} %" if best else "none"))
-    if len(fastest) == 2:
-        print(f"mitsuba / aamap time to <= {args.target} %: "
-              f"{fastest['mitsuba']['median_s'] / fastest['aamap path']['median_s']:.2f}")
+    for measure, label in (("pct_error_flip", "own reference"), ("common_pct_error_flip",
+                                                                 f"{args.common_reference}'s reference")):
+        fastest = {}
+        for row in rows:
+            if row[measure] is not None and row[measure] <= args.target:
+                best = fastest.get(row["renderer"])
+                if best is None or row["median_s"] < best["median_s"]:
+                    fastest[row["renderer"]] = row
+        for renderer in ("mitsuba", "aamap path"):
+            best = fastest.get(renderer)
+            print(f"fastest to <= {args.target} % against {label} ({renderer}): " +
+                  (f"{best['setting']}, {best['median_s']:.2f} s, {best[measure]:.2f} %" if best else "none"))
+        if len(fastest) == 2:
+            print(f"mitsuba / aamap time to <= {args.target} % against {label}: "
+                  f"{fastest['mitsuba']['median_s'] / fastest['aamap path']['median_s']:.2f}")
     if args.json:
         tmp_json = args.json + ".tmp"
         with open(tmp_json, "w") as f:
             json.dump({"scene": os.path.abspath(args.scene), "size": args.size, "depth": args.depth,
                        "filter": args.filter, "filter_mode": args.filter_mode,
-                       "reference_spp": args.reference_spp, "target": args.target,
+                       "reference_spp": args.reference_spp, "common_reference": args.common_reference,
+                       "target": args.target, "height": height,
                        "mitsuba": mi.__version__, "rows": rows}, f, indent=2)
         os.replace(tmp_json, args.json)
 

@@ -255,6 +255,14 @@ GraphExecutor::GraphExecutor(VulkanContext& context) : impl_(std::make_unique<Im
 GraphExecutor::~GraphExecutor() = default;
 
 void GraphExecutor::setRecord(const std::string& pass, RecordFn record) { impl_->records[pass] = std::move(record); }
+
+graph::PassId declarePass(graph::RenderGraph& graph, GraphExecutor& executor, PassDeclaration pass) {
+    const std::string name = pass.desc.name;
+    const graph::PassId id = graph.addPass(std::move(pass.desc));
+    executor.setRecord(name, std::move(pass.record));
+    if (pass.prepare) executor.setPrepare(name, std::move(pass.prepare));
+    return id;
+}
 void GraphExecutor::setPrepare(const std::string& pass, PrepareFn prepare) {
     impl_->prepares[pass] = std::move(prepare);
 }

@@ -117,4 +117,15 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+// A pass as it is registered: its description for the graph (name, queue, accesses, purpose) and
+// how the executor records it (and, optionally, what it builds first), under the one name.
+struct PassDeclaration {
+    graph::PassDesc desc;
+    RecordFn record;
+    PrepareFn prepare;  // may be empty
+};
+// Registers `pass` once: in `graph` (which decides whether it runs) and in `executor` (which
+// records it if it does). Every Snapshot pass registers through here.
+graph::PassId declarePass(graph::RenderGraph& graph, GraphExecutor& executor, PassDeclaration pass);
+
 }  // namespace aamap::vk

@@ -28,7 +28,25 @@ using uint = std::uint32_t;
 #define GBUFFER_LOCATION_NORMAL 1    // vec3
 #define GBUFFER_LOCATION_KD 2        // vec3, diffuse albedo of the vertex's triangle
 #define GBUFFER_LOCATION_KE 3        // vec3, emitted radiance of the vertex's triangle
-#define GBUFFER_LOCATION_SPECULAR 7  // vec4, ks and Phong exponent ns (ks 0: no glossy lobe)
+#define GBUFFER_LOCATION_SPECULAR 7  // vec4: Phong: ks and exponent ns (ks 0: no glossy lobe); a microfacet
+                                     // lobe: specular_reflectance (tint) and 0
+// The glossy lobe of Mitsuba's rough conductor and rough plastic (tracer/bsdf.h), as 16-bit
+// floats (passes/scene_gpu.cpp packs a GpuLobe into them): the Snapshot evaluates the tracer's
+// microfacet lobes for its light samples.
+#define GBUFFER_LOCATION_LOBE 8      // vec4: GBUFFER_LOBE_* model, alpha_u, alpha_v, distribution (0 Beckmann, 1 GGX)
+#define GBUFFER_LOCATION_LOBE_ETA 9  // vec4: conductor eta (rgb); w: plastic's coating index (int_ior / ext_ior)
+#define GBUFFER_LOCATION_LOBE_K 10   // vec4: conductor k (rgb)
+#define GBUFFER_LOBE_PHONG 0         // the Phong lobe of GBUFFER_LOCATION_SPECULAR (or none)
+#define GBUFFER_LOBE_CONDUCTOR 1     // F D G / (4 cos_o cos_i), F of the complex index eta + i k
+#define GBUFFER_LOBE_PLASTIC 2       // the coating's F D G / (4 cos_o cos_i) over the base, kd (T(cos_o) T(cos_i))
+#ifdef __cplusplus
+// The lobe's parameters in one place: a material's model, roughness, distribution and indices.
+struct GpuLobe {
+    float model = GBUFFER_LOBE_PHONG, alphaU = 0.0f, alphaV = 0.0f, distribution = 0.0f;
+    glm::vec4 eta{0.0f};  // rgb, ior in w
+    glm::vec4 k{0.0f};
+};
+#endif
 // Only in the shadowed variant (gbuffer.shadowed.frag): without shadows there is no binding 1.
 #define GBUFFER_BINDING_SHADOW 1     // texture2DArray (depth), 6 layers per light, SHADOW_* below
 // Only in the textured variants (gbuffer.textured*.{vert,frag}, passes/gbuffer_textures.h): the

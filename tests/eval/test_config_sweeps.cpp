@@ -1,6 +1,7 @@
 // Sweeps outside the renders list: the cartesian product of the listed settings, the first key
 // varying slowest, each variant an ordinary experiment; errors name the list's file:line; the
 // variants run into sub-folders that share one cache, so what they share is traced once.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -140,6 +141,48 @@ TEST(ConfigSweeps, SweepSummaryHasARowPerVariantAndAColumnPerKey) {
     ASSERT_NE(detail, std::string::npos);
     EXPECT_LT(summary, detail);  // the summary first, each variant's own tables folded below
     EXPECT_NE(md.find("is the fastest within"), std::string::npos) << md.substr(0, 2000);
+}
+
+// Map kinds side by side: with the oracle on, each map-driven series gets its efficiency against
+// the oracle map in the summary, the speedup over the oracle twin's speedup at the same rpp.
+TEST(ConfigSweeps, SummaryGivesEachMapItsOracleEfficiency) {
+    const fs::path out = fs::path(::testing::TempDir()) / "config_sweeps_oracle";
+    fs::remove_all(out);
+    const char* yaml = "scene: builtin:cornell\nimage: {width: 48, height: 32}\n"
+                       "snapshot: {map: [luminance, geometric]}\n"
+                       "renders:\n  - {strategy: uniform, rpp: [1, 4], series: Standard}\n"
+                       "  - {strategy: aamap, rpp: 4, series: Selective}\n"
+                       "metrics: {oracle: true}\nreport: {plots: false}\n";
+    runSweepWith(parseExperiment(yaml, "exp.yaml"), out,
+                 [](const ExperimentConfig&) { return std::unique_ptr<RenderBackend>(std::make_unique<FakeBackend>()); },
+                 RunnerOptions{"test-rev", false});
+    const std::vector<ComparedRun> runs = loadComparedRuns({out});
+    const Table t = summaryTable(runs);
+    ASSERT_EQ(t.rows.size(), 2u);
+    const auto column = std::find(t.header.begin(), t.header.end(), "Selective oracle efficiency");
+    ASSERT_NE(column, t.header.end());
+    const auto c = static_cast<std::size_t>(column - t.header.begin());
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        const nlohmann::ordered_json& r = runs[i].results;
+        const auto seconds = [](const nlohmann::ordered_json& x) {
+            return x["times_s"]["trace"].get<double>() + x["times_s"]["snapshot_total"].get<double>();
+        };
+        const nlohmann::ordered_json* map = nullptr;
+        const nlohmann::ordered_json* base = nullptr;
+        for (const auto& x : r["renders"]) {
+            if (x["series"] == "Selective") map = &x;
+            if (x["series"] == "Standard" && x["max_rays_per_pixel"] == 4) base = &x;
+        }
+        ASSERT_TRUE(map && base);
+        const nlohmann::ordered_json* oracle = nullptr;
+        for (const auto& o : r["oracle"]["runs"])
+            if (o["map_render"] == (*map)["name"]) oracle = &o["render"];
+        ASSERT_TRUE(oracle);
+        const double expected = (seconds(*base) / seconds(*map)) / (seconds(*base) / seconds(*oracle));
+        std::string cell = t.rows[i][c];
+        cell.erase(std::remove(cell.begin(), cell.end(), '*'), cell.end());
+        EXPECT_NEAR(std::stod(cell), expected, 0.01 * expected + 0.005) << cell;
+    }
 }
 
 TEST(ConfigSweeps, VariantsShareOneCacheAndOneReport) {

@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <stdexcept>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -47,6 +49,56 @@ protected:
     }
     fs::path out_;
 };
+
+// The run's stages alone: plan reads and decides without tracing or writing; execute traces
+// and records without measuring; evaluate measures without tracing (no oracle here); report
+// writes the report. Out of order is an error.
+TEST_F(Runner, StagesEachDoTheirOwnPartAlone) {
+    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml");
+    FakeBackend backend;
+    fs::create_directories(out_);
+    ExperimentRun run(c, out_, backend, RunnerOptions{"test-rev", false});
+    EXPECT_THROW(run.execute(), std::logic_error);
+    run.plan();
+    EXPECT_EQ(backend.totalTraces(), 0);
+    EXPECT_EQ(backend.prepares, 0);
+    EXPECT_TRUE(run.results().renders.empty());
+    EXPECT_FALSE(fs::exists(out_ / "results.json"));
+    EXPECT_THROW(run.evaluate(), std::logic_error);
+
+    run.execute();
+    EXPECT_EQ(backend.totalTraces(), 6);
+    EXPECT_EQ(backend.snapshots, 1);
+    ASSERT_EQ(run.results().renders.size(), 6u);
+    for (const RenderRecord& r : run.results().renders) EXPECT_TRUE(r.metrics.is_null()) << r.name;
+    EXPECT_TRUE(fs::exists(out_ / "results.json"));
+    EXPECT_FALSE(fs::exists(out_ / "report.html"));
+
+    run.evaluate();
+    EXPECT_EQ(backend.totalTraces(), 6);
+    for (const RenderRecord& r : run.results().renders) EXPECT_TRUE(r.metrics.contains("pct_error_flip")) << r.name;
+    EXPECT_FALSE(run.results().mapQuality.is_null());
+    EXPECT_FALSE(fs::exists(out_ / "report.html"));
+
+    const Results done = run.report();
+    EXPECT_EQ(done.renders.size(), 6u);
+    EXPECT_TRUE(fs::exists(out_ / "report.html"));
+    EXPECT_TRUE(fs::exists(out_ / "report.md"));
+    EXPECT_THROW(run.report(), std::logic_error);
+}
+
+// A bad input is found by the plan, before the scene loads or anything is traced.
+TEST_F(Runner, PlanRefusesABadReferenceFileBeforeAnyWork) {
+    const ExperimentConfig c =
+        parseConfig(std::string(kConfig) + "reference: {type: file, path: missing.exr}\n", (out_ / "exp.yaml").string());
+    FakeBackend backend;
+    fs::create_directories(out_);
+    ExperimentRun run(c, out_, backend, RunnerOptions{"test-rev", false});
+    EXPECT_THROW(run.plan(), InputError);
+    EXPECT_EQ(backend.prepares, 0);
+    EXPECT_EQ(backend.totalTraces(), 0);
+    EXPECT_FALSE(fs::exists(out_ / "results.json"));
+}
 
 TEST_F(Runner, SecondRunReusesEverythingAndDeletedRecordIsTheOnlyRedo) {
     FakeBackend first;

@@ -15,7 +15,7 @@
 #include "passes/snapshot.h"
 #include "passes/snapshot_graph.h"
 #include "scene/lights.h"
-#include "test_scenes.h"
+#include "tests/common/test_scenes.h"
 
 namespace aamap::test {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "gpu_fixture.h"
 #include "passes/snapshot.h"
-#include "test_scenes.h"
+#include "tests/common/test_scenes.h"
 
 namespace aamap::test {
 namespace {

@@ -12,7 +12,7 @@
 #include "passes/snapshot.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
-#include "test_scenes.h"
+#include "tests/common/test_scenes.h"
 
 namespace aamap::test {
 namespace {

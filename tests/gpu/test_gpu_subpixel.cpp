@@ -19,7 +19,7 @@
 #include "passes/subpixel_map.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
-#include "test_scenes.h"
+#include "tests/common/test_scenes.h"
 
 namespace aamap::test {
 namespace {
