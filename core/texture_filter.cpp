@@ -89,6 +89,26 @@ glm::vec3 bilinear(const MipLevel& level, glm::vec2 st) {
     return (1.0f - ay) * top + ay * bottom;
 }
 
+glm::vec2 bilinearLuminanceGradient(const MipLevel& level, glm::vec2 st) {
+    const float x = st.x * static_cast<float>(level.width) - 0.5f, y = st.y * static_cast<float>(level.height) - 0.5f;
+    if (!std::isfinite(x) || !std::isfinite(y)) return glm::vec2(0.0f);
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float ax = x - fx, ay = y - fy;
+    const long ix = static_cast<long>(fx), iy = static_cast<long>(fy);
+    const std::size_t w = static_cast<std::size_t>(level.width);
+    const std::size_t x0 = wrap(ix, level.width), x1 = wrap(ix + 1, level.width);
+    const std::size_t y0 = wrap(iy, level.height), y1 = wrap(iy + 1, level.height);
+    const auto lum = [&](std::size_t row, std::size_t col) {
+        const glm::vec3& c = level.rgb[row * w + col];
+        return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z;
+    };
+    const float f00 = lum(y0, x0), f10 = lum(y0, x1), f01 = lum(y1, x0), f11 = lum(y1, x1);
+    // Per texel, then per unit of u and v (a texel is 1 / side of the texture).
+    const float dx = (1.0f - ay) * (f10 - f00) + ay * (f11 - f01);
+    const float dy = (1.0f - ax) * (f01 - f00) + ax * (f11 - f10);
+    return {dx * static_cast<float>(level.width), dy * static_cast<float>(level.height)};
+}
+
 glm::vec3 filteredLookup(const std::vector<MipLevel>& chain, glm::vec2 st, glm::vec2 duvA, glm::vec2 duvB) {
     if (chain.empty()) return glm::vec3(1.0f);
     const glm::vec2 size(static_cast<float>(chain[0].width), static_cast<float>(chain[0].height));

@@ -40,6 +40,10 @@ FootprintProbes footprintProbes(glm::vec2 axisA, glm::vec2 axisB, int levels);
 // (i + 0.5) / side, v = 0 the top row (the rule of the unfiltered lookup, level 0).
 glm::vec3 bilinear(const MipLevel& level, glm::vec2 st);
 
+// The uv gradient (d/du, d/dv) of the bilinear lookup's luminance (Mitsuba's Rec. 709 weights) at
+// st, as Mitsuba's bitmap eval_1_grad: the bump map's slope. Zero where st is not finite.
+glm::vec2 bilinearLuminanceGradient(const MipLevel& level, glm::vec2 st);
+
 // The filtered colour at st for a footprint with full-width axes duvA, duvB in texture
 // coordinates (uv units). A zero footprint is the plain bilinear lookup of level 0.
 glm::vec3 filteredLookup(const std::vector<MipLevel>& chain, glm::vec2 st, glm::vec2 duvA, glm::vec2 duvB);

@@ -155,13 +155,26 @@ void MaterialBuilder::microfacetParameters(const Element& bsdf, Material& m, boo
         if (!anisotropic) fail(bsdf, fmt::format("{} is isotropic: alpha_u / alpha_v are not supported", bsdf.type()));
         if (!hasU || !hasV) fail(bsdf, "alpha_u and alpha_v must both be given");
         if (bsdf.property("alpha") != nullptr) fail(bsdf, "give either alpha or alpha_u / alpha_v, not both");
-        m.alphaU = floatProperty(bsdf, "alpha_u", 0.1f);
-        m.alphaV = floatProperty(bsdf, "alpha_v", 0.1f);
+        const auto read = [&](const char* name) {
+            const Element* p = bsdf.property(name);
+            if (p->tag != "texture" && p->tag != "ref") return floatProperty(bsdf, name, 0.1f);
+            // Anisotropic textured roughness: each axis at its texture's mean.
+            const float mean = texturedRoughness(*p, m);
+            m.roughnessTexture = -1;
+            warnings_.once("textured-alpha-uv", fmt::format("{}: a textured {} is replaced by its mean, {}", at(*p),
+                                                            name, mean));
+            return mean;
+        };
+        m.alphaU = read("alpha_u");
+        m.alphaV = read("alpha_v");
+    } else if (const Element* alpha = bsdf.property("alpha"); alpha != nullptr && (alpha->tag == "texture" || alpha->tag == "ref")) {
+        m.alphaU = m.alphaV = texturedRoughness(*alpha, m);
     } else {
         m.alphaU = m.alphaV = floatProperty(bsdf, "alpha", 0.1f);
     }
     for (const char* name : {"alpha", "alpha_u", "alpha_v"}) {
         const Element* p = bsdf.property(name);
+        if (p != nullptr && (p->tag == "texture" || p->tag == "ref")) continue;
         const float value = name[5] == 'u' ? m.alphaU : name[5] == 'v' ? m.alphaV : m.alphaU;
         if (p != nullptr && !(std::isfinite(value) && value >= 0.0f))
             fail(*p, fmt::format("roughness {} = {} is out of range (a finite alpha >= 0)", name, value));
@@ -169,6 +182,30 @@ void MaterialBuilder::microfacetParameters(const Element& bsdf, Material& m, boo
     if (!booleanProperty(bsdf, "sample_visible", true))
         warnings_.once("sample_visible", fmt::format("{}: sample_visible=false is ignored: visible normals are always "
                                                      "sampled (the image is the same, the noise differs)", at(bsdf)));
+}
+
+// A roughness texture (a bitmap; its texel's luminance is alpha, as Mitsuba's eval_1): sets
+// m.roughnessTexture and returns the texture's mean alpha. Another texture type is a warning and
+// Mitsuba's default 0.1.
+float MaterialBuilder::texturedRoughness(const Element& property, Material& m) {
+    const Element& t = resolve(property);
+    if (t.tag != "texture" || t.type() != "bitmap") {
+        warnings_.once("textured-alpha-type", fmt::format("{}: only a bitmap texture can give the roughness; alpha "
+                                                          "0.1 is used",
+                                                          at(t)));
+        return 0.1f;
+    }
+    const int index = bitmap(t, false);
+    if (index < 0) return 0.1f;  // unreadable: the loader has warned
+    const Texture& tex = scene_.textures[static_cast<std::size_t>(index)];
+    const std::size_t texels = static_cast<std::size_t>(tex.width) * static_cast<std::size_t>(tex.height);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < texels && 4 * i + 2 < tex.rgba.size(); ++i)
+        sum += 0.212671 * tex.rgba[4 * i] + 0.715160 * tex.rgba[4 * i + 1] + 0.072169 * tex.rgba[4 * i + 2];
+    const float mean = texels > 0 ? static_cast<float>(sum / static_cast<double>(texels)) : 0.1f;
+    if (!(std::isfinite(mean) && mean >= 0.0f)) fail(t, fmt::format("roughness texture mean {} is out of range", mean));
+    m.roughnessTexture = index;
+    return mean;
 }
 
 // int_ior / ext_ior (numbers or Mitsuba's names): their ratio, checked as Mitsuba does.
@@ -188,6 +225,7 @@ namespace {
 // texture (a Lambert or Phong colour, a rough conductor or plastic), not a blend itself.
 bool blendable(const Material& c) {
     if (c.diffuseTexture >= 0 || c.alphaMode != AlphaMode::Opaque || !c.blend.empty()) return false;
+    if (c.normalMap >= 0 || c.bumpMap >= 0 || c.roughnessTexture >= 0) return false;  // one frame, one alpha per hit
     if (c.model == BsdfModel::Conductor || c.model == BsdfModel::Plastic) return c.alphaU > 0.0f && c.alphaV > 0.0f;
     return c.model == BsdfModel::Classic && c.kind == MaterialKind::Diffuse;
 }
@@ -226,6 +264,73 @@ Material MaterialBuilder::blend(const Element& bsdf, int depth) {
     // Each component is black from its own back; a mixed pair is one-sided only when both are.
     m.oneSided = a.oneSided && b.oneSided;
     m.blend = {std::move(a), std::move(b)};
+    return m;
+}
+
+// normalmap / bumpmap: the nested BSDF with the map's texture in normalMap or bumpMap. What is
+// missing or unusable is a warning (file:line) that says what is rendered instead.
+Material MaterialBuilder::perturbation(const Element& bsdf, int depth) {
+    const std::string type = bsdf.type();
+    const Element* inner = nullptr;
+    const Element* texture = nullptr;
+    for (const Element& c : bsdf.children) {
+        if (c.tag != "bsdf" && c.tag != "texture" && c.tag != "ref") continue;
+        const Element& r = resolve(c);
+        const Element*& slot = r.tag == "bsdf" ? inner : texture;
+        if (r.tag != "bsdf" && r.tag != "texture") continue;
+        if (slot != nullptr) {
+            warnings_.once(type + "-extra-" + r.tag, fmt::format("{}: {} takes one nested <{}>; this one is ignored",
+                                                                 at(c), type, r.tag));
+            continue;
+        }
+        slot = &c;
+    }
+    Material m;
+    if (inner != nullptr) {
+        m = convert(*inner, depth + 1);
+    } else {
+        warnings_.once(type + "-no-bsdf", fmt::format("{}: {} has no nested <bsdf>; Mitsuba's default (a one-sided "
+                                                      "diffuse of reflectance 0.5) is used",
+                                                      at(bsdf), type));
+        m.name = "default";
+        m.kd = glm::vec3(0.5f);
+        m.oneSided = true;
+    }
+    if (m.normalMap >= 0 || m.bumpMap >= 0) {
+        warnings_.once("nested-maps", fmt::format("{}: a normal or bump map inside another one is ignored; the outer "
+                                                  "{} is used alone",
+                                                  at(bsdf), type));
+        m.normalMap = m.bumpMap = -1;
+        m.mapMirroredOnBack = false;
+    }
+    const bool bump = type == "bumpmap";
+    const float scale = bump ? floatProperty(bsdf, "scale", 1.0f) : 1.0f;
+    if (!std::isfinite(scale)) fail(*bsdf.property("scale"), fmt::format("bumpmap scale {} is not finite", scale));
+    if (texture == nullptr) {
+        warnings_.once(type + "-no-texture", fmt::format("{}: {} has no nested <texture>; the nested BSDF is used "
+                                                         "without it",
+                                                         at(bsdf), type));
+        return m;
+    }
+    const Element& t = resolve(*texture);
+    if (t.type() != "bitmap") {
+        warnings_.once(type + "-texture-type", fmt::format("{}: a {} texture for {} is not supported (only bitmap); "
+                                                           "the nested BSDF is used without the map",
+                                                           at(t), t.type(), type));
+        return m;
+    }
+    if (!bump && texture->name() != "normalmap" && t.name() != "normalmap")
+        warnings_.once("normalmap-name", fmt::format("{}: Mitsuba names a normal map's texture 'normalmap'; this "
+                                                     "one is used as the map",
+                                                     at(*texture)));
+    if (!bump && !booleanProperty(t, "raw", false))
+        warnings_.once("normalmap-srgb", fmt::format("{}: the normal map is decoded from sRGB (raw is false, as Mitsuba "
+                                                     "does by default); normal maps usually want raw=true",
+                                                     at(t)));
+    const int index = bitmap(t, false);
+    if (index < 0) return m;  // unreadable: the loader has warned; no map
+    (bump ? m.bumpMap : m.normalMap) = index;
+    m.bumpScale = scale;
     return m;
 }
 
@@ -318,9 +423,10 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
     } else if (type == "twosided") {
         m = convert(*nested(true), depth + 1);
         m.oneSided = false;
+        // twosided mirrors the directions it hands a map inside it (docs/tracer.md).
+        m.mapMirroredOnBack = m.normalMap >= 0 || m.bumpMap >= 0;
     } else if (type == "bumpmap" || type == "normalmap") {
-        approximated(fmt::format("{} is ignored; the nested BSDF is used without it", type));
-        m = convert(*nested(true), depth + 1);
+        m = perturbation(bsdf, depth);
     } else if (type == "coating" || type == "roughcoating") {
         approximated(fmt::format("{} is approximated by its (first) nested BSDF", type));
         m = convert(*nested(true), depth + 1);
@@ -349,6 +455,11 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
         m.ior = eta;
         m.nonlinear = booleanProperty(bsdf, "nonlinear", false);
         if (type == "roughplastic") microfacetParameters(bsdf, m, false);
+        if (m.roughnessTexture >= 0)
+            warnings_.once("textured-alpha-plastic",
+                           fmt::format("{}: Mitsuba 3 takes no texture for roughplastic's alpha; aamap shades it per "
+                                       "texel",
+                                       at(*bsdf.property("alpha"))));
         m.kd = colourOrTexture(bsdf, "diffuse_reflectance", glm::vec3(0.5f), &m.diffuseTexture);
         m.specularReflectance = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
         m.ks = m.specularReflectance * fresnelF0(eta);
@@ -397,6 +508,12 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
             m.model = BsdfModel::Dielectric;
             m.ior = relativeIor(bsdf, 1.5046f);
             microfacetParameters(bsdf, m, true);
+            if (m.roughnessTexture >= 0) {
+                m.roughnessTexture = -1;
+                warnings_.once("textured-alpha-dielectric",
+                               fmt::format("{}: a textured roughdielectric alpha is replaced by its mean, {}",
+                                           at(*bsdf.property("alpha")), m.alphaU));
+            }
             m.specularReflectance = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
         } else {
             m.ior = iorProperty(bsdf, "int_ior", 1.5046f) / iorProperty(bsdf, "ext_ior", 1.000277f);

@@ -4,13 +4,15 @@
 // BSDF outside twosided is black from the back), and for the tracer Mitsuba's conductor,
 // roughconductor, plastic and roughplastic (Material::model, docs/tracer.md "BSDFs"; the Snapshot
 // shows them through kd, ks, ns: Lambert plus a Phong lobe, ns = 2 / alpha^2 - 2, ks = F0).
-// Their unknown parameters are warnings, out-of-range roughness or indices errors (file:line).
+// Their unknown parameters are warnings, out-of-range roughness or indices errors (file:line); a
+// bitmap `alpha` is a per-texel roughness (Material::roughnessTexture).
 // blendbsdf of two rough or diffuse BSDFs with a float weight is exact in the tracer (BsdfModel::Blend).
 // roughdielectric is a Glass with a microfacet interface that path mode samples (the direct and
 // cache modes and the Snapshot see it smooth); thindielectric is exact (a thin Glass sheet).
 // What it approximates (one warning per kind, naming the approximation):
-// - bumpmap/normalmap: ignored (the nested BSDF is used); twosided: the nested BSDF (aamap shades
-//   both sides); coating/roughcoating: the (first) nested BSDF; blendbsdf of a smooth, textured or
+// normalmap and bumpmap are exact: the nested BSDF with Material::normalMap / bumpMap, which tilt
+// the shading normal as Mitsuba 3 does (a missing texture or BSDF is a warning, file:line).
+// - twosided: the nested BSDF (aamap shades both sides); coating/roughcoating: the (first) nested BSDF; blendbsdf of a smooth, textured or
 //   masked BSDF (or with a textured weight): the component of larger weight (weight 0.5); null:
 //   fully cut out;
 // - phong/ward: kd plus a Phong lobe.
@@ -45,6 +47,8 @@ private:
     // blendbsdf: the two components and the weight (Material::blend), or, where the tracer cannot
     // mix them, the component of larger weight with a warning.
     Material blend(const Element& bsdf, int depth);
+    // normalmap / bumpmap: the nested BSDF with its map (warnings, file:line, for what is missing).
+    Material perturbation(const Element& bsdf, int depth);
     // A colour or a bitmap texture property: sets kd (or ks) and, for a texture, the texture index.
     glm::vec3 colourOrTexture(const Element& bsdf, const char* name, glm::vec3 fallback, int* texture);
     int bitmap(const Element& texture, bool coverage);
@@ -52,6 +56,8 @@ private:
     void warnUnknownParameters(const Element& bsdf, const std::string& type);
     // distribution, alpha or alpha_u / alpha_v (anisotropic types only) into m; errors at file:line.
     void microfacetParameters(const Element& bsdf, Material& m, bool anisotropic);
+    // A bitmap roughness texture into m.roughnessTexture; returns its mean alpha (warnings, file:line).
+    float texturedRoughness(const Element& property, Material& m);
     // int_ior / ext_ior: positive and different, or an error at file:line.
     float relativeIor(const Element& bsdf, float interior);
 

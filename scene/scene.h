@@ -61,10 +61,21 @@ struct Material {
     float alpha = 1.0f;        // glTF baseColorFactor.a, MTL d (or 1 - Tr)
     float alphaCutoff = 0.5f;  // glTF alphaCutoff
     int alphaTexture = -1;     // glTF: the baseColorTexture; MTL: map_d (coverage in alpha)
+    // Mitsuba's normalmap / bumpmap around this material (docs/tracer.md, "Normal and bump maps"):
+    // the shading normal is tilted in the frame of the shading normal and dp/du.
+    int normalMap = -1;      // texel rgb -> 2 rgb - 1 in (dp/du, n x dp/du, n); -1: none
+    int bumpMap = -1;        // a height field: its uv gradient (of the luminance) times bumpScale
+    float bumpScale = 1.0f;
+    // A twosided wraps the map: seen from the back, the map's tilt is mirrored through the
+    // tangent plane (twosided mirrors the directions); otherwise the tilted normal is negated.
+    bool mapMirroredOnBack = false;
 
     BsdfModel model = BsdfModel::Classic;
     MicrofacetType distribution = MicrofacetType::Beckmann;
     float alphaU = 0.0f, alphaV = 0.0f;  // microfacet roughness along tangent / bitangent; 0: smooth
+    // Conductor, Plastic: a textured isotropic roughness (Mitsuba's `alpha` as a texture): alpha is
+    // the texel's luminance; alphaU = alphaV hold the texture's mean (the Snapshot's). -1: none.
+    int roughnessTexture = -1;
     glm::vec3 eta{0.0f}, k{1.0f};        // Conductor: complex index of refraction per channel
     glm::vec3 specularReflectance{1.0f}; // Conductor, Plastic, Dielectric: tint of the specular lobes
     bool nonlinear = false;              // Plastic: the diffuse base's colour shifts with internal scattering

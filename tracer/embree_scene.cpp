@@ -148,6 +148,10 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
     s.alphaCutoff = effectiveAlphaCutoff(mat);
     if (s.alphaTested && mat.alphaTexture >= 0 && static_cast<std::size_t>(mat.alphaTexture) < textureCount)
         s.alphaTexture = mat.alphaTexture;
+    if (mat.normalMap >= 0 && static_cast<std::size_t>(mat.normalMap) < textureCount) s.normalMap = mat.normalMap;
+    if (mat.bumpMap >= 0 && static_cast<std::size_t>(mat.bumpMap) < textureCount) s.bumpMap = mat.bumpMap;
+    s.bumpScale = std::isfinite(mat.bumpScale) ? mat.bumpScale : 0.0f;
+    s.mapMirroredOnBack = mat.mapMirroredOnBack;
     s.ns = std::max(mat.ns, 0.0f);
     s.phongNorm = (s.ns + 2.0f) * 0.5f * std::numbers::inv_pi_v<float>;
     s.phongPdfNorm = (s.ns + 1.0f) * 0.5f * std::numbers::inv_pi_v<float>;
@@ -155,7 +159,11 @@ ShadingMaterial convertMaterial(const Material& mat, std::size_t textureCount) {
         const float d = luminance(kd), g = luminance(ks);
         s.diffuseWeight = d + g > 0.0f ? d / (d + g) : 0.0f;
     }
-    if (mat.model == BsdfModel::Conductor || mat.model == BsdfModel::Plastic) convertModel(mat, s);
+    if (mat.model == BsdfModel::Conductor || mat.model == BsdfModel::Plastic) {
+        convertModel(mat, s);
+        if (s.rough && mat.roughnessTexture >= 0 && static_cast<std::size_t>(mat.roughnessTexture) < textureCount)
+            s.roughnessTexture = mat.roughnessTexture;
+    }
     if (mat.model == BsdfModel::Blend && mat.blend.size() == 2) {
         // Its components scatter; kd (their mix) is only the albedo the cache mode's Lambert
         // stand-in reads. One non-delta lobe to the integrators: diffuse, never glossy.
@@ -227,6 +235,16 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
                          scene.materials[i].name);
             s.alphaTexture = -1;
         }
+        if (s.roughnessTexture >= 0 && !hasUvs) {
+            spdlog::warn("material '{}' has a roughness texture but the mesh has no uvs; its mean roughness is used",
+                         scene.materials[i].name);
+            s.roughnessTexture = -1;
+        }
+        if (s.perturbed() && !hasUvs) {
+            spdlog::warn("material '{}' has a normal or bump map but the mesh has no uvs; the map is ignored",
+                         scene.materials[i].name);
+            s.normalMap = s.bumpMap = -1;
+        }
         // A constant coverage at or above the cutoff never cuts: no filter calls for it.
         if (s.alphaTested && s.alphaTexture < 0 && s.alpha >= s.alphaCutoff) s.alphaTested = false;
         features_.alphaMask |= s.alphaTested;
@@ -241,7 +259,14 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
         if (used[i] && materials_[i].alphaTested && materials_[i].alphaTexture >= 0)
             coverageUsed[static_cast<std::size_t>(materials_[i].alphaTexture)] = 1;
     const bool alphaTextures = std::find(coverageUsed.begin(), coverageUsed.end(), 1) != coverageUsed.end();
-    const bool needUvs = features_.textures || alphaTextures;
+    // Textures that a normal or bump map reads (level 0, unfiltered, as Mitsuba's bitmap).
+    std::vector<char> mapUsed(scene.textures.size(), 0);
+    for (std::size_t i = 0; i < materials_.size(); ++i)
+        if (used[i])
+            for (int t : {materials_[i].normalMap, materials_[i].bumpMap, materials_[i].roughnessTexture})
+                if (t >= 0) mapUsed[static_cast<std::size_t>(t)] = 1;
+    const bool maps = std::find(mapUsed.begin(), mapUsed.end(), 1) != mapUsed.end();
+    const bool needUvs = features_.textures || alphaTextures || maps;
     if (needUvs) textures_.resize(scene.textures.size());
     for (std::size_t i = 0; i < coverageUsed.size(); ++i) {
         const Texture& t = scene.textures[i];
@@ -252,9 +277,10 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
         textures_[i].alpha.resize(texels);
         for (std::size_t k = 0; k < texels; ++k) textures_[i].alpha[k] = t.rgba[4 * k + 3];
     }
-    if (features_.textures) {
+    if (features_.textures || maps) {
         for (std::size_t i = 0; i < scene.textures.size(); ++i) {
             const Texture& t = scene.textures[i];
+            if (!features_.textures && !mapUsed[i]) continue;
             TextureData& d = textures_[i];
             const std::size_t texels = static_cast<std::size_t>(std::max(t.width, 0)) * std::max(t.height, 0);
             if (t.rgba.size() < 4 * texels || texels == 0) continue;  // unusable: albedo stays kd
@@ -277,6 +303,24 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             sm.specularWeight = sm3 + dm > 0.0f ? sm3 / (sm3 + dm) : 0.5f;
         }
     }
+    // Each mapped material's unlit twin, before the roughness levels copy the pointer.
+    unlit_.reserve(materials_.size());
+    for (ShadingMaterial& sm : materials_) {
+        if (!sm.perturbed()) continue;
+        ShadingMaterial u = sm;
+        u.kind = MaterialKind::Diffuse;
+        u.model = BsdfModel::Classic;
+        u.diffuse = u.glossy = u.rough = false;
+        u.kd = u.kdOverPi = u.ks = glm::vec3(0.0f);
+        u.texture = -1;
+        u.blendA = u.blendB = nullptr;
+        u.roughnessTexture = -1;
+        u.roughnessLevels = nullptr;
+        u.unlit = nullptr;
+        unlit_.push_back(u);
+        sm.unlit = &unlit_.back();
+    }
+    buildRoughnessLevels(used);
     spdlog::info("tracer features: {}", features_.describe());
 
     triangles_.reserve(m.triangles.size());
@@ -362,6 +406,92 @@ glm::vec3 EmbreeScene::shadingNormal(std::uint32_t id, float u, float v) const {
     const float len2 = glm::dot(interp, interp);
     if (!(len2 > 1e-12f) || !std::isfinite(len2)) return tri.normal;
     return interp / std::sqrt(len2);
+}
+
+namespace {
+float alphaOf(const glm::vec3& c) { return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z; }  // Mitsuba's eval_1
+}  // namespace
+
+void EmbreeScene::buildRoughnessLevels(const std::vector<char>& used) {
+    std::vector<std::size_t> textured;
+    for (std::size_t i = 0; i < materials_.size(); ++i) {
+        const int t = materials_[i].roughnessTexture;
+        if (used[i] && t >= 0 && static_cast<std::size_t>(t) < textures_.size() &&
+            !textures_[static_cast<std::size_t>(t)].rgb.empty())
+            textured.push_back(i);
+        else
+            materials_[i].roughnessTexture = -1;
+    }
+    // Reserved whole first: materials point into the vector.
+    roughnessLevels_.reserve(textured.size() * ShadingMaterial::kRoughnessLevels);
+    for (std::size_t i : textured) {
+        ShadingMaterial& m = materials_[i];
+        const MipLevel& level = textures_[static_cast<std::size_t>(m.roughnessTexture)].rgb[0];
+        float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
+        for (const glm::vec3& c : level.rgb) {
+            lo = std::min(lo, alphaOf(c));
+            hi = std::max(hi, alphaOf(c));
+        }
+        // Mitsuba clamps alpha to 1e-4: the levels stay rough.
+        lo = std::max(lo, 1e-4f);
+        hi = std::max(hi, lo);
+        const int count = hi > lo ? ShadingMaterial::kRoughnessLevels : 1;
+        m.roughnessMin = lo;
+        m.roughnessStep = count > 1 ? (hi - lo) / static_cast<float>(count - 1) : 0.0f;
+        const std::size_t first = roughnessLevels_.size();
+        for (int k = 0; k < count; ++k) {
+            ShadingMaterial l = m;
+            l.alphaU = l.alphaV = k + 1 == count ? hi : lo + m.roughnessStep * static_cast<float>(k);
+            l.roughnessTexture = -1;
+            l.roughnessLevels = nullptr;
+            bsdf::prepareModel(l);
+            roughnessLevels_.push_back(l);
+        }
+        m.roughnessLevels = &roughnessLevels_[first];
+    }
+}
+
+const ShadingMaterial& EmbreeScene::roughnessLevel(const ShadingMaterial& m, std::uint32_t id, float u, float v) const {
+    const TextureData& t = textures_[static_cast<std::size_t>(m.roughnessTexture)];
+    if (!(m.roughnessStep > 0.0f)) return m.roughnessLevels[0];
+    const float a = alphaOf(bilinear(t.rgb[0], textureCoordinates(id, u, v)));
+    const float k = std::round((a - m.roughnessMin) / m.roughnessStep);
+    const int last = ShadingMaterial::kRoughnessLevels - 1;
+    return m.roughnessLevels[k >= 0.0f ? (k <= static_cast<float>(last) ? static_cast<int>(k) : last) : 0];
+}
+
+glm::vec3 EmbreeScene::perturbedNormal(const ShadingMaterial& m, std::uint32_t id, float u, float v,
+                                       const glm::vec3& n) const {
+    const int map = m.normalMap >= 0 ? m.normalMap : m.bumpMap;
+    if (map < 0 || vertexUvs_.empty()) return n;
+    const TextureData& t = textures_[static_cast<std::size_t>(map)];
+    if (t.rgb.empty()) return n;
+    // dp/du and dp/dv of the triangle's uv parameterisation (Mitsuba's mesh rule).
+    const Triangle& tri = triangles_[id];
+    const glm::vec2* uv = &vertexUvs_[3 * static_cast<std::size_t>(id)];
+    const glm::vec2 duv1 = uv[1] - uv[0], duv2 = uv[2] - uv[0];
+    const float det = duv1.x * duv2.y - duv1.y * duv2.x;
+    if (!(std::abs(det) > 0.0f) || !std::isfinite(det)) return n;  // degenerate uvs: no tangent frame
+    const glm::vec3 dpdu = (duv2.y * tri.e1 - duv1.y * tri.e2) / det;
+    const glm::vec3 dpdv = (duv1.x * tri.e2 - duv2.x * tri.e1) / det;
+    const glm::vec2 st = textureCoordinates(id, u, v);
+    glm::vec3 result;
+    if (m.normalMap >= 0) {
+        const glm::vec3 c = 2.0f * bilinear(t.rgb[0], st) - 1.0f;
+        if (c.x == 0.0f && c.y == 0.0f && c.z > 0.0f) return n;  // the exact untilted case
+        const glm::vec3 s = glm::normalize(dpdu - glm::dot(n, dpdu) * n);
+        result = glm::normalize(c.x * s + c.y * glm::cross(n, s) + c.z * n);
+    } else {
+        const glm::vec2 g = m.bumpScale * bilinearLuminanceGradient(t.rgb[0], st);
+        // A flat height field leaves the normal as it is, turned to the geometric normal's side.
+        if (g.x == 0.0f && g.y == 0.0f) return glm::dot(tri.normal, n) < 0.0f ? -n : n;
+        const glm::vec3 pu = dpdu + (g.x - glm::dot(n, dpdu)) * n;
+        const glm::vec3 pv = dpdv + (g.y - glm::dot(n, dpdv)) * n;
+        result = glm::normalize(glm::cross(pu, pv));
+        if (glm::dot(tri.normal, result) < 0.0f) result = -result;  // Mitsuba turns it to the face's side
+    }
+    const bool finite = std::isfinite(result.x) && std::isfinite(result.y) && std::isfinite(result.z);
+    return finite ? result : n;
 }
 
 glm::vec2 EmbreeScene::textureCoordinates(std::uint32_t id, float u, float v) const {

@@ -44,6 +44,14 @@ struct ShadingMaterial {
     bool alphaTested = false;
     float alpha = 1.0f, alphaCutoff = 0.5f;
     int alphaTexture = -1;  // index into the scene's textures, -1: constant alpha
+    // Normal and bump maps (scene.h): indices into the scene's textures, -1: none.
+    int normalMap = -1, bumpMap = -1;
+    float bumpScale = 1.0f;
+    bool mapMirroredOnBack = false;
+    bool perturbed() const { return normalMap >= 0 || bumpMap >= 0; }
+    // A mapped material as seen from below its tilted normal: its emission and cut-outs, no
+    // reflection (owned by the EmbreeScene). nullptr for unmapped materials.
+    const ShadingMaterial* unlit = nullptr;
 
     // Mitsuba's BSDFs (model != Classic; tracer/bsdf.h). kind is Mirror for the smooth conductor and
     // plastic (their delta lobe goes through the mirror paths), Diffuse for the rough ones.
@@ -60,6 +68,13 @@ struct ShadingMaterial {
     // Rough plastic: the coating's transmittance (1 - its directional albedo) at cos = i / (N - 1).
     static constexpr int kTransmittanceRes = 64;
     std::array<float, kTransmittanceRes> transmittance{};
+    // Textured roughness (scene.h, Material::roughnessTexture): the material at kRoughnessLevels
+    // alphas from roughnessMin in steps of roughnessStep (owned by the EmbreeScene); a hit takes
+    // the level nearest its texel's alpha (EmbreeScene::atHit). nullptr: one alpha.
+    static constexpr int kRoughnessLevels = 64;
+    int roughnessTexture = -1;
+    const ShadingMaterial* roughnessLevels = nullptr;
+    float roughnessMin = 0.0f, roughnessStep = 0.0f;
     // Blend: the two components (owned by the EmbreeScene, which cannot be copied) and the
     // second one's weight.
     const ShadingMaterial* blendA = nullptr;
@@ -120,10 +135,19 @@ public:
     const Triangle& triangle(std::uint32_t id) const { return triangles_[id]; }
     std::size_t triangleCount() const { return triangles_.size(); }
     const ShadingMaterial& material(std::uint32_t id) const { return materials_[id]; }
+    // The material that shades a hit on triangle `id` at barycentrics (u, v): m, or for a textured
+    // roughness the level of m nearest the texel's alpha (bilinear, level 0, as Mitsuba's bitmap).
+    const ShadingMaterial& atHit(const ShadingMaterial& m, std::uint32_t id, float u, float v) const {
+        return m.roughnessLevels == nullptr ? m : roughnessLevel(m, id, u, v);
+    }
     std::size_t materialCount() const { return materials_.size(); }
     // Unit interpolated vertex normal at barycentrics (u, v); the geometric normal if the mesh has
     // no usable normals there.
     glm::vec3 shadingNormal(std::uint32_t id, float u, float v) const;
+    // The shading normal `n` (shadingNormal's, not turned to a side) tilted by m's normal or bump
+    // map as Mitsuba 3 does (docs/tracer.md, "Normal and bump maps"); `n` itself where m has no
+    // map, the triangle's uvs are degenerate or the result is not finite.
+    glm::vec3 perturbedNormal(const ShadingMaterial& m, std::uint32_t id, float u, float v, const glm::vec3& n) const;
     // Diffuse albedo at barycentrics (u, v): kd, times the texture for a textured material (only
     // those fetch). footprint: the width of the ray's cone at the hit, arriving along unit `dir`;
     // the texture is filtered over the cone's footprint on the triangle (core/texture_filter.h),
@@ -138,6 +162,9 @@ public:
 
 private:
     glm::vec3 texel(int texture, std::uint32_t id, float u, float v, const glm::vec3& dir, float footprint) const;
+    const ShadingMaterial& roughnessLevel(const ShadingMaterial& m, std::uint32_t id, float u, float v) const;
+    // The levels of each used material with a roughness texture (after the textures are read).
+    void buildRoughnessLevels(const std::vector<char>& used);
     float coverage(int texture, std::uint32_t id, float u, float v) const;
     glm::vec2 textureCoordinates(std::uint32_t id, float u, float v) const;
 
@@ -148,10 +175,13 @@ private:
     std::vector<Triangle> triangles_;
     std::vector<ShadingMaterial> materials_;
     std::vector<ShadingMaterial> blendComponents_;  // what Blend materials point to, two each
+    std::vector<ShadingMaterial> roughnessLevels_;  // what textured-roughness materials point to
+    std::vector<ShadingMaterial> unlit_;            // what mapped materials point to, one each
     std::vector<glm::vec3> vertexNormals_;  // 3 per triangle, empty without normals
-    std::vector<glm::vec2> vertexUvs_;      // 3 per triangle, only when a used material is textured
-                                            // or alpha-tested with a texture
-    std::vector<TextureData> textures_;     // only when a used material is textured or alpha-tested
+    std::vector<glm::vec2> vertexUvs_;      // 3 per triangle, only when a used material is textured,
+                                            // alpha-tested with a texture, or has a map (normal,
+                                            // bump, roughness)
+    std::vector<TextureData> textures_;     // only when a used material is textured, alpha-tested or mapped
 };
 
 }  // namespace aamap

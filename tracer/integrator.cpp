@@ -63,10 +63,31 @@ Integrator::Integrator(const EmbreeScene& geometry, const LightSet& lights, cons
                   shading_.maxSpecularDepth);
 }
 
+namespace {
+
+// A normal or bump map at a hit (docs/tracer.md, "Normal and bump maps"): the tilted normal of
+// Mitsuba's shading frame, which the map does not turn to the viewer. Seen from the back, a
+// twosided outside the map mirrors the tilt through the tangent plane, otherwise the tilted normal
+// turns over. Where the viewer is below the tilted normal, the hit reflects nothing: Mitsuba's
+// BSDFs need the viewer above it, and a twosided inside the map, which turns it to the viewer,
+// then passes only light from below the surface, which the side tests keep out.
+void applyMap(const EmbreeScene& geometry, std::uint32_t primID, float u, float v, SurfaceHit& hit) {
+    const ShadingMaterial& m = *hit.material;
+    const glm::vec3 n = geometry.shadingNormal(primID, u, v);
+    const glm::vec3 tilted = geometry.perturbedNormal(m, primID, u, v, n);
+    const bool back = glm::dot(n, hit.geometric) < 0.0f;
+    hit.shading = !back ? tilted : m.mapMirroredOnBack ? tilted - 2.0f * glm::dot(tilted, n) * n : -tilted;
+    if (m.kind == MaterialKind::Glass || glm::dot(hit.wo, hit.shading) > 0.0f || m.unlit == nullptr) return;
+    hit.material = m.unlit;
+    hit.albedo = glm::vec3(0.0f);
+}
+
+}  // namespace
+
 void Integrator::fillHit(std::uint32_t primID, float u, float v, float tfar, const glm::vec3& dir, RayCone cone,
                          SurfaceHit& hit) const {
     const Triangle& tri = geometry_.triangle(primID);
-    const ShadingMaterial& mat = geometry_.material(tri.material);
+    const ShadingMaterial& mat = geometry_.atHit(geometry_.material(tri.material), primID, u, v);
     hit.front = glm::dot(tri.normal, dir) < 0.0f;
     // Rebuild the hit point from the triangle (error relative to its vertices, not to t * |dir|).
     hit.position = tri.v0 + u * tri.e1 + v * tri.e2;
@@ -80,6 +101,7 @@ void Integrator::fillHit(std::uint32_t primID, float u, float v, float tfar, con
     hit.distance = tfar;
     hit.primitive = primID;
     hit.material = &mat;
+    if (mat.perturbed()) applyMap(geometry_, primID, u, v, hit);
 }
 
 bool Integrator::intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit, std::uint64_t& counter,

@@ -41,6 +41,15 @@ IrradianceSource::IrradianceSource(const IrradianceCacheSettings& settings, cons
           return radiance(o, d, depth, seed);
       }) {}
 
+namespace {
+
+// The normal the cache is asked about. A normal or bump map's tilted normal is not: the cache's
+// hemisphere is not clipped by the surface, so a tilted one would gather the surface itself
+// (light a path tracer rejects); a mapped hit takes its irradiance about the geometric normal.
+glm::vec3 cacheNormal(const SurfaceHit& hit) { return hit.material->perturbed() ? hit.geometric : hit.shading; }
+
+}  // namespace
+
 void IrradianceSource::build(const Integrator& integrator, std::span<const CachePoint> points) {
     integrator_ = &integrator;
     RayCounts* const previous = tRenderRays;
@@ -53,7 +62,7 @@ glm::vec3 IrradianceSource::indirectIrradiance(const Integrator&, const SurfaceH
                                                RayCounts& rays) const {
     RayCounts* const previous = tRenderRays;
     tRenderRays = &rays;
-    const glm::vec3 e = cache_.irradiance(hit.position, hit.shading, 0);
+    const glm::vec3 e = cache_.irradiance(hit.position, cacheNormal(hit), 0);
     tRenderRays = previous;
     return e;
 }
@@ -85,7 +94,7 @@ RadianceSample IrradianceSource::radiance(const glm::vec3& origin, const glm::ve
     else if (m.diffuse || m.glossy) L += integrator_->directLight(hit, sampler, depth, rays);
     if (m.diffuse && depth < cache_.settings().bounces)
         L += bsdf::lambertEquivalent(m, hit.albedo, glm::dot(hit.wo, hit.shading)) * bsdf::kInvPi *
-             cache_.irradiance(hit.position, hit.shading, depth);
+             cache_.irradiance(hit.position, cacheNormal(hit), depth);
     s.radiance = L;
     return s;
 }

@@ -5,7 +5,7 @@ Each scene in bench/peers/conformance/ exercises one feature with tiny procedura
 (constant sky, a rotated and scaled envmap, a room lit through an opening, dielectric and
 thindielectric panes, directional, rectangle and sphere emitters, bitmap textures in sRGB and raw,
 a Mitsuba 0.5 file, the materials of furnished interiors, serialized meshes with hidden emitters,
-and blendbsdf). Both renderers render it at the same
+blendbsdf, normal and bump maps, and a textured roughness). Both renderers render it at the same
 size, spp and path depth (the file's max_depth) with a box pixel filter: Mitsuba 3 in llvm_ad_rgb,
 aamap with bench_tracer in path mode. One line per scene: the mean linear RGB of each, aamap /
 Mitsuba per channel, the LDR (clamped sRGB, 0-255) mean absolute difference, the LDR-FLIP mean
@@ -18,8 +18,9 @@ mitsuba==3.6.4), then
     .venv/bin/python bench/peers/mitsuba_conformance.py [--only c_room_opening,e_room_thindielectric]
         [--bench build/release/bench/tracer/bench_tracer] [--spp-scale 2] [--keep OUTDIR]
 
-The scenes' maps (sky.exr: a sky gradient, a dark ground and a soft "sun"; checker.png; leaf.png)
-are written next to them on the first run (--make-assets rewrites them).
+The scenes' maps (sky.exr: a sky gradient, a dark ground and a soft "sun"; checker.png; leaf.png;
+normal.png, a grid of domes; height.png, ripples; roughness.png, a ramp) are written next to them
+on the first run (--make-assets rewrites them).
 """
 import argparse
 import json
@@ -61,6 +62,9 @@ SCENES = {
     "r_roughdielectric": (64, 1024),
     "s_serialized_hidden_sky": (64, 256),
     "t_blendbsdf": (64, 256),
+    "s_normalmap": (64, 256),
+    "t_bumpmap": (64, 256),
+    "u_roughness_texture": (64, 256),
 }
 
 # The sky's sun, in world space: up 38.7 degrees, towards -z (through the rooms' window), and the
@@ -113,6 +117,31 @@ def make_assets(mi, force):
         inside = (x / 0.9) ** 2 + (y / 0.45) ** 2 < 1.0  # an ellipse
         inside &= ~((np.abs(y) < 0.04) & (x > -0.8))      # a cut along the vein
         Image.fromarray((inside * 255).astype(np.uint8), "L").save(leaf)
+    normal = os.path.join(SCENES_DIR, "normal.png")
+    if force or not os.path.exists(normal):
+        # A 4 x 4 grid of domes: in each cell the normal of a sphere cap, tilting up to 40 degrees at
+        # its rim, flat between the domes; tangent-space xyz stored as (n + 1) / 2 (raw).
+        n, cells = 64, 4
+        y, x = (np.mgrid[0:n, 0:n] + 0.5) / (n / cells) % 1.0 * 2 - 1
+        r = np.sqrt(x * x + y * y)
+        tilt = np.where(r < 1.0, np.radians(40.0) * r, 0.0)
+        scale = np.where(r > 0, np.sin(tilt) / np.maximum(r, 1e-9), 0.0)
+        nrm = np.stack([x * scale, y * scale, np.cos(tilt)], -1)
+        Image.fromarray(((nrm + 1) * 0.5 * 255).round().astype(np.uint8), "RGB").save(normal)
+    height = os.path.join(SCENES_DIR, "height.png")
+    if force or not os.path.exists(height):
+        # Ripples: 3 periods across u times 2 across v, grey (raw).
+        n = 64
+        v, u = (np.mgrid[0:n, 0:n] + 0.5) / n
+        h = 0.5 + 0.5 * np.sin(2 * np.pi * 3 * u) * np.cos(2 * np.pi * 2 * v)
+        Image.fromarray((h * 255).round().astype(np.uint8), "L").save(height)
+    roughness = os.path.join(SCENES_DIR, "roughness.png")
+    if force or not os.path.exists(roughness):
+        # A roughness ramp along u, modulated along v: alpha 0.05 to 0.55, grey (raw).
+        n = 64
+        v, u = (np.mgrid[0:n, 0:n] + 0.5) / n
+        a = 0.05 + 0.5 * u * (0.5 + 0.5 * np.cos(2 * np.pi * v))
+        Image.fromarray((a * 255).round().astype(np.uint8), "L").save(roughness)
     make_serialized(force)
 
 
@@ -222,7 +251,7 @@ def main():
     ap.add_argument("--spp", type=int, default=256, help="--scene: samples per pixel (a perfect square)")
     ap.add_argument("--bench", default=os.path.join(repo, "build", "release", "bench", "tracer", "bench_tracer"))
     ap.add_argument("--spp-scale", type=int, default=1, help="multiply every scene's spp by this square (1, 4, ...)")
-    ap.add_argument("--make-assets", action="store_true", help="rewrite sky.exr, checker.png and leaf.png")
+    ap.add_argument("--make-assets", action="store_true", help="rewrite sky.exr and the PNG maps")
     ap.add_argument("--keep", help="write both renders of each scene here (EXR)")
     ap.add_argument("--json", help="write one row per scene here (tools/results_tables.py reads it)")
     args = ap.parse_args()

@@ -270,7 +270,7 @@ TEST_F(Mitsuba, MaterialsMapToTheNearestAndWarnOncePerKind) {
     EXPECT_EQ(mirror.alphaU, 0.0f);
     expectVec(mirror.eta, glm::vec3(0.2f));
     expectVec(mirror.k, glm::vec3(3.0f));
-    // Only bumpmap is approximated (once, however many use it).
+    // Only the bumpmap without a texture warns.
     ASSERT_EQ(report.warnings.size(), 1u);
     EXPECT_NE(report.warnings[0].find("bumpmap"), std::string::npos);
 }
@@ -475,6 +475,121 @@ TEST_F(Mitsuba, BlendBsdfKeepsBothComponentsOrFallsBackWithAWarning) {
   <bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf></shape>
 )").find("weight 1.5"),
               std::string::npos);
+}
+
+TEST_F(Mitsuba, NormalAndBumpMapsWrapTheirNestedBsdf) {
+    std::ofstream(dir / "normal.ppm", std::ios::binary) << "P6 1 1 255\n" << std::string("\x80\x80\xff", 3);
+    std::ofstream(dir / "height.ppm", std::ios::binary) << "P6 2 1 255\n" << std::string("\x00\x00\x00\xff\xff\xff", 6);
+    MitsubaLoadReport report;
+    const Scene s = load(R"(<bsdf type="diffuse" id="d"><rgb name="reflectance" value="0.2, 0.4, 0.6"/></bsdf>
+<shape type="rectangle"><bsdf type="twosided"><bsdf type="normalmap">
+  <texture name="normalmap" type="bitmap"><string name="filename" value="normal.ppm"/><boolean name="raw" value="true"/></texture>
+  <bsdf type="roughplastic"/></bsdf></bsdf></shape>
+<shape type="rectangle"><bsdf type="normalmap"><bsdf type="twosided"><bsdf type="diffuse"/></bsdf>
+  <texture name="normalmap" type="bitmap"><string name="filename" value="normal.ppm"/><boolean name="raw" value="true"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="bumpmap"><float name="scale" value="0.5"/>
+  <texture name="height" type="bitmap"><string name="filename" value="height.ppm"/><boolean name="raw" value="true"/></texture>
+  <ref id="d"/></bsdf></shape>
+)",
+                         &report);
+    EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+    ASSERT_EQ(s.materials.size(), 3u);
+    const Material& outer = s.materials[0];
+    EXPECT_EQ(outer.model, BsdfModel::Plastic);
+    ASSERT_GE(outer.normalMap, 0);
+    EXPECT_EQ(outer.bumpMap, -1);
+    EXPECT_FALSE(outer.oneSided);
+    EXPECT_TRUE(outer.mapMirroredOnBack);  // twosided outside the map
+    // raw: the texel as stored, so 2 rgb - 1 is the tangent-space normal Mitsuba reads.
+    const Texture& t = s.textures[static_cast<std::size_t>(outer.normalMap)];
+    EXPECT_NEAR(t.rgba[0], 128.0f / 255.0f, 1e-6f);
+    EXPECT_NEAR(t.rgba[2], 1.0f, 1e-6f);
+    const Material& inner = s.materials[1];
+    EXPECT_GE(inner.normalMap, 0);
+    EXPECT_FALSE(inner.oneSided);
+    EXPECT_FALSE(inner.mapMirroredOnBack);  // twosided inside the map
+    const Material& bump = s.materials[2];
+    EXPECT_GE(bump.bumpMap, 0);
+    EXPECT_EQ(bump.normalMap, -1);
+    EXPECT_FLOAT_EQ(bump.bumpScale, 0.5f);
+    expectVec(bump.kd, {0.2f, 0.4f, 0.6f});
+    EXPECT_TRUE(bump.oneSided);
+}
+
+TEST_F(Mitsuba, NormalAndBumpMapBadInputWarnsWithFileAndLine) {
+    std::ofstream(dir / "normal.ppm", std::ios::binary) << "P6 1 1 255\n" << std::string("\x80\x80\xff", 3);
+    MitsubaLoadReport report;
+    const Scene s = load(R"(<shape type="rectangle"><bsdf type="normalmap"><bsdf type="diffuse"><rgb name="reflectance" value="0.3"/></bsdf></bsdf></shape>
+<shape type="rectangle"><bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="normal.ppm"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="bumpmap"><texture type="checkerboard"/><bsdf type="diffuse"/></bsdf></shape>
+<shape type="rectangle"><bsdf type="normalmap"><texture name="normalmap" type="bitmap"><string name="filename" value="normal.ppm"/></texture><bsdf type="diffuse"/></bsdf></shape>
+<shape type="rectangle"><bsdf type="normalmap"><texture name="normalmap" type="bitmap"><string name="filename" value="normal.ppm"/><boolean name="raw" value="true"/></texture>
+  <bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="normal.ppm"/></texture><bsdf type="diffuse"/></bsdf></bsdf></shape>
+)",
+                         &report);
+    ASSERT_EQ(s.materials.size(), 5u);
+    const auto warned = [&](const std::string& where, const std::string& what) {
+        return std::any_of(report.warnings.begin(), report.warnings.end(), [&](const std::string& w) {
+            return w.find(where) != std::string::npos && w.find(what) != std::string::npos;
+        });
+    };
+    // No texture: the nested BSDF alone.
+    EXPECT_TRUE(warned("scene.xml:2:", "no nested <texture>; the nested BSDF is used without it"));
+    EXPECT_EQ(s.materials[0].normalMap, -1);
+    expectVec(s.materials[0].kd, glm::vec3(0.3f));
+    // No BSDF: Mitsuba's default diffuse, with the map.
+    EXPECT_TRUE(warned("scene.xml:3:", "no nested <bsdf>; Mitsuba's default"));
+    expectVec(s.materials[1].kd, glm::vec3(0.5f));
+    EXPECT_GE(s.materials[1].bumpMap, 0);
+    // A texture that is not a bitmap: no map.
+    EXPECT_TRUE(warned("scene.xml:4:", "checkerboard texture for bumpmap is not supported"));
+    EXPECT_EQ(s.materials[2].bumpMap, -1);
+    // A normal map decoded from sRGB is used as Mitsuba uses it, with a hint.
+    EXPECT_TRUE(warned("scene.xml:5:", "raw=true"));
+    EXPECT_GE(s.materials[3].normalMap, 0);
+    // A map inside a map: the outer one alone.
+    EXPECT_TRUE(warned("scene.xml:6:", "inside another one"));
+    EXPECT_GE(s.materials[4].normalMap, 0);
+    EXPECT_EQ(s.materials[4].bumpMap, -1);
+}
+
+TEST_F(Mitsuba, TexturedRoughnessReadsABitmapAndKeepsItsMean) {
+    // Two texels, raw: alpha 0.2 and 0.6 (51 and 153 of 255), mean 0.4.
+    std::ofstream(dir / "alpha.ppm", std::ios::binary) << "P6 2 1 255\n" << std::string("\x33\x33\x33\x99\x99\x99", 6);
+    MitsubaLoadReport report;
+    const Scene s = load(R"(<shape type="rectangle"><bsdf type="roughconductor">
+  <texture name="alpha" type="bitmap"><string name="filename" value="alpha.ppm"/><boolean name="raw" value="true"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughplastic">
+  <texture name="alpha" type="bitmap"><string name="filename" value="alpha.ppm"/><boolean name="raw" value="true"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughconductor"><float name="alpha_v" value="0.3"/>
+  <texture name="alpha_u" type="bitmap"><string name="filename" value="alpha.ppm"/><boolean name="raw" value="true"/></texture></bsdf></shape>
+<shape type="rectangle"><bsdf type="roughconductor"><texture name="alpha" type="checkerboard"/></bsdf></shape>
+)",
+                         &report);
+    ASSERT_EQ(s.materials.size(), 4u);
+    for (int i = 0; i < 2; ++i) {
+        const Material& m = s.materials[static_cast<std::size_t>(i)];
+        ASSERT_GE(m.roughnessTexture, 0);
+        EXPECT_NEAR(m.alphaU, 0.4f, 1e-5f);  // the mean: the Snapshot's stand-in
+        EXPECT_EQ(m.alphaV, m.alphaU);
+        EXPECT_NEAR(s.textures[static_cast<std::size_t>(m.roughnessTexture)].rgba[0], 0.2f, 1e-6f);
+    }
+    // Anisotropic: the texture's mean on its axis, with a warning.
+    EXPECT_EQ(s.materials[2].roughnessTexture, -1);
+    EXPECT_NEAR(s.materials[2].alphaU, 0.4f, 1e-5f);
+    EXPECT_FLOAT_EQ(s.materials[2].alphaV, 0.3f);
+    // Not a bitmap: Mitsuba's default alpha.
+    EXPECT_EQ(s.materials[3].roughnessTexture, -1);
+    EXPECT_FLOAT_EQ(s.materials[3].alphaU, 0.1f);
+    const auto warned = [&](const std::string& where, const std::string& what) {
+        return std::any_of(report.warnings.begin(), report.warnings.end(), [&](const std::string& w) {
+            return w.find(where) != std::string::npos && w.find(what) != std::string::npos;
+        });
+    };
+    EXPECT_TRUE(warned("scene.xml:7:", "textured alpha_u is replaced by its mean"));
+    EXPECT_TRUE(warned("scene.xml:8:", "only a bitmap texture can give the roughness"));
+    EXPECT_TRUE(warned("scene.xml:5:", "Mitsuba 3 takes no texture for roughplastic's alpha"));
+    EXPECT_EQ(report.warnings.size(), 3u);
 }
 
 TEST_F(Mitsuba, LoadSceneDispatchesXml) {
