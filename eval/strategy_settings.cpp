@@ -28,6 +28,7 @@ ShadingSettings toShadingSettings(const ExperimentConfig& c, const RenderConfig&
     s.russianRoulette = h.russianRoulette;
     s.rouletteDepth = h.rouletteDepth;
     s.maxSpecularDepth = h.maxSpecularDepth;
+    s.glossyReflectionAlpha = static_cast<float>(h.glossyReflectionAlpha);
     s.hideEmitters = h.hideEmitters;
     s.lightSelection = h.lightSelection;
     s.lightSampling = h.lightSampling;

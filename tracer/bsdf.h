@@ -83,6 +83,13 @@ struct Eval {
     float pdf;
 };
 
+// A glossy lobe's width as a GGX alpha: a microfacet lobe's own (the geometric mean of alpha_u and
+// alpha_v), a Phong exponent n as sqrt(2 / (n + 2)) (the correspondence of Walter et al. 2007).
+inline float lobeAlpha(const ShadingMaterial& m) {
+    if (m.model == BsdfModel::Classic) return std::sqrt(2.0f / (std::max(m.ns, 0.0f) + 2.0f));
+    return std::sqrt(m.alphaU * m.alphaV);
+}
+
 // ---- Mitsuba's BSDFs (model != Classic), in the shading frame of n ----
 
 // The local frame: x along the tangent (alpha_u), y the bitangent (alpha_v), z = n.

@@ -154,6 +154,9 @@ int Integrator::glossySampleCount(const ShadingMaterial& m, int specular, float 
     // Only under a primary ray (weight > 0; the irradiance cache's rays see light-sampled lobes),
     // within the specular budget, which glossy and delta bounces share, and kMaxGlossyDepth.
     if (!m.glossy || !(weight > 0.0f) || specular >= std::min(shading_.maxSpecularDepth, kMaxGlossyDepth)) return 0;
+    // A wide lobe reflects a blur of the surroundings, the kind of light direct mode leaves out
+    // (as it does diffuse interreflection), at g x g times the hit's cost: light samples only.
+    if (bsdf::lobeAlpha(m) > shading_.glossyReflectionAlpha) return 0;
     return specular == 0 ? glossyGrid_ * glossyGrid_ : 1;
 }
 

@@ -43,6 +43,10 @@ const Schema<ShadingConfig>& shadingSchema() {
                    "camera rays see no emitter: area lights add no emission and the environment is black where "
                    "seen directly (reflections keep both); unset: a Mitsuba scene file's integrator decides")
             .field(&S::maxSpecularDepth, "max_specular_depth", in(0, 1024), 8, "direct/cache: mirror and glass bounces")
+            .field(&S::glossyReflectionAlpha, "glossy_reflection_alpha", in(0.0, 1.0), 0.2,
+                   "direct/cache: glossy lobes up to this roughness (GGX alpha; a Phong exponent n counts as "
+                   "sqrt(2 / (n + 2))) reflect the scene through BSDF samples; rougher ones are light-sampled only, "
+                   "their reflection of the scene a blur left out like diffuse interreflection")
             .choice(&S::lightSelection, "light_selection",
                     {{"contribution", LightSelection::Contribution}, {"power", LightSelection::Power}},
                     "which light a shadow ray goes to")

@@ -27,6 +27,7 @@ struct ShadingConfig {
     int rouletteDepth;      // path: roulette from this segment on
     bool hideEmitters;      // camera rays see no emitter (Mitsuba's hide_emitters)
     int maxSpecularDepth;   // direct/cache: mirror and glass bounces
+    double glossyReflectionAlpha;  // direct/cache: lobes up to this roughness reflect the scene
     LightSelection lightSelection;
     LightSampling lightSampling;
     TextureFilter textureFilter;

@@ -46,6 +46,9 @@ struct ShadingSettings {
     int rouletteDepth = 5;        // Mitsuba's rr_depth default
     // Direct/Cache: mirror and glass bounces followed per primary ray (glass splits into both).
     int maxSpecularDepth = 8;
+    // Direct/Cache: glossy lobes up to this roughness (GGX alpha) reflect the scene through BSDF
+    // samples (shading.glossy_reflection_alpha).
+    float glossyReflectionAlpha = 0.2f;
     // Camera rays see no emitter, as Mitsuba's hide_emitters: a camera ray's hit adds no emission
     // (the surface still reflects) and a camera ray that escapes is black. Paths that bounce first
     // (a mirror's reflection of the light) see emitters as always.

@@ -220,7 +220,7 @@ TEST(ConfigHash, StableUnderFormattingAndDefaults) {
               R"("blur_radius":1,"flat_range":0.00392156862745098,"noise_floor":0.02,"gain":1.0,"map":"luminance",)"
               R"("subpixel":2},)"
               R"("shading":{"area_light_samples":16,"mode":"direct","max_depth":5,"russian_roulette":true,)"
-              R"("roulette_depth":5,"hide_emitters":false,"max_specular_depth":8,"light_selection":"contribution",)"
+              R"("roulette_depth":5,"hide_emitters":false,"max_specular_depth":8,"glossy_reflection_alpha":0.2,)" R"("light_selection":"contribution",)"
               R"("light_sampling":"auto","texture_filter":"anisotropic","cache":{"bounces":1,"divisions":512,)"
               R"("supersamples":128,"accuracy":0.2,"resolution":64,"grid_step":4}},)"
               R"("renders":[{"name":"u","series":"uniform","strategy":"uniform","rpp":4,"params":{}}],)"

@@ -57,6 +57,8 @@ const std::map<std::string, Field>& fields() {
         {"shading.roulette_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.rouletteDepth); }},
         {"shading.hide_emitters", [](const ExperimentConfig& c) { return ParamValue(c.shading.hideEmitters); }},
         {"shading.max_specular_depth", [](const ExperimentConfig& c) { return ParamValue(c.shading.maxSpecularDepth); }},
+        {"shading.glossy_reflection_alpha",
+         [](const ExperimentConfig& c) { return ParamValue(c.shading.glossyReflectionAlpha); }},
         {"shading.light_selection", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.lightSelection == LightSelection::Power ? "power" : "contribution")); }},
         {"shading.light_sampling", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.lightSampling == LightSampling::Area ? "area" : c.shading.lightSampling == LightSampling::SolidAngle ? "solid_angle" : "auto")); }},
         {"shading.texture_filter", [](const ExperimentConfig& c) { return ParamValue(std::string(c.shading.textureFilter == TextureFilter::None ? "none" : "anisotropic")); }},

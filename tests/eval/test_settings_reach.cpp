@@ -266,6 +266,10 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                                   becomes([](const ExperimentConfig& c, int) { return shade(c, 0).hideEmitters; }, true)};
     t["shading.max_specular_depth"] = {{}, {"shading.max_specular_depth=2"}, Renders::All, false,
                                        becomes([](const ExperimentConfig& c, int) { return shade(c, 0).maxSpecularDepth; }, 2)};
+    t["shading.glossy_reflection_alpha"] = {{}, {"shading.glossy_reflection_alpha=0.5"}, Renders::All, false,
+                                            becomes([](const ExperimentConfig& c, int) {
+                                                return shade(c, 0).glossyReflectionAlpha;
+                                            }, 0.5f)};
     t["shading.light_selection"] = {{}, {"shading.light_selection=power"}, Renders::All, false,
                                     becomes([](const ExperimentConfig& c, int) { return shade(c, 0).lightSelection; },
                                             LightSelection::Power)};

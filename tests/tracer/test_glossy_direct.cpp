@@ -97,6 +97,32 @@ TEST(GlossyDirect, ReflectionOfALitWallMatchesPath) {
     expectPathMatchesDirect(b.scene(), lookAt({0, 1.0f, 2.0f}, {0, 0.2f, 0}, 60), 3, size * 6 / 10, size, 6);
 }
 
+// shading.glossy_reflection_alpha: a lobe rougher than it takes no glossy samples (its scene
+// reflection is left out and the rays are those of light sampling alone), one within it does; a
+// Phong exponent n counts as alpha sqrt(2 / (n + 2)).
+TEST(GlossyDirect, OnlyLobesWithinTheRoughnessLimitReflectTheScene) {
+    const auto otherRays = [](const Material& floor, float limit) {
+        testing::SceneBuilder b;
+        b.quad({-20, 0, -20}, {0, 0, 40}, {40, 0, 0}, testing::addMaterial(b, floor));
+        b.quad({-3, 0, -1}, {6, 0, 0}, {0, 4, 0}, b.material("wall", glm::vec3(0.8f, 0.7f, 0.5f)));
+        b.areaLightQuad({-0.5f, 2.0f, 0.8f}, {0, 0.6f, 0}, {1.0f, 0, 0}, glm::vec3(20.0f));
+        ShadingSettings sh;
+        sh.areaLightSamples = 16;
+        sh.glossyReflectionAlpha = limit;
+        return renderScene(b.scene(), lookAt({0, 1.0f, 2.0f}, {0, 0.2f, 0}, 60), sh, 16, 1).rays.other;
+    };
+    const Material conductor = roughPlane(BsdfModel::Conductor, 0.15f);
+    EXPECT_GT(otherRays(conductor, 0.2f), 0u);
+    EXPECT_EQ(otherRays(conductor, 0.1f), 0u);
+    Material phong;
+    phong.name = "phong";
+    phong.kd = glm::vec3(0.3f);
+    phong.ks = glm::vec3(0.5f);
+    phong.ns = 40.0f;  // alpha sqrt(2 / 42) = 0.218
+    EXPECT_EQ(otherRays(phong, 0.2f), 0u);
+    EXPECT_GT(otherRays(phong, 0.25f), 0u);
+}
+
 // Per-pixel variance over independent seeds of a low-roughness conductor's highlight: with the
 // glossy samples and MIS it must be far below that of the light samples alone (the same light
 // samples; max_specular_depth 0 takes no glossy samples), and both must agree in the mean.
