@@ -132,19 +132,9 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
                                         graph::writes(depth, graph::Usage::DepthAttachment)};
     if (!grey.resource.empty()) accesses.push_back(graph::writes(grey.resource, graph::Usage::ColorAttachment));
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
-    const graph::PassId id = graph.addPass(
-        {kGBufferPass, graph::QueueKind::Graphics, accesses,
-         std::string(shadowed ? "rasterise the scene with local illumination and shadow-map visibility per light"
-                              : "rasterise the scene with local illumination") +
-             (scene_->textured() ? "; " + scene_->atlasSummary() : "") +
-             (grey.resource.empty() ? std::string() : "; and the greyscale of the aamap's step 1") +
-             (scene_->glassVertexCount() == 0 ? std::string()
-              : drawsGlass() ? fmt::format("; then {} glass triangles over what they show, Fresnel-weighted",
-                                           scene_->glassVertexCount() / 3)
-                             : fmt::format("; {} glass triangles seen through ({})", scene_->glassVertexCount() / 3,
-                                           glassUnsupported_))});
+    vk::PassDeclaration pass;
     const vk::Pipeline& pipeline =
-        pipelineFor(executor, kGBufferPass, shadowed, false, !grey.resource.empty(), shadows.pcf, drawsGlass());
+        pipelineFor(pass.prepare, shadowed, false, !grey.resource.empty(), shadows.pcf, drawsGlass());
     const vk::Pipeline* glass = drawsGlass() ? &glassPipeline_ : nullptr;
     gpu::GBufferPush push{};
     push.exposure = grey.exposure;
@@ -152,20 +142,32 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
     push.cameraPos = glm::vec4(view.camera.origin, 1.0f);
     push.shadow = glm::vec4(shadows.nearPlane, shadows.depthBias, shadows.slopeBias,
                             static_cast<float>(shadows.faceSize));
-    executor.setRecord(kGBufferPass, [this, colour, depth, push, &pipeline, shadow = shadows.resource,
-                                   grey = grey.resource, glass](vk::PassContext& pc) {
+    pass.desc = {kGBufferPass, graph::QueueKind::Graphics, accesses,
+                 std::string(shadowed
+                                 ? "rasterise the scene with local illumination and shadow-map visibility per light"
+                                 : "rasterise the scene with local illumination") +
+                     (scene_->textured() ? "; " + scene_->atlasSummary() : "") +
+                     (grey.resource.empty() ? std::string() : "; and the greyscale of the aamap's step 1") +
+                     (scene_->glassVertexCount() == 0 ? std::string()
+                      : drawsGlass() ? fmt::format("; then {} glass triangles over what they show, Fresnel-weighted",
+                                                   scene_->glassVertexCount() / 3)
+                                     : fmt::format("; {} glass triangles seen through ({})",
+                                                   scene_->glassVertexCount() / 3, glassUnsupported_))};
+    pass.record = [this, colour, depth, push, &pipeline, shadow = shadows.resource, grey = grey.resource,
+                   glass](vk::PassContext& pc) {
         record(pc, colour, grey, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass(), glass);
-    });
+    };
+    const graph::PassId id = vk::declarePass(graph, executor, std::move(pass));
     return id;
 }
 
-const vk::Pipeline& GBufferPass::pipelineFor(vk::GraphExecutor& executor, const std::string& pass, bool shadowed,
-                                             bool mirrored, bool grey, std::uint32_t pcf, bool withGlass) {
+const vk::Pipeline& GBufferPass::pipelineFor(vk::PrepareFn& prepare, bool shadowed, bool mirrored, bool grey,
+                                             std::uint32_t pcf, bool withGlass) {
     const PipelineKey key{shadowed, mirrored, grey, shadowed ? std::max(pcf, 1u) : 1u, scene_->lightsVersion()};
     std::erase_if(pipelines_, [&](const auto& entry) { return entry.first.lightsVersion != key.lightsVersion; });
     if (withGlass && glassLightsVersion_ != key.lightsVersion) glassPipeline_.reset();  // lights inlined
     vk::Pipeline& pipeline = pipelines_[key];
-    executor.setPrepare(pass, [this, &pipeline, key, withGlass] {
+    prepare = [this, &pipeline, key, withGlass] {
         if (!pipeline.handle())
             pipeline = makePipeline(*context_, key.shadowed, scene_->textured(), key.mirrored, key.grey,
                                     !key.mirrored && hasDepthPrepass(), scene_->lightingConstants(key.pcf));
@@ -173,7 +175,7 @@ const vk::Pipeline& GBufferPass::pipelineFor(vk::GraphExecutor& executor, const 
             glassPipeline_ = makeGlassPipeline(*context_, scene_->textured(), scene_->lightingConstants(1));
             glassLightsVersion_ = key.lightsVersion;
         }
-    });
+    };
     return pipeline;
 }
 
@@ -194,8 +196,8 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
     std::vector<graph::Access> accesses{graph::writes(colour, graph::Usage::ColorAttachment),
                                         graph::writes(depth, graph::Usage::DepthAttachment)};
     if (shadowed) accesses.push_back(graph::reads(shadows.resource, graph::Usage::Sampled));
-    const graph::PassId id = graph.addPass({pass, graph::QueueKind::Graphics, accesses, std::move(purpose)});
-    const vk::Pipeline& pipeline = pipelineFor(executor, pass, shadowed, true, false, shadows.pcf, false);
+    vk::PassDeclaration declaration;
+    const vk::Pipeline& pipeline = pipelineFor(declaration.prepare, shadowed, true, false, shadows.pcf, false);
     std::vector<gpu::GBufferPush> pushes;
     std::vector<VkRect2D> scissors;
     for (std::size_t i = 0; i < views.size(); ++i) {
@@ -209,10 +211,12 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
         push.clipPlane = views[i].clipPlane;
         pushes.push_back(push);
     }
-    executor.setRecord(pass, [this, colour, depth, pushes, scissors, &pipeline,
-                              shadow = shadows.resource](vk::PassContext& pc) {
+    declaration.desc = {pass, graph::QueueKind::Graphics, accesses, std::move(purpose)};
+    declaration.record = [this, colour, depth, pushes, scissors, &pipeline,
+                          shadow = shadows.resource](vk::PassContext& pc) {
         record(pc, colour, "", depth, pipeline, shadow, pushes, false, nullptr, scissors);
-    });
+    };
+    const graph::PassId id = vk::declarePass(graph, executor, std::move(declaration));
     return id;
 }
 

@@ -119,9 +119,11 @@ private:
         std::uint64_t lightsVersion = 0;
         auto operator<=>(const PipelineKey&) const = default;
     };
-    // withGlass: the prepare step also builds glassPipeline_ (the camera's view of a glass scene).
-    const vk::Pipeline& pipelineFor(vk::GraphExecutor& executor, const std::string& pass, bool shadowed,
-                                    bool mirrored, bool grey, std::uint32_t pcf, bool withGlass);
+    // The pipeline slot for these settings, and in `prepare` the pass's step that builds it if the
+    // graph keeps the pass. withGlass: the step also builds glassPipeline_ (the camera's view of a
+    // glass scene).
+    const vk::Pipeline& pipelineFor(vk::PrepareFn& prepare, bool shadowed, bool mirrored, bool grey, std::uint32_t pcf,
+                                    bool withGlass);
 
     VulkanContext* context_;
     const SceneGpu* scene_;
