@@ -75,34 +75,49 @@ FootprintProbes footprintProbes(glm::vec2 axisA, glm::vec2 axisB, int levels) {
     return p;
 }
 
-glm::vec3 bilinear(const MipLevel& level, glm::vec2 st) {
+namespace {
+
+// The four texels around st (wrapped) and the weights between them; false for a non-finite st.
+struct BilinearTaps {
+    std::size_t i00, i10, i01, i11;  // indices into MipLevel::rgb: (x0, y0), (x1, y0), (x0, y1), (x1, y1)
+    float ax, ay;
+};
+bool bilinearTaps(const MipLevel& level, glm::vec2 st, BilinearTaps& t) {
     const float x = st.x * static_cast<float>(level.width) - 0.5f, y = st.y * static_cast<float>(level.height) - 0.5f;
-    if (!std::isfinite(x) || !std::isfinite(y)) return glm::vec3(1.0f);
+    if (!std::isfinite(x) || !std::isfinite(y)) return false;
     const float fx = std::floor(x), fy = std::floor(y);
-    const float ax = x - fx, ay = y - fy;
+    t.ax = x - fx;
+    t.ay = y - fy;
     const long ix = static_cast<long>(fx), iy = static_cast<long>(fy);
     const std::size_t w = static_cast<std::size_t>(level.width);
     const std::size_t x0 = wrap(ix, level.width), x1 = wrap(ix + 1, level.width);
     const std::size_t y0 = wrap(iy, level.height), y1 = wrap(iy + 1, level.height);
-    const glm::vec3 top = (1.0f - ax) * level.rgb[y0 * w + x0] + ax * level.rgb[y0 * w + x1];
-    const glm::vec3 bottom = (1.0f - ax) * level.rgb[y1 * w + x0] + ax * level.rgb[y1 * w + x1];
-    return (1.0f - ay) * top + ay * bottom;
+    t.i00 = y0 * w + x0;
+    t.i10 = y0 * w + x1;
+    t.i01 = y1 * w + x0;
+    t.i11 = y1 * w + x1;
+    return true;
+}
+
+}  // namespace
+
+glm::vec3 bilinear(const MipLevel& level, glm::vec2 st) {
+    BilinearTaps t;
+    if (!bilinearTaps(level, st, t)) return glm::vec3(1.0f);
+    const glm::vec3 top = (1.0f - t.ax) * level.rgb[t.i00] + t.ax * level.rgb[t.i10];
+    const glm::vec3 bottom = (1.0f - t.ax) * level.rgb[t.i01] + t.ax * level.rgb[t.i11];
+    return (1.0f - t.ay) * top + t.ay * bottom;
 }
 
 glm::vec2 bilinearLuminanceGradient(const MipLevel& level, glm::vec2 st) {
-    const float x = st.x * static_cast<float>(level.width) - 0.5f, y = st.y * static_cast<float>(level.height) - 0.5f;
-    if (!std::isfinite(x) || !std::isfinite(y)) return glm::vec2(0.0f);
-    const float fx = std::floor(x), fy = std::floor(y);
-    const float ax = x - fx, ay = y - fy;
-    const long ix = static_cast<long>(fx), iy = static_cast<long>(fy);
-    const std::size_t w = static_cast<std::size_t>(level.width);
-    const std::size_t x0 = wrap(ix, level.width), x1 = wrap(ix + 1, level.width);
-    const std::size_t y0 = wrap(iy, level.height), y1 = wrap(iy + 1, level.height);
-    const auto lum = [&](std::size_t row, std::size_t col) {
-        const glm::vec3& c = level.rgb[row * w + col];
+    BilinearTaps t;
+    if (!bilinearTaps(level, st, t)) return glm::vec2(0.0f);
+    const auto lum = [&level](std::size_t i) {
+        const glm::vec3& c = level.rgb[i];
         return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z;
     };
-    const float f00 = lum(y0, x0), f10 = lum(y0, x1), f01 = lum(y1, x0), f11 = lum(y1, x1);
+    const float f00 = lum(t.i00), f10 = lum(t.i10), f01 = lum(t.i01), f11 = lum(t.i11);
+    const float ax = t.ax, ay = t.ay;
     // Per texel, then per unit of u and v (a texel is 1 / side of the texture).
     const float dx = (1.0f - ay) * (f10 - f00) + ay * (f11 - f01);
     const float dy = (1.0f - ax) * (f01 - f00) + ax * (f11 - f10);
