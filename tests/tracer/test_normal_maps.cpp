@@ -8,6 +8,7 @@
 #include <glm/trigonometric.hpp>
 #include <gtest/gtest.h>
 
+#include "tests/tracer/material_scenes.h"
 #include "tests/tracer/scene_builder.h"
 #include "tracer/embree_scene.h"
 #include "tracer/tracer.h"
@@ -66,21 +67,15 @@ void addSun(Scene& s, glm::vec3 toLight, float E) {
 
 // An 8 x 8 view of the plane's middle from above (below: from under it, looking up).
 ImageRGB render(const Scene& scene, ShadingMode mode, bool below = false) {
-    const Tracer tracer(scene);
     View v;
     v.position = {0.0f, below ? -4.0f : 4.0f, 0.5f};
     v.direction = glm::normalize(glm::vec3(0.0f, below ? 1.0f : -1.0f, -0.1f));
     v.up = {0, 0, -1};
     v.horizontalFovDeg = v.verticalFovDeg = 30.0f;
-    TraceSettings settings;
-    settings.width = settings.height = kSize;
-    settings.seed = 5;
-    settings.threads = 1;
-    settings.shading.mode = mode;
-    settings.shading.maxDepth = 3;
-    StrategySettings strategy;
-    strategy.strata = 1;
-    return tracer.render(v, settings, strategy).image;
+    ShadingSettings shading;
+    shading.mode = mode;
+    shading.maxDepth = 3;
+    return testing::renderScene(scene, v, shading, kSize, 1, 1, 5).image;
 }
 
 void expectEverywhere(const ImageRGB& img, float want, const char* what) {

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
+#include "tests/tracer/material_scenes.h"
 #include "tests/tracer/scene_builder.h"
 #include "tracer/tracer.h"
 
@@ -52,21 +53,15 @@ Texture halves(float left, float right) {
 }
 
 ImageRGB render(const Scene& scene, ShadingMode mode) {
-    const Tracer tracer(scene);
     View v;
     v.position = {0.0f, 4.0f, 0.0f};
     v.direction = {0.0f, -1.0f, 0.0f};
     v.up = {0, 0, -1};
     v.horizontalFovDeg = v.verticalFovDeg = 30.0f;
-    TraceSettings settings;
-    settings.width = settings.height = kSize;
-    settings.seed = 9;
-    settings.threads = 1;
-    settings.shading.mode = mode;
-    settings.shading.maxDepth = 2;
-    StrategySettings strategy;
-    strategy.strata = 1;
-    return tracer.render(v, settings, strategy).image;
+    ShadingSettings shading;
+    shading.mode = mode;
+    shading.maxDepth = 2;
+    return testing::renderScene(scene, v, shading, kSize, 1, 1, 9).image;
 }
 
 // The image column x shows u = (x + 0.5) / kSize * 2.14 / 2 + 0.5 - 1.07 / 2 (about): columns 3-5
