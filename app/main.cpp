@@ -175,6 +175,10 @@ int main(int argc, char** argv) {
            devicesListed = devices.empty() ? 1 : 2;
            throw CLI::Success();
        })->trigger_on_parse()->description("Print the Vulkan devices and exit");
+    run->add_flag_callback("--list-keys", [] {
+           fmt::print("{}", aamap::configKeysMarkdown());
+           throw CLI::Success();
+       })->trigger_on_parse()->description("Print every schema key (type, range, default, meaning) as a Markdown table and exit");
     run->add_flag("--no-plots", noPlots, "Skip tools/report_plots.py (the report notes it)");
     run->add_option("--executor", executor, "Where the renders run: local (this process) or ray (a Ray cluster; "
                                             "docs/experiments.md)")

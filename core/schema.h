@@ -10,8 +10,11 @@
 // the ParamSpecs the readers, --set keys, --help lines, CLI options and docs tables are generated
 // from (specs()), the typed values of a struct (values(), changed()) and the struct filled from
 // checked values (fill()). No YAML or JSON here: eval/config_schema.h walks it for those.
+#include <charconv>
 #include <cstddef>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -29,6 +32,16 @@ struct ParamRange {
 };
 inline ParamRange in(double lo, double hi) { return {lo, hi, false}; }
 inline ParamRange above(double lo, double hi) { return {lo, hi, true}; }
+
+// A float as the double its shortest decimal spells (0.2f -> 0.2, not 0.200000003): a float field
+// then reads back the value the user wrote and equals its default in cache keys and JSON.
+inline double shortestDouble(float f) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof(text), f).ptr;
+    double d = 0.0;
+    std::from_chars(text, end, d);
+    return d;
+}
 
 template <class T>
 class Schema {
@@ -54,11 +67,20 @@ public:
         add({std::move(spec),
              [member](const T& t) -> ParamValue {
                  if constexpr (std::is_integral_v<M>) return static_cast<int>(t.*member);
+                 else if constexpr (std::is_same_v<M, float>) return shortestDouble(t.*member);
                  else return static_cast<double>(t.*member);
              },
-             [member](T& t, const ParamValue& v) {
-                 if constexpr (std::is_integral_v<M>) t.*member = static_cast<M>(std::get<int>(v));
-                 else t.*member = static_cast<M>(std::holds_alternative<int>(v) ? std::get<int>(v) : std::get<double>(v));
+             [member, range](T& t, const ParamValue& v) {
+                 if constexpr (std::is_integral_v<M>) {
+                     t.*member = static_cast<M>(std::get<int>(v));
+                 } else {
+                     M m = static_cast<M>(std::holds_alternative<int>(v) ? std::get<int>(v) : std::get<double>(v));
+                     // A value just above an open lower end may round onto it in a float: take the
+                     // float just above it instead, so the field stays inside the declared range.
+                     if (range.openLo && !(m > static_cast<M>(range.lo)))
+                         m = std::nextafter(static_cast<M>(range.lo), std::numeric_limits<M>::infinity());
+                     t.*member = m;
+                 }
              }});
         return *this;
     }
@@ -87,6 +109,16 @@ public:
                  for (const auto& n : names)
                      if (n.first == s) t.*member = n.second;
              }});
+        return *this;
+    }
+
+    // Every key of `inner`, the schema of member `member`, as keys of this one (the pixel filter's
+    // keys in the image section): one declaration, owned by the layer whose struct it is.
+    template <class M>
+    Schema& include(M T::*member, const Schema<M>& inner) {
+        for (const auto& f : inner.fields())
+            add({f.spec, [member, get = f.get](const T& t) { return get(t.*member); },
+                 [member, set = f.set](T& t, const ParamValue& v) { set(t.*member, v); }});
         return *this;
     }
 

@@ -70,9 +70,7 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
         c.view = view;
     }
     c.viewLocation = locationOf(ctx, top, "view");
-    const ParamValues scalars = readSection(ctx, top, topLevelParams());
-    c.viewIndex = scalars.integer("view_index");
-    c.threads = scalars.integer("threads");
+    readSection(ctx, top, topLevelSchema(), c);
     c.viewIndexLocation = locationOf(ctx, top, "view_index");
     if (top.has("camera") && !top.node("camera").IsNull()) {
         c.camera = detail::readCamera(ctx, top.node("camera"));
@@ -106,30 +104,25 @@ ExperimentConfig readConfig(const yaml::Context& ctx, const YAML::Node& root) {
     }
 
     // Each section: its schema's keys read generically, then the struct filled from the values.
+    // Which keys the config writes: where it is silent, a Mitsuba scene file's own settings decide.
+    const auto noteWritten = [&c](const MapReader& m, const std::string& section, const std::vector<ParamSpec>& specs) {
+        for (const ParamSpec& p : specs)
+            if (m.has(p.name)) c.written.insert(section + "." + p.name);
+    };
     MapReader image(ctx, top.node("image"), "image", sectionKeyNames(imageParams()));
-    c.image.sizeGiven = image.has("width") || image.has("height");
-    const ParamValues iv = readSection(ctx, image, imageParams());
-    c.image.width = iv.integer("width");
-    c.image.height = iv.integer("height");
-    c.image.exposure = iv.real("exposure");
-    c.image.filter = iv.choice("filter");
-    c.image.filterGiven = image.has("filter");
-    c.image.filterRadius = iv.real("filter_radius");
-    c.image.filterStddev = iv.real("filter_stddev");
-    c.image.filterMode = iv.choice("filter_mode");
-    if (image.has("filter_stddev") && c.image.filter != "gaussian")
+    readSection(ctx, image, imageSchema(), c.image);
+    noteWritten(image, "image", imageParams());
+    if (image.has("filter_stddev") && c.image.filter.type != PixelFilterType::Gaussian)
         ctx.fail(image.node("filter_stddev"), "image.filter_stddev",
                  fmt::format("image.filter_stddev: only the gaussian filter has a stddev (image.filter is '{}')",
-                             c.image.filter));
+                             toString(c.image.filter.type)));
 
     MapReader snap(ctx, top.node("snapshot"), "snapshot", sectionKeyNames(snapshotParams()));
     readSection(ctx, snap, snapshotSchema(), c.snapshot);
 
     MapReader shading(ctx, top.node("shading"), "shading", sectionKeyNames(shadingParams(), {"cache"}));
     readSection(ctx, shading, shadingSchema(), c.shading);
-    c.shading.maxDepthGiven = shading.has("max_depth");
-    c.shading.rouletteDepthGiven = shading.has("roulette_depth");
-    c.shading.hideEmittersGiven = shading.has("hide_emitters");
+    noteWritten(shading, "shading", shadingParams());
     MapReader cache(ctx, shading.node("cache"), "shading.cache", sectionKeyNames(shadingCacheParams()));
     readSection(ctx, cache, shadingCacheSchema(), c.shading.cache);
 
@@ -154,7 +147,7 @@ bool ExperimentConfig::usesAamap() const {
 }
 
 std::optional<std::filesystem::path> ReferenceConfig::resolvedPath(const std::filesystem::path& configFile) const {
-    if (type != "file") return std::nullopt;
+    if (type != ReferenceType::File) return std::nullopt;
     const std::filesystem::path p(path);
     return (p.is_absolute() || configFile.empty() ? p : configFile.parent_path() / p).lexically_normal();
 }
@@ -212,17 +205,18 @@ void addSubpixelThreshold(const ExperimentConfig& c, Json& key) {
 
 // What every image of the experiment depends on, with paths resolved. forKey: for one render's
 // cache key, which leaves out what its shading mode never reads (the cache outside cache mode).
-Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = "", bool forKey = false) {
-    ShadingConfig s = c.shading;
-    if (!modeOverride.empty()) parse(modeOverride, s.mode);  // the reference's own mode, checked by the reader
+Json shadingJson(const ExperimentConfig& c, std::optional<ShadingMode> modeOverride = std::nullopt,
+                 bool forKey = false) {
+    ShadingSettings s = c.shading;
+    if (modeOverride) s.mode = *modeOverride;  // the reference's own mode
     Json j = sectionJson(shadingSchema(), s, forKey);
     if (forKey) {
         // A Mitsuba file's own integrator decides what the config leaves out; the key then follows
         // the file's contents (scene_content) instead of the value.
         if (sceneDecidesRendering(c)) {
-            if (!s.maxDepthGiven) j["max_depth"] = "scene";
-            if (!s.rouletteDepthGiven) j["roulette_depth"] = "scene";
-            if (s.hideEmittersGiven) j["hide_emitters"] = s.hideEmitters;
+            if (!c.given("shading.max_depth")) j["max_depth"] = "scene";
+            if (!c.given("shading.roulette_depth")) j["roulette_depth"] = "scene";
+            if (c.given("shading.hide_emitters")) j["hide_emitters"] = s.hideEmitters;
         }
         // The cache's settings only in cache mode: a path-traced reference keeps its key when the cache is tuned.
         if (s.mode == ShadingMode::Cache) {
@@ -235,10 +229,12 @@ Json shadingJson(const ExperimentConfig& c, const std::string& modeOverride = ""
     return j;
 }
 
+// The pixel filter as the render keys have always named it.
 Json filterJson(const ImageConfig& image) {
-    Json j = {{"type", image.filter}, {"radius", image.filterRadius}};
-    if (image.filter == "gaussian") j["stddev"] = image.filterStddev;
-    j["mode"] = image.filterMode;
+    const PixelFilterSettings& f = image.filter;
+    Json j = {{"type", toString(f.type)}, {"radius", shortestDouble(f.radius)}};
+    if (f.type == PixelFilterType::Gaussian) j["stddev"] = shortestDouble(f.stddev);
+    j["mode"] = toString(f.mode);
     return j;
 }
 
@@ -262,7 +258,7 @@ Json sceneJson(const ExperimentConfig& c) {
     for (const LightConfig& l : c.lights)
         if (!l.map.empty()) maps.push_back(fileDigest(l.map));
     if (!maps.empty()) j["light_map_content"] = maps;
-    if (!c.image.sizeGiven && sceneDecidesRendering(c))
+    if (!c.sizeGiven() && sceneDecidesRendering(c))
         j["image"]["size"] = "scene";  // the Mitsuba film's size, which the file decides
     return j;
 }
@@ -292,7 +288,7 @@ Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     j["rpp"] = r.rpp;
     j["params"] = paramsJson(r);
     if (!c.image.defaultFilter()) j["filter"] = filterJson(c.image);  // only then: other configs keep their keys
-    if (!c.image.filterGiven && sceneDecidesRendering(c)) j["filter"] = "scene";  // the film's, as the file says
+    if (!c.given("image.filter") && sceneDecidesRendering(c)) j["filter"] = "scene";  // the film's, as the file says
     const StrategyDescriptor* s = findStrategy(r.strategy);
     if (s != nullptr && s->usesAamap) {
         j["snapshot"] = snapshotJson(c, true);
@@ -333,10 +329,9 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     j["lights"] = lightsJson(c);
     j["image"] = {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}};
     if (!c.image.defaultFilter()) {  // else older configs keep their hash
-        j["image"]["filter"] = c.image.filter;
-        j["image"]["filter_radius"] = c.image.filterRadius;
-        if (c.image.filter == "gaussian") j["image"]["filter_stddev"] = c.image.filterStddev;
-        j["image"]["filter_mode"] = c.image.filterMode;
+        const Json filter = sectionJson(pixelFilterSchema(), c.image.filter, false);
+        for (const auto& [key, value] : filter.items())
+            if (key != "filter_stddev" || c.image.filter.type == PixelFilterType::Gaussian) j["image"][key] = value;
     }
     j["seed"] = c.seed;
     j["threads"] = c.threads;
@@ -346,7 +341,9 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     for (const RenderConfig& r : c.renders)
         j["renders"].push_back({{"name", r.name}, {"series", r.series}, {"strategy", r.strategy}, {"rpp", r.rpp},
                                 {"params", paramsJson(r)}});
-    j["reference"] = {{"type", c.reference.type}, {"rpp", c.reference.rpp}, {"mode", c.reference.mode},
+    j["reference"] = {{"type", toString(c.reference.type)},
+                      {"rpp", c.reference.rpp},
+                      {"mode", c.reference.mode ? toString(*c.reference.mode) : ""},
                       {"path", c.reference.path}};
     j["metrics"] = sectionJson(metricsSchema(), c.metrics, false);
     j["report"] = sectionJson(reportSchema(), c.report, false);

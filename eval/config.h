@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,17 +29,17 @@ struct SourceLocation {
 // One light of `light_file` or `lights` (schema: scene/light_file.h, docs/lights.md).
 using LightConfig = LightSpec;
 
+// The `image` section (eval/config_schema.cpp imageSchema()): the size and exposure, and the pixel
+// filter keys, which are the tracer's PixelFilterSettings and declared with it.
 struct ImageConfig {
-    int width = 512, height = 512;  // the bounding box; the view's aspect ratio decides the fit
-    bool sizeGiven = false;         // width or height written: else a scene's own size (Mitsuba film) wins
-    double exposure = 1.0;          // PNG tone mapping and the snapshot's greyscale
+    ImageConfig();  // imageSchema()'s defaults
+    int width, height;  // the bounding box; the view's aspect ratio decides the fit
+    double exposure;    // PNG tone mapping and the snapshot's greyscale
     // Pixel reconstruction filter of every traced image (tracer/pixel_filter.h).
-    std::string filter = "box";  // box | tent | gaussian
-    double filterRadius = 0.0;   // pixels; 0: the filter's own (box 0.5, tent 1, gaussian 4 stddev)
-    double filterStddev = 0.5;   // gaussian only
-    std::string filterMode = "convolution";  // convolution | importance
-    bool defaultFilter() const { return filter == "box" && (filterRadius == 0.0 || filterRadius == 0.5); }
-    bool filterGiven = false;  // image.filter written: else a Mitsuba film's rfilter type wins
+    PixelFilterSettings filter;
+    bool defaultFilter() const {  // the plain pixel box, which no cache key names
+        return filter.type == PixelFilterType::Box && (filter.radius == 0.0f || filter.radius == 0.5f);
+    }
 };
 
 // `camera`: a view written in the config instead of a .vf file (scene/framing.h, lookAtView).
@@ -51,7 +52,8 @@ struct CameraConfig {
 
 // SnapshotConfig: the `snapshot` section, declared with its schema in passes/snapshot_params.h.
 
-// ShadingConfig: the `shading` section, declared with its schema in tracer/shading_params.h.
+// The `shading` section is the tracer's ShadingSettings, declared with its schema in
+// tracer/shading_params.h.
 
 // One concrete render, after sweep expansion (a renders[] entry with list values becomes the
 // cartesian product of its lists).
@@ -62,18 +64,24 @@ struct RenderConfig {
     int rpp = 1;           // n*n rays per pixel at most
     // The strategy's parameters as the tracer takes them: schema order, typed, defaults filled in.
     StrategyParams params;
-    std::string shadingMode;  // "" = the experiment's shading.mode (the reference may differ)
+    std::optional<ShadingMode> shadingMode;  // unset: the experiment's shading.mode (the reference may differ)
     int strata() const;    // n
 };
 
-// What every render is compared with.
+// What every render is compared with: traced n x n everywhere with the same shading (uniform),
+// an EXR (file), or nothing (none).
+enum class ReferenceType { Uniform, File, None };
+const char* toString(ReferenceType type);  // reference.type's name (eval/config_sections.cpp declares them)
+
 struct ReferenceConfig {
-    std::string type = "uniform";  // uniform: traced n x n everywhere, same shading; file: an EXR; none
-    int rpp = 0;                   // uniform: 0 = the largest rpp of the renders (resolved by the parser)
-    std::string mode;              // uniform: shading mode of the reference ("" = shading.mode); path = converged
-    std::string path;              // file: linear RGB EXR, relative to the config file
+    ReferenceType type = ReferenceType::Uniform;
+    int rpp = 0;                     // uniform: 0 = the largest rpp of the renders (resolved by the parser)
+    std::optional<ShadingMode> mode;  // uniform: its own shading mode (unset: shading.mode); path = converged
+    std::string path;                // file: linear RGB EXR, relative to the config file
     SourceLocation pathLocation;
     std::optional<std::filesystem::path> resolvedPath(const std::filesystem::path& configFile) const;
+    // The mode the reference is traced in.
+    ShadingMode modeOr(ShadingMode experiment) const { return mode.value_or(experiment); }
 };
 
 // The metrics, timing and report sections: every default is its schema's (eval/config_schema.cpp).
@@ -117,7 +125,7 @@ struct ExperimentConfig {
     std::uint64_t seed = 1;
     int threads = 0;  // 0: all hardware threads
     SnapshotConfig snapshot;
-    ShadingConfig shading;
+    ShadingSettings shading;  // the tracer's own struct, bound by the schema (tracer/shading_params.h)
     std::vector<RenderConfig> renders;
     ReferenceConfig reference;
     MetricsConfig metrics;
@@ -125,6 +133,12 @@ struct ExperimentConfig {
     TimingConfig timing;
 
     bool usesAamap() const;  // some render needs the Snapshot
+
+    // The schema keys written in the config or by --set ("image.width", "shading.max_depth"):
+    // where the config is silent, a Mitsuba scene file's own settings decide.
+    std::set<std::string> written;
+    bool given(const std::string& key) const { return written.contains(key); }
+    bool sizeGiven() const { return given("image.width") || given("image.height"); }
 
     // For errors found when the scene or view is loaded.
     SourceLocation sceneLocation, viewLocation, viewIndexLocation, cameraLocation;

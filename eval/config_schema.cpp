@@ -9,42 +9,69 @@
 
 namespace aamap {
 
-const std::vector<ParamSpec>& topLevelParams() {
-    static const std::vector<ParamSpec> params = {
-        intParam("view_index", 0, 1000000, 0, "which view of the file (or of the scene)"),
-        intParam("threads", 0, 4096, 0, "tracer threads, 0 = all"),
-    };
-    return params;
+// The top-level scalars; their defaults are ExperimentConfig's initializers.
+const Schema<ExperimentConfig>& topLevelSchema() {
+    using E = ExperimentConfig;
+    static const Schema<E> schema = [] {
+        const E D{};
+        Schema<E> s;
+        s.field(&E::viewIndex, "view_index", in(0, 1000000), D.viewIndex,
+                "which view of the file (or of the scene)")
+            .field(&E::threads, "threads", in(0, 4096), D.threads,
+                   "tracer threads, 0 = all; not part of the config hash");
+        return s;
+    }();
+    return schema;
 }
 
-const std::vector<ParamSpec>& imageParams() {
-    static const std::vector<ParamSpec> params = {
-        intParam("width", 1, 16384, 512, "bounding box width; the view's aspect ratio fits inside"),
-        intParam("height", 1, 16384, 512, "bounding box height"),
-        realParamAbove("exposure", 0.0, 1e6, 1.0, "multiplies radiance before the sRGB PNGs"),
-        choiceParam("filter", {"box", "tent", "gaussian"}, "pixel reconstruction filter"),
-        realParam("filter_radius", 0.0, 8.0, 0.0, "half-width in pixels; 0: the filter's own"),
-        realParamAbove("filter_stddev", 0.0, 4.0, 0.5, "gaussian only: the standard deviation in pixels"),
-        choiceParam("filter_mode", {"convolution", "importance"},
-                    "convolution: box pixels, then the image convolved with the filter (neighbours share "
-                    "samples: less noise); importance: film positions drawn from the filter"),
-    };
-    return params;
+// The image's size and exposure, then the tracer's pixel filter keys (declared with the tracer).
+const Schema<ImageConfig>& imageSchema() {
+    using I = ImageConfig;
+    static const Schema<I> schema = [] {
+        Schema<I> s;
+        s.field(&I::width, "width", in(1, 16384), 512,
+                "bounding box; the view's aspect ratio picks the size inside it (square pixels). Unset (both), a "
+                "Mitsuba scene's film size is used instead")
+            .field(&I::height, "height", in(1, 16384), 512, "bounding box height, as `image.width`")
+            .field(&I::exposure, "exposure", above(0.0, 1e6), 1.0,
+                   "multiplies radiance before the sRGB PNGs; also the snapshot's greyscale, so the map sees edges "
+                   "as the viewer does")
+            .include(&I::filter, pixelFilterSchema());
+        return s;
+    }();
+    return schema;
 }
+
+const std::vector<ParamSpec>& topLevelParams() { return topLevelSchema().specs(); }
+const std::vector<ParamSpec>& imageParams() { return imageSchema().specs(); }
 
 const Schema<MetricsConfig>& metricsSchema() {
     using M = MetricsConfig;
     static const Schema<M> schema = [] {
         Schema<M> s;
-        s.field(&M::flip, "flip", true, "LDR-FLIP of the displayed images")
-            .field(&M::flipHdr, "flip_hdr", false, "HDR-FLIP of the linear radiance as well")
-            .field(&M::flipThreshold, "flip_threshold", above(0.0, 1.0), 0.1, "FLIP above it counts as an error pixel")
+        s.field(&M::flip, "flip", true,
+                "LDR-FLIP of what the PNGs show: mean, % pixels above the threshold, error map, red overlay")
+            .field(&M::flipHdr, "flip_hdr", false,
+                   "HDR-FLIP of the linear radiance as well")
+            .field(&M::flipThreshold, "flip_threshold", above(0.0, 1.0), 0.1,
+                   "FLIP above it counts as an error pixel, and as true aliasing for map quality")
             .field(&M::mseThreshold, "mse_threshold", above(0.0, 1.0), (2.0 / 255.0) * (2.0 / 255.0),
-                   "per-pixel display-space squared error")
-            .field(&M::ppd, "ppd", above(0.0, 1000.0), 67.0206, "FLIP viewing condition, pixels per degree")
-            .field(&M::mapQuality, "map_quality", true, "aamap recall/precision; adds a 1-ray uniform render")
-            .field(&M::causes, "causes", true, "with map_quality: why pixels are missed or wasted")
-            .field(&M::oracle, "oracle", false, "with map_quality: each aamap render again with the oracle map, its bound");
+                   "(2/255)^2: a pixel is \"in error by MSE\" when its display-space squared error (mean over R, G, "
+                   "B of sRGB values in [0, 1]) reaches it: 2 8-bit code values, the smallest difference that "
+                   "survives quantisation (eval/metrics/pixel_error.h)")
+            .field(&M::ppd, "ppd", above(0.0, 1000.0), 67.0206,
+                   "FLIP's viewing condition, pixels per degree (0.7 m from a 0.7 m wide 4K monitor)")
+            .field(&M::mapQuality, "map_quality", true,
+                   "aamap recall, precision and flagged fraction; adds a 1-ray uniform render (reused if listed) "
+                   "when some render uses the aamap")
+            .field(&M::causes, "causes", true,
+                   "with `map_quality`: why each error pixel was missed and each extra ray wasted, per render and "
+                   "for the map, from the tracer's pixel facts ([experiments.md](experiments.md#causes)); the facts "
+                   "cost about one 16-ray shadow-only render and are cached")
+            .field(&M::oracle, "oracle", false,
+                   "with `map_quality`: every aamap-driven render traced again on the oracle map (true aliasing "
+                   "grown to the pixels the reference says need rays, given the full budget), and a table of each "
+                   "map's speedup and error beside the oracle's ([experiments.md](experiments.md#oracle))");
         return s;
     }();
     return schema;
@@ -53,7 +80,8 @@ const Schema<MetricsConfig>& metricsSchema() {
 const Schema<ReportConfig>& reportSchema() {
     static const Schema<ReportConfig> schema = [] {
         Schema<ReportConfig> s;
-        s.field(&ReportConfig::plots, "plots", true, "run tools/report_plots.py");
+        s.field(&ReportConfig::plots, "plots", true,
+                "run `tools/report_plots.py` with the venv's Python; without one the report says so");
         return s;
     }();
     return schema;
@@ -63,14 +91,24 @@ const Schema<TimingConfig>& timingSchema() {
     using T = TimingConfig;
     static const Schema<T> schema = [] {
         Schema<T> s;
-        s.field(&T::repeats, "repeats", in(1, 100), 1, "timed runs of every trace; the time is their median")
-            .field(&T::interleave, "interleave", true, "round r times every render once before round r + 1")
-            .field(&T::sameMachine, "same_machine", false, "trace the renders of one rpp on one worker");
+        s.field(&T::repeats, "repeats", in(1, 100), 1,
+                "timed runs of every trace; `times_s.trace` is their median and `times_s.trace_runs` lists them "
+                "all. Images are unchanged (each run must give the same image bit for bit) and the cache keys do "
+                "not depend on it: a rerun with more repeats traces only the runs the cache lacks "
+                "([experiments.md](experiments.md), \"Timing\")")
+            .field(&T::interleave, "interleave", true,
+                   "round r times every render once before round r + 1 starts, so drift of the machine hits all "
+                   "renders alike; `false` runs each render's repeats back to back")
+            .field(&T::sameMachine, "same_machine", false,
+                   "`--executor ray`: the renders of one rpp (a speedup's baseline and the series it divides) run "
+                   "on one worker, so their ratio compares strategies, not machines; the cache keys do not depend "
+                   "on it. A local run ignores it ([experiments.md](experiments.md), \"Running on a Ray cluster\")");
         return s;
     }();
     return schema;
 }
 
+ImageConfig::ImageConfig() { imageSchema().setDefaults(*this); }
 MetricsConfig::MetricsConfig() { metricsSchema().setDefaults(*this); }
 ReportConfig::ReportConfig() { reportSchema().setDefaults(*this); }
 TimingConfig::TimingConfig() { timingSchema().setDefaults(*this); }
@@ -79,12 +117,28 @@ const std::vector<ParamSpec>& metricsParams() { return metricsSchema().specs(); 
 const std::vector<ParamSpec>& reportParams() { return reportSchema().specs(); }
 const std::vector<ParamSpec>& timingParams() { return timingSchema().specs(); }
 
+namespace {
+
+// A section bound to the part of the config that holds it.
+template <class T>
+ConfigSection bound(std::string path, const Schema<T>& schema, const T& (*part)(const ExperimentConfig&)) {
+    return {std::move(path), schema.specs(), [&schema, part](const ExperimentConfig& c) { return schema.values(part(c)); }};
+}
+
+}  // namespace
+
 const std::vector<ConfigSection>& configSections() {
+    using E = ExperimentConfig;
     static const std::vector<ConfigSection> sections = {
-        {"", topLevelParams()},          {"image", imageParams()},
-        {"snapshot", snapshotParams()},  {"shading", shadingParams()},
-        {"shading.cache", shadingCacheParams()}, {"metrics", metricsParams()},
-        {"report", reportParams()},      {"timing", timingParams()},
+        bound<E>("", topLevelSchema(), [](const E& c) -> const E& { return c; }),
+        bound<ImageConfig>("image", imageSchema(), [](const E& c) -> const ImageConfig& { return c.image; }),
+        bound<SnapshotConfig>("snapshot", snapshotSchema(), [](const E& c) -> const SnapshotConfig& { return c.snapshot; }),
+        bound<ShadingSettings>("shading", shadingSchema(), [](const E& c) -> const ShadingSettings& { return c.shading; }),
+        bound<IrradianceCacheSettings>("shading.cache", shadingCacheSchema(),
+                                       [](const E& c) -> const IrradianceCacheSettings& { return c.shading.cache; }),
+        bound<MetricsConfig>("metrics", metricsSchema(), [](const E& c) -> const MetricsConfig& { return c.metrics; }),
+        bound<ReportConfig>("report", reportSchema(), [](const E& c) -> const ReportConfig& { return c.report; }),
+        bound<TimingConfig>("timing", timingSchema(), [](const E& c) -> const TimingConfig& { return c.timing; }),
     };
     return sections;
 }
@@ -105,6 +159,26 @@ std::string helpEntry(const ParamSpec& p) {
 }
 
 }  // namespace
+
+std::string docType(const ParamSpec& p) {
+    if (p.type == ParamType::Bool) return "bool";
+    if (p.type == ParamType::Choice) {
+        std::string t;
+        for (std::size_t i = 0; i < p.choices.size(); ++i)
+            t += (i == 0 ? "" : i + 1 == p.choices.size() ? " or " : ", ") + ("`" + p.choices[i] + "`");
+        return t;
+    }
+    return fmt::format("{} in {}", p.type == ParamType::Int ? "int" : "number", p.rangeText());
+}
+
+std::string configKeysMarkdown() {
+    std::string out = "| Key | Type, default | Meaning |\n|---|---|---|\n";
+    for (const ConfigSection& s : configSections())
+        for (const ParamSpec& p : s.params)
+            out += fmt::format("| `{}` | {}, `{}` | {} |\n", s.path.empty() ? p.name : s.path + "." + p.name, docType(p),
+                               toString(p.defaultParam()), p.doc);
+    return out;
+}
 
 std::string sectionHelpLines() {
     constexpr std::size_t kWidth = 104;

@@ -2,6 +2,7 @@
 // The scalar config sections, declared once each by the layer whose settings they are
 // (passes/snapshot_params.h, tracer/shading_params.h, and here the ones eval/ owns), and what is
 // generated from them: the reader (readSection), the --set keys and the --help lines.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,8 +15,10 @@
 
 namespace aamap {
 
-const std::vector<ParamSpec>& topLevelParams();  // view_index, threads
-const std::vector<ParamSpec>& imageParams();
+const Schema<ExperimentConfig>& topLevelSchema();  // view_index, threads
+const Schema<ImageConfig>& imageSchema();
+const std::vector<ParamSpec>& topLevelParams();  // topLevelSchema().specs()
+const std::vector<ParamSpec>& imageParams();     // imageSchema().specs()
 // The sections eval/ owns, each bound to its struct (eval/config.h).
 const Schema<MetricsConfig>& metricsSchema();
 const Schema<ReportConfig>& reportSchema();
@@ -27,12 +30,19 @@ const std::vector<ParamSpec>& timingParams();
 struct ConfigSection {
     std::string path;  // "snapshot", "shading.cache"; "" for the top-level scalars
     const std::vector<ParamSpec>& params;
+    // Every key's value in a config, read from the field the schema binds it to.
+    std::function<ParamValues(const ExperimentConfig&)> values;
 };
 // Every schema-declared section, in the order of the config's documentation.
 const std::vector<ConfigSection>& configSections();
 
 // "snapshot.scale", ..., "view_index": every schema key as --set names it.
 std::vector<std::string> sectionKeys();
+// The type cell of a key's row: "int in [1, 64]", "number in (0, 1]", "bool", "`a`, `b` or `c`".
+std::string docType(const ParamSpec& p);
+// docs/config.md's table of every schema key (type, range, default, doc), as `aamap run
+// --list-keys` prints it and tools/update_cli_docs.py copies it.
+std::string configKeysMarkdown();
 // The --help lines of the sections ("  snapshot: {scale: 1.5, ..., map: luminance|geometric|combined}").
 std::string sectionHelpLines();
 

@@ -210,19 +210,28 @@ bool readBool(const yaml::Context& ctx, MapReader& m, const std::string& key, bo
     return v;
 }
 
-void checkOneOf(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& value,
-                std::initializer_list<const char*> allowed) {
-    for (const char* a : allowed)
-        if (value == a) return;
-    std::string list;
-    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-    ctx.fail(node, path, fmt::format("{}: unknown value '{}' (supported: {})", path, value, list));
+namespace {
+
+const std::vector<std::pair<std::string, ReferenceType>>& referenceTypeNames() {
+    static const std::vector<std::pair<std::string, ReferenceType>> names = {
+        {"uniform", ReferenceType::Uniform}, {"file", ReferenceType::File}, {"none", ReferenceType::None}};
+    return names;
 }
 
-void checkShadingMode(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& mode) {
-    const std::vector<std::string>& names = findParam(shadingParams(), "mode")->choices;  // shading.mode's, as declared
-    if (std::find(names.begin(), names.end(), mode) == names.end())
-        ctx.fail(node, path, fmt::format("{}: unknown value '{}' (supported: {})", path, mode, fmt::join(names, ", ")));
+}  // namespace
+
+std::optional<ShadingMode> readShadingMode(const yaml::Context& ctx, MapReader& m, const std::string& key) {
+    const YAML::Node n = m.node(key);
+    if (!n.IsDefined() || n.IsNull()) return std::nullopt;
+    std::string name;
+    m.getString(key, name);
+    ShadingMode mode{};
+    if (!parse(name, mode)) {
+        const std::vector<std::string>& names = findParam(shadingParams(), "mode")->choices;  // shading.mode's
+        ctx.fail(n, m.childPath(key),
+                 fmt::format("{}: unknown value '{}' (supported: {})", m.childPath(key), name, fmt::join(names, ", ")));
+    }
+    return mode;
 }
 
 std::string lower(std::string s) {
@@ -265,28 +274,36 @@ std::vector<RenderConfig> readRenders(const yaml::Context& ctx, const YAML::Node
 ReferenceConfig readReference(const yaml::Context& ctx, const YAML::Node& node, const std::vector<RenderConfig>& renders) {
     MapReader m(ctx, node, "reference", {"type", "rpp", "mode", "path"});
     ReferenceConfig ref;
-    m.getString("type", ref.type);
-    if (ref.type != "uniform" && ref.type != "file" && ref.type != "none")
-        ctx.fail(m.node("type"), m.childPath("type"),
-                 fmt::format("reference.type: unknown type '{}' (supported: uniform, file, none)", ref.type));
+    if (m.has("type")) {
+        std::string type;
+        m.getString("type", type);
+        const auto& names = referenceTypeNames();
+        const auto it = std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.first == type; });
+        if (it == names.end()) {
+            std::vector<std::string> list;
+            for (const auto& n : names) list.push_back(n.first);
+            ctx.fail(m.node("type"), m.childPath("type"),
+                     fmt::format("reference.type: unknown type '{}' (supported: {})", type, fmt::join(list, ", ")));
+        }
+        ref.type = it->second;
+    }
     // rpp and mode only apply to a traced reference, path only to a file; the others are checked
     // but ignored, so that --set reference.type=... works on any config.
     m.getInt("rpp", ref.rpp, 1, kMaxRpp);
     const int n = static_cast<int>(std::lround(std::sqrt(ref.rpp)));
     if (ref.rpp > 0 && n * n != ref.rpp)
         ctx.fail(m.node("rpp"), "reference.rpp", fmt::format("reference.rpp: {} is not a perfect square", ref.rpp));
-    m.getString("mode", ref.mode);
-    if (!ref.mode.empty()) checkShadingMode(ctx, m.node("mode"), "reference.mode", ref.mode);
-    if (ref.type == "uniform" && ref.rpp == 0)
+    ref.mode = readShadingMode(ctx, m, "mode");
+    if (ref.type == ReferenceType::Uniform && ref.rpp == 0)
         for (const RenderConfig& r : renders) ref.rpp = std::max(ref.rpp, r.rpp);
-    if (ref.type == "file") m.require("path");
+    if (ref.type == ReferenceType::File) m.require("path");
     m.getString("path", ref.path);
     ref.pathLocation = ctx.locate(m.node("path"), "reference.path");
-    if (ref.type != "uniform") {
+    if (ref.type != ReferenceType::Uniform) {
         ref.rpp = 0;
-        ref.mode.clear();
+        ref.mode.reset();
     }
-    if (ref.type != "file") ref.path.clear();
+    if (ref.type != ReferenceType::File) ref.path.clear();
     return ref;
 }
 
@@ -332,3 +349,13 @@ CameraConfig readCamera(const yaml::Context& ctx, const YAML::Node& node) {
 }
 
 }  // namespace aamap::detail
+
+namespace aamap {
+
+const char* toString(ReferenceType type) {
+    for (const auto& n : detail::referenceTypeNames())
+        if (n.second == type) return n.first.c_str();
+    return "?";
+}
+
+}  // namespace aamap

@@ -23,9 +23,7 @@ CameraConfig readCamera(const yaml::Context& ctx, const YAML::Node& node);
 
 std::string lower(std::string s);
 bool readBool(const yaml::Context& ctx, yaml::MapReader& m, const std::string& key, bool fallback);
-// Fails naming the node's file:line:col unless value is one of `allowed`.
-void checkOneOf(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& value,
-                std::initializer_list<const char*> allowed);
-void checkShadingMode(const yaml::Context& ctx, const YAML::Node& node, const std::string& path, const std::string& mode);
+// A shading mode by shading.mode's names (unset when absent); an unknown name fails at its file:line:col.
+std::optional<ShadingMode> readShadingMode(const yaml::Context& ctx, yaml::MapReader& m, const std::string& key);
 
 }  // namespace aamap::detail

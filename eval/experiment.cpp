@@ -140,7 +140,7 @@ public:
         info.loaderWarnings = loaderWarnings.take();
         scene_ = std::move(prepared.scene);
         view_ = prepared.view;
-        if (!config_.image.sizeGiven && scene_.imageWidth > 0)
+        if (!config_.sizeGiven() && scene_.imageWidth > 0)
             info.warnings.push_back(fmt::format("image size {}x{} from the scene file's film (the config's own "
                                                 "image.width/height win)",
                                                 scene_.imageWidth, scene_.imageHeight));
@@ -315,7 +315,7 @@ private:
 }  // namespace
 
 std::optional<std::pair<int, int>> renderSizeWithoutScene(const ExperimentConfig& config) {
-    if (!config.image.sizeGiven && sceneDecidesRendering(config)) return std::nullopt;
+    if (!config.sizeGiven() && sceneDecidesRendering(config)) return std::nullopt;
     if (!config.camera && !config.resolvedView()) return std::nullopt;
     Scene none;
     std::string label;
@@ -331,7 +331,7 @@ PreparedScene prepareScene(const ExperimentConfig& config) {
     p.loadSeconds = secondsSince(t0);
     // The scene's own image size (a Mitsuba film) unless the config gives one.
     int width = config.image.width, height = config.image.height;
-    if (!config.image.sizeGiven && p.scene.imageWidth > 0) {
+    if (!config.sizeGiven() && p.scene.imageWidth > 0) {
         width = p.scene.imageWidth;
         height = p.scene.imageHeight;
     }
@@ -347,19 +347,19 @@ ExperimentConfig withSceneRenderSettings(const ExperimentConfig& config, const S
     const std::string from = fmt::format("the scene file's <integrator type=\"{}\"> ({})", r.integrator, r.at);
     if (!r.integrator.empty()) {
         std::vector<std::string> applied;
-        if (!c.shading.maxDepthGiven) {
+        if (!c.given("shading.max_depth")) {
             // Unlimited in the file: the longest path the config allows, where roulette ends it.
             c.shading.maxDepth = std::min(r.maxDepth.value_or(kMaxPathDepth), kMaxPathDepth);
             applied.push_back(fmt::format("shading.max_depth {}{}", c.shading.maxDepth,
                                           r.maxDepth ? "" : " (unlimited there)"));
         }
-        if (!c.shading.rouletteDepthGiven && r.rrDepth) {
+        if (!c.given("shading.roulette_depth") && r.rrDepth) {
             c.shading.rouletteDepth = *r.rrDepth;
             applied.push_back(fmt::format("shading.roulette_depth {}", c.shading.rouletteDepth));
         }
         if (!applied.empty())
             notes.push_back(fmt::format("{} from {}; the config's own values win", fmt::join(applied, " and "), from));
-        if (!c.shading.hideEmittersGiven && r.hideEmitters) {
+        if (!c.given("shading.hide_emitters") && r.hideEmitters) {
             c.shading.hideEmitters = true;
             notes.push_back(fmt::format("shading.hide_emitters true from {} (it hides directly visible emitters); the "
                                         "config's own value wins",
@@ -368,7 +368,7 @@ ExperimentConfig withSceneRenderSettings(const ExperimentConfig& config, const S
     }
     if (r.sampleCount) {
         // Its author's converged sample count: a reference with fewer rays is noisier than meant.
-        const bool fewer = c.reference.type == "uniform" && c.reference.rpp < *r.sampleCount;
+        const bool fewer = c.reference.type == ReferenceType::Uniform && c.reference.rpp < *r.sampleCount;
         const int n = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(*r.sampleCount))));
         notes.push_back(fmt::format("the scene file's sampler asks {} samples per pixel; the renders' rays per pixel "
                                     "come from the config (renders[].rpp){}",
@@ -378,20 +378,21 @@ ExperimentConfig withSceneRenderSettings(const ExperimentConfig& config, const S
                                                         c.reference.rpp, n * n)
                                           : ""));
     }
-    if (!r.filter.empty() && r.filter != c.image.filter) {
-        PixelFilterSettings known;
-        if (!c.image.filterGiven && parse(r.filter, known.type)) {
+    if (!r.filter.empty() && r.filter != toString(c.image.filter.type)) {
+        PixelFilterType known{};
+        const bool given = c.given("image.filter");
+        if (!given && parse(r.filter, known)) {
             // The film's filter with its default size (Mitsuba's and aamap's defaults agree).
-            c.image.filter = r.filter;
-            c.image.filterRadius = 0.0;
+            c.image.filter.type = known;
+            c.image.filter.radius = 0.0f;
             notes.push_back(fmt::format("image.filter {} from the scene file's film (the config's own image.filter "
                                         "wins)",
                                         r.filter));
         } else {
             notes.push_back(fmt::format("the scene file's film filters pixels with a '{}' filter; the renders use "
                                         "image.filter {}{}",
-                                        r.filter, c.image.filter,
-                                        c.image.filterGiven ? " as the config says" : " (aamap has no such filter)"));
+                                        r.filter, toString(c.image.filter.type),
+                                        given ? " as the config says" : " (aamap has no such filter)"));
         }
     }
     return c;
@@ -407,12 +408,7 @@ TraceSettings traceSettingsFor(const ExperimentConfig& config, const RenderConfi
     ts.seed = config.seed;
     ts.threads = threads >= 0 ? threads : config.threads;
     ts.shading = toShadingSettings(config, render);
-    if (!parse(config.image.filter, ts.filter.type))
-        throw std::invalid_argument(fmt::format("unknown pixel filter '{}'", config.image.filter));
-    ts.filter.radius = static_cast<float>(config.image.filterRadius);
-    ts.filter.stddev = static_cast<float>(config.image.filterStddev);
-    if (!parse(config.image.filterMode, ts.filter.mode))
-        throw std::invalid_argument(fmt::format("unknown pixel filter mode '{}'", config.image.filterMode));
+    ts.filter = config.image.filter;
     return ts;
 }
 

@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/atomic_file.h"
+#include "eval/config.h"
 #include "eval/evaluate.h"
 #include "tracer/strategy.h"
 #include "eval/metrics/pixel_causes.h"
@@ -158,7 +159,7 @@ void addGroundTruthTable(const Json& results, std::vector<Table>& tables) {
     const Json& ref = results["reference"];
     if (!ref.contains("shading_floor")) return;
     const std::string floor = ref["shading_floor"].get<std::string>();
-    const std::string truth = ref.value("type", std::string()) == "file"
+    const std::string truth = ref.value("type", std::string()) == toString(ReferenceType::File)
                                   ? "the reference image " + ref.value("path", std::string())
                                   : fmt::format("the {} rpp {} reference", ref.value("rpp", 0), ref.value("mode", std::string()));
     const std::string mode = results["config"].contains("shading") ? results["config"]["shading"].value("mode", std::string())
@@ -235,13 +236,13 @@ void addReferenceTable(const Json& results, std::vector<Table>& tables) {
     if (!results.contains("reference") || !results["reference"].is_object()) return;
     const Json& ref = results["reference"];
     const std::string type = ref.value("type", std::string());
-    if (type.empty() || type == "none") return;
+    if (type.empty() || type == toString(ReferenceType::None)) return;
     Table t{"reference", "The reference", "", {"reference", "noise floor % FLIP", "noise floor % MSE", "converged", "suggested rpp"}, {}};
-    const std::string what = type == "file" ? "the image " + ref.value("path", std::string())
+    const std::string what = type == toString(ReferenceType::File) ? "the image " + ref.value("path", std::string())
                                             : fmt::format("uniform {} rpp, {} shading", ref.value("rpp", 0), ref.value("mode", std::string()));
     if (!ref.contains("noise") || !ref["noise"].is_object()) {
         t.rows.push_back({what, "—", "—", "not estimated", "—"});
-        t.note = type == "file" ? "an image from elsewhere: its convergence is its maker's to state"
+        t.note = type == toString(ReferenceType::File) ? "an image from elsewhere: its convergence is its maker's to state"
                                 : "not estimated (one ray per pixel, or a cache entry without its half images)";
     } else {
         const Json& n = ref["noise"];

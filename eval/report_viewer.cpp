@@ -9,6 +9,7 @@
 #include "core/image_io.h"
 #include "eval/metrics/magma.h"
 #include "eval/metrics/pixel_causes.h"
+#include "eval/config.h"
 #include "eval/report.h"
 #include "tracer/shading_params.h"
 #include "tracer/strategy.h"
@@ -51,10 +52,10 @@ Json numberOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr);
 
 std::string referenceText(const Json& results) {
     const Json ref = results.value("reference", Json::object());
-    const std::string type = ref.value("type", std::string("none"));
-    if (type == "uniform" && ref.contains("rpp"))
+    const std::string type = ref.value("type", std::string(toString(ReferenceType::None)));
+    if (type == toString(ReferenceType::Uniform) && ref.contains("rpp"))
         return fmt::format("uniform sampling, {} primary rays in every pixel ({} shading)", ref["rpp"].get<int>(),
-                           ref.value("mode", std::string(toString(ShadingConfig().mode))));
+                           ref.value("mode", std::string(toString(ShadingSettings().mode))));
     if (ref.contains("path")) return fmt::format("the image {}", fs::path(ref["path"].get<std::string>()).filename().string());
     return type;
 }

@@ -62,14 +62,14 @@ JobList jobsOf(const ExperimentConfig& c) {
     JobList list;
     for (const RenderConfig& r : c.renders) list.jobs.push_back({r, renderKey(c, r)});
     list.listed = list.jobs.size();
-    if (c.reference.type == "uniform") {
+    if (c.reference.type == ReferenceType::Uniform) {
         RenderConfig r{"reference", "reference", baselineStrategyName(), c.reference.rpp, {}, c.reference.mode};
         list.reference = Job{r, renderKey(c, r)};
         list.jobs.push_back(*list.reference);
     }
-    list.mapQuality = c.metrics.mapQuality && c.usesAamap() && c.reference.type != "none";
+    list.mapQuality = c.metrics.mapQuality && c.usesAamap() && c.reference.type != ReferenceType::None;
     if (list.mapQuality) {  // true aliasing is what a 1-ray image gets wrong
-        RenderConfig r{"one_ray", "one_ray", baselineStrategyName(), 1, {}, ""};
+        RenderConfig r{"one_ray", "one_ray", baselineStrategyName(), 1, {}, std::nullopt};
         list.oneRay = Job{r, renderKey(c, r)};
         list.jobs.push_back(*list.oneRay);
     }
@@ -224,7 +224,7 @@ void Runner::loadOrRenderSnapshot(bool writeOutputs) {
 // The pixel facts depend on the scene, the view and the image size; the key of a 1-ray render
 // covers them (and more, which only costs a recomputation), under a prefix of its own.
 PixelFacts Runner::loadOrComputeFacts() {
-    RenderConfig probe{"pixel_facts", "pixel_facts", baselineStrategyName(), 1, {}, ""};
+    RenderConfig probe{"pixel_facts", "pixel_facts", baselineStrategyName(), 1, {}, std::nullopt};
     const std::string key = "facts-" + renderKey(c_, probe);
     if (cache_.has(key)) {
         try {
@@ -458,7 +458,7 @@ ImageRGB Runner::loadFileReference(const std::vector<Job>& jobs) {
 // against it, which is its antialiasing share.
 void Runner::addAntialiasingShares(Results& results, const std::vector<Job>& jobs, std::size_t listed,
                                    const ImageRGB& reference) const {
-    const bool groundTruth = c_.reference.type == "file" || (!c_.reference.mode.empty() && c_.reference.mode != toString(c_.shading.mode));
+    const bool groundTruth = c_.reference.type == ReferenceType::File || c_.reference.modeOr(c_.shading.mode) != c_.shading.mode;
     if (!groundTruth) return;
     std::optional<std::size_t> floor;
     for (std::size_t i = 0; i < listed; ++i)
@@ -589,7 +589,7 @@ void Runner::plan() {
 
     // Every input file is read before any work, so a bad one leaves the output folder as it was.
     fileReference_.reset();
-    if (c_.reference.type == "file") fileReference_ = loadFileReference(jobs);
+    if (c_.reference.type == ReferenceType::File) fileReference_ = loadFileReference(jobs);
     if (list_.reference)
         for (const Job& job : jobs)
             if (job.render.rpp > c_.reference.rpp) {
@@ -600,7 +600,7 @@ void Runner::plan() {
             }
     // Cache mode with B bounces renders paths of up to B + 2 segments (camera, B diffuse bounces,
     // the light): against a path reference of another length the difference is not the cache's.
-    if (list_.reference && c_.shading.mode == ShadingMode::Cache && c_.reference.mode == toString(ShadingMode::Path) &&
+    if (list_.reference && c_.shading.mode == ShadingMode::Cache && c_.reference.mode == ShadingMode::Path &&
         c_.shading.cache.bounces > 0 &&
         c_.shading.maxDepth != c_.shading.cache.bounces + 2)
         warn(fmt::format("shading.cache.bounces {} renders paths of up to {} segments, the path-traced reference up to "
@@ -665,11 +665,11 @@ void Runner::evaluate() {
 
     // The reference every render is measured against.
     std::optional<ImageRGB> reference;
-    results.referenceInfo.type = c_.reference.type;
+    results.referenceInfo.type = toString(c_.reference.type);
     if (refJob) {
         reference = traced_.at(refJob->key).image;
         results.referenceInfo.rpp = c_.reference.rpp;
-        results.referenceInfo.mode = c_.reference.mode.empty() ? std::string(toString(c_.shading.mode)) : c_.reference.mode;
+        results.referenceInfo.mode = toString(c_.reference.modeOr(c_.shading.mode));
     } else if (fileReference_) {
         reference = std::move(fileReference_);
         results.referenceInfo.path = c_.reference.resolvedPath(c_.file)->string();
@@ -836,7 +836,7 @@ RunPlan planRun(const ExperimentConfig& config, const fs::path& cacheDir) {
             p.cached = static_cast<int>(r->times.traceRuns.size()) >= plan.repeats || plan.repeats <= 1;
             p.seconds = r->times.trace;
             const double units = static_cast<double>(r->maxRaysPerPixel) * r->width * r->height;
-            if (units > 0 && r->times.trace > 0 && job.render.shadingMode.empty()) rates.push_back(r->times.trace / units);
+            if (units > 0 && r->times.trace > 0 && !job.render.shadingMode) rates.push_back(r->times.trace / units);
         }
         plan.renders.push_back(std::move(p));
     }

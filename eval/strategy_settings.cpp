@@ -19,27 +19,8 @@ StrategySettings toStrategySettings(const RenderConfig& r, const ImageGrey* aama
 }
 
 ShadingSettings toShadingSettings(const ExperimentConfig& c, const RenderConfig& r) {
-    const ShadingConfig& h = c.shading;
-    ShadingSettings s;
-    s.areaLightSamples = h.areaLightSamples;
-    s.mode = h.mode;
-    if (!r.shadingMode.empty()) parse(r.shadingMode, s.mode);  // the reference's own; the config reader checked it
-    s.maxDepth = h.maxDepth;
-    s.russianRoulette = h.russianRoulette;
-    s.rouletteDepth = h.rouletteDepth;
-    s.maxSpecularDepth = h.maxSpecularDepth;
-    s.glossyReflectionAlpha = static_cast<float>(h.glossyReflectionAlpha);
-    s.hideEmitters = h.hideEmitters;
-    s.lightSelection = h.lightSelection;
-    s.lightSampling = h.lightSampling;
-    s.textureFilter = h.textureFilter;
-    const ShadingConfig::Cache& ic = h.cache;
-    s.cache.bounces = ic.bounces;
-    s.cache.divisions = ic.divisions;
-    s.cache.supersamples = ic.supersamples;
-    s.cache.accuracy = static_cast<float>(ic.accuracy);
-    s.cache.resolution = ic.resolution;
-    s.cacheGridStep = ic.gridStep;
+    ShadingSettings s = c.shading;  // the config holds the tracer's own struct
+    if (r.shadingMode) s.mode = *r.shadingMode;  // the reference's own
     s.cache.seed = c.seed;  // the cache's records, like every sample, follow the experiment's seed
     return s;
 }

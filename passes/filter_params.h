@@ -10,6 +10,7 @@ struct FilterParams {
     float noiseFloor = static_cast<float>(AAMAP_DEFAULT_NOISE_FLOOR);
     float gain = static_cast<float>(AAMAP_DEFAULT_GAIN);
     float flatRange = static_cast<float>(AAMAP_DEFAULT_FLAT_RANGE);
+    bool operator==(const FilterParams&) const = default;
 };
 
 }  // namespace aamap

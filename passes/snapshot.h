@@ -26,6 +26,7 @@ struct ShadowSettings {
     // Area-light samples filter their lookups over the penumbra of the patch of the light each
     // stands for (PCSS): smooth penumbrae. Point and spot lights keep the pcf lookup either way.
     bool softShadows = true;
+    bool operator==(const ShadowSettings&) const = default;
 };
 
 // What one Snapshot run takes: the config's `snapshot` section (passes/snapshot_params.h, every
@@ -54,6 +55,7 @@ struct SnapshotSettings {
     int subpixel;
     float flipThreshold = 0.1f;
     ShadowSettings shadows;
+    bool operator==(const SnapshotSettings&) const = default;
 };
 
 struct PassTiming {

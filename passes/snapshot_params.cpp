@@ -44,25 +44,44 @@ const Schema<SnapshotConfig>& snapshotSchema() {
     using S = SnapshotConfig;
     static const Schema<S> schema = [] {
         Schema<S> s;
-        s.field(&S::scale, "scale", in(1.0, 4.0), 1.5, "snapshot resolution / render resolution")
-            .field(&S::areaLightSamples, "area_light_samples", in(1, 64), 5, "point lights approximating each area light")
+        s.field(&S::scale, "scale", in(1.0, 4.0), 1.5,
+                "snapshot resolution / render resolution (the paper: 768 for 512); the subpixel map rasterises at "
+                "`snapshot.subpixel` x the render resolution instead")
+            .field(&S::areaLightSamples, "area_light_samples", in(1, 64), 5,
+                   "point lights approximating each area light (the paper: 5)")
             .field(&S::environmentLights, "environment_lights", in(0, 16), 1,
-                   "the environment map's brightest regions as shadowed directional lights")
+                   "the environment map's brightest regions shaded as this many shadowed directional lights; the "
+                   "rest is an SH ambient term (0: all of it); no effect without a map (docs/architecture.md, "
+                   "\"Lights at infinity in the Snapshot\")")
             .field(&S::softShadows, "soft_shadows", true,
-                   "area-light samples cast the soft shadow of the patch of light each stands for (PCSS)")
+                   "each point sample of an area light casts the soft shadow of the patch of light it stands for (a "
+                   "blocker search and a filter of the penumbra's width in its shadow map, "
+                   "[architecture.md](architecture.md), \"Soft shadows of area-light samples\"); false: hard "
+                   "shadows from every sample. Point and spot lights cast hard shadows either way. Only `false` "
+                   "enters the cache keys")
             .field(&S::blurRadius, "blur_radius", in(0, 16), AAMAP_DEFAULT_BLUR_RADIUS,
-                   "box blur radius after the Laplacian, in snapshot pixels")
+                   "box blur radius after the 5x5 Laplacian, in snapshot pixels")
             .field(&S::flatRange, "flat_range", in(0.0, 1.0), AAMAP_DEFAULT_FLAT_RANGE,
-                   "the Laplacian counts only where the grey spans at least this over a texel's 3x3 window "
-                   "(1/255: one 8-bit code value; 0: everywhere)")
+                   "the Laplacian counts only where the grey spans at least this over a texel's 3x3 window (1/255: "
+                   "one 8-bit code value); flat texels beside an edge, which one ray already renders, get 0 "
+                   "([architecture.md](architecture.md), \"The aamap filter chain\"); 0: everywhere, the paper's "
+                   "chain")
             .field(&S::noiseFloor, "noise_floor", in(0.0, 1.0), AAMAP_DEFAULT_NOISE_FLOOR,
-                   "blurred edge responses below this are smooth shading")
+                   "blurred edge responses below this are smooth shading: map = 0")
             .field(&S::gain, "gain", above(0.0, 1e6), AAMAP_DEFAULT_GAIN,
                    "map = clamp(gain * (blurred - noise_floor), 0, 1)")
             .choice(&S::map, "map", passes::mapNames(),
-                    "what the map is built from (subpixel: each pixel's predicted one-ray error from k x k samples)")
+                    "what the map is built from: the luminance Laplacian (the paper), G-buffer discontinuities "
+                    "(depth, normal, object and material id, shadow-map visibility per light when shadows are on; "
+                    "alpha cut-outs are holes), or their per-texel max, each followed by the same blur, dead zone "
+                    "and reduction ([architecture.md](architecture.md), \"Geometric aamap\"); or `subpixel`: each "
+                    "pixel's predicted one-ray display error from k x k raster samples, against "
+                    "`metrics.flip_threshold` ([architecture.md](architecture.md), \"Sub-pixel aamap\"; the blur, "
+                    "dead zone and `scale` keys do not apply). Only non-default values enter the cache keys")
             .field(&S::subpixel, "subpixel", in(SUBPIXEL_MIN_K, SUBPIXEL_MAX_K), SUBPIXEL_DEFAULT_K,
-                   "map subpixel: samples per pixel side k (the raster runs at k x the render resolution)");
+                   "`map: subpixel`: samples per pixel side k; the Snapshot rasterises colour and geometry at k x "
+                   "the render resolution. With `map: subpixel`, `metrics.flip_threshold` enters the Snapshot's "
+                   "cache key too");
         return s;
     }();
     return schema;

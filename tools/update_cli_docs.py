@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""docs/cli.md's help blocks from the binary: each fenced block holding "Usage: aamap ..." lines is
-the `--help` output of those commands, copied verbatim, one after the other.
+"""docs/cli.md's help blocks and docs/config.md's key table from the binary: each fenced block of
+cli.md holding "Usage: aamap ..." lines is the `--help` output of those commands, copied verbatim,
+one after the other; config.md's table between <!-- keys --> and <!-- /keys --> is
+`aamap run --list-keys` (every schema key's type, range, default and meaning, from its declaration).
 
     python3 tools/update_cli_docs.py [--aamap build/release/aamap]          # rewrites docs/cli.md
     python3 tools/update_cli_docs.py --check [--aamap build/release/aamap]  # exit 1 if stale
@@ -59,11 +61,34 @@ def rewrite(lines, helps):
     return out, found
 
 
+def rewrite_keys(lines, table):
+    """config.md with the lines between the keys markers replaced by `table` (a list of lines)."""
+    start, end = lines.index("<!-- keys -->"), lines.index("<!-- /keys -->")
+    return lines[:start + 1] + table + lines[end:]
+
+
+def write_or_check(path, lines, new, check, source):
+    """0 when `path` is current (or was rewritten), 1 when --check finds it stale."""
+    if new == lines:
+        return 0
+    if check:
+        sys.stdout.writelines(difflib.unified_diff([l + "\n" for l in lines], [l + "\n" for l in new], path, source))
+        print(f"{path} is stale: run `cmake --build --preset release --target cli-docs`", file=sys.stderr)
+        return 1
+    tmp = path + ".tmp"
+    with open(tmp, "w") as f:
+        f.write("\n".join(new))
+    os.replace(tmp, path)
+    print(f"{path}: rewritten from {source}")
+    return 0
+
+
 def main():
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--aamap", default=os.path.join(repo, "build", "release", "aamap"))
     ap.add_argument("--doc", default=os.path.join(repo, "docs", "cli.md"))
+    ap.add_argument("--config-doc", default=os.path.join(repo, "docs", "config.md"))
     ap.add_argument("--check", action="store_true", help="compare only; exit 1 when the page is stale")
     args = ap.parse_args()
     helps = {c: help_text(args.aamap, c) for c in COMMANDS}
@@ -73,20 +98,13 @@ def main():
     missing = [c or "(top level)" for c in COMMANDS if c not in found]
     if missing:
         sys.exit(f"{args.doc}: no help block (a fence holding 'Usage: aamap ...') for {', '.join(missing)}")
-    if new == lines:
-        return 0
-    if args.check:
-        sys.stdout.writelines(difflib.unified_diff([l + "\n" for l in lines], [l + "\n" for l in new], args.doc,
-                                                   "aamap --help"))
-        print(f"{args.doc} is stale: run `cmake --build --preset release --target cli-docs`", file=sys.stderr)
-        return 1
-    tmp = args.doc + ".tmp"
-    with open(tmp, "w") as f:
-        f.write("\n".join(new))
-    os.replace(tmp, args.doc)
-    print(f"{args.doc}: help blocks rewritten")
-    return 0
-
+    status = write_or_check(args.doc, lines, new, args.check, "aamap --help")
+    keys = subprocess.run([args.aamap, "run", "--list-keys"], check=True, capture_output=True, text=True).stdout
+    with open(args.config_doc) as f:
+        config = f.read().split("\n")
+    status |= write_or_check(args.config_doc, config, rewrite_keys(config, keys.rstrip("\n").split("\n")), args.check,
+                             "aamap run --list-keys")
+    return status
 
 if __name__ == "__main__":
     sys.exit(main())

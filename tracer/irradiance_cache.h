@@ -28,8 +28,12 @@ struct IrradianceCacheSettings {
     int supersamples = 128;   // -as: extra samples spent on the cells with the largest differences
     float accuracy = 0.2f;    // -aa: a record is used where its error 1/w is below this
     int resolution = 64;      // -ar: minimum record radius = scene size / ar (0: no minimum)
+    // The pre-pass takes the first hits of one camera ray per gridStep x gridStep pixels (at
+    // least a 32 x 32 grid, or the image size if smaller). docs/irradiance-cache.md, "Wiring".
+    int gridStep = 4;
     std::uint64_t seed = 1;   // decorrelates caches; records are a pure function of it
     int threads = 0;          // pre-pass threads, 0 = all; the cache does not depend on it
+    bool operator==(const IrradianceCacheSettings&) const = default;
 };
 
 // What the integrator returns for one hemisphere ray.

@@ -178,7 +178,7 @@ RenderShading makeRenderShading(const EmbreeScene& geometry, const LightSet& lig
     out.source = std::make_unique<IrradianceSource>(settings, triangleBounds(geometry));
     out.integrator = std::make_unique<Integrator>(geometry, lights, shading, out.source.get());
     int gridW = 0, gridH = 0;
-    cacheGrid(width, height, shading.cacheGridStep, gridW, gridH);
+    cacheGrid(width, height, shading.cache.gridStep, gridW, gridH);
     const std::vector<CachePoint> points = cameraCachePoints(geometry, camera, gridW, gridH);
     out.source->build(*out.integrator, points);
 

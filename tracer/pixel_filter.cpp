@@ -24,43 +24,7 @@ float resolvedRadius(const PixelFilterSettings& s) {
     return 0.5f;
 }
 
-// The value among `all` whose toString() is `name`; false (and `value` unchanged) for none.
-template <class Enum>
-bool parseByName(const std::string& name, std::initializer_list<Enum> all, Enum& value) {
-    for (Enum e : all)
-        if (name == toString(e)) {
-            value = e;
-            return true;
-        }
-    return false;
-}
-
 }  // namespace
-
-const char* toString(PixelFilterType type) {
-    switch (type) {
-        case PixelFilterType::Box: return "box";
-        case PixelFilterType::Tent: return "tent";
-        case PixelFilterType::Gaussian: return "gaussian";
-    }
-    return "?";
-}
-
-const char* toString(PixelFilterMode mode) {
-    switch (mode) {
-        case PixelFilterMode::Importance: return "importance";
-        case PixelFilterMode::Convolution: return "convolution";
-    }
-    return "?";
-}
-
-bool parse(const std::string& name, PixelFilterMode& mode) {
-    return parseByName(name, {PixelFilterMode::Convolution, PixelFilterMode::Importance}, mode);
-}
-
-bool parse(const std::string& name, PixelFilterType& type) {
-    return parseByName(name, {PixelFilterType::Box, PixelFilterType::Tent, PixelFilterType::Gaussian}, type);
-}
 
 PixelFilter::PixelFilter(const PixelFilterSettings& settings)
     : type_(settings.type), radius_(resolvedRadius(settings)), sigma_(settings.stddev) {

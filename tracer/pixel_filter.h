@@ -23,6 +23,7 @@ enum class PixelFilterType {
     Tent,      // 1 - |x| / r (pbrt's triangle filter, Mitsuba's tent)
     Gaussian,  // exp(-x^2 / (2 sigma^2)) - exp(-r^2 / (2 sigma^2)), clamped at 0 (pbrt, Mitsuba)
 };
+// image.filter's names, declared with the schema (tracer/shading_params.cpp).
 const char* toString(PixelFilterType type);
 bool parse(const std::string& name, PixelFilterType& type);  // false for an unknown name
 

@@ -37,6 +37,8 @@ bool parse(const std::string& name, LightSampling& sampling);
 // How a textured albedo is looked up (ShadingSettings::textureFilter).
 enum class TextureFilter { Anisotropic, None };
 
+// The `shading` config section binds these fields (tracer/shading_params.cpp); each initializer is
+// the key's default.
 struct ShadingSettings {
     int areaLightSamples = 16;  // stratified shadow-ray samples per area light per hit (rounded to a square)
     ShadingMode mode = ShadingMode::Direct;
@@ -54,15 +56,13 @@ struct ShadingSettings {
     // (a mirror's reflection of the light) see emitters as always.
     bool hideEmitters = false;
     // Cache: the irradiance cache (-ab -ad -as -aa -ar; bounces 0 = no cache, shades as Direct).
-    // Its pre-pass takes the first hits of one camera ray per cacheGridStep x cacheGridStep pixels
-    // (at least a 32 x 32 grid, or the image size if smaller). docs/irradiance-cache.md, "Wiring".
     IrradianceCacheSettings cache;
-    int cacheGridStep = 4;
     LightSelection lightSelection = LightSelection::Contribution;  // many lights only (see above)
     LightSampling lightSampling = LightSampling::Auto;
     // Textured albedo: filtered over each ray's footprint (a ray cone, docs/tracer.md "Texture
     // filtering"), or the plain bilinear texel at the hit point (None).
     TextureFilter textureFilter = TextureFilter::Anisotropic;
+    bool operator==(const ShadingSettings&) const = default;
 };
 
 // The footprint a ray carries for texture filtering: its width `width` at the origin, growing by

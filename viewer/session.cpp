@@ -233,7 +233,7 @@ void ViewerSession::runTrace(TraceJob& job) {
         std::string why;
         if (reference) {
             // kept from an earlier trace of this view
-        } else if (config_.reference.type == "uniform") {
+        } else if (config_.reference.type == ReferenceType::Uniform) {
             {
                 std::lock_guard lock(mutex_);
                 referenceStatus_ = fmt::format("tracing the reference ({} rpp)", config_.reference.rpp);
@@ -242,7 +242,7 @@ void ViewerSession::runTrace(TraceJob& job) {
             TraceSettings ts = traceSettingsFor(config_, ref, width_, height_, threads_);
             ts.onTileFinished = cancellable;
             reference = tracer_.render(job.view, ts, toStrategySettings(ref, nullptr)).image;
-        } else if (config_.reference.type == "file") {
+        } else if (config_.reference.type == ReferenceType::File) {
             if (!job.atConfigView) why = "the reference file shows the config's view: press R to return to it";
             else reference = readExr(*config_.reference.resolvedPath(config_.file));
             if (reference && (reference->width() != width_ || reference->height() != height_)) {

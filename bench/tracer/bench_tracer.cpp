@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Tracer throughput benchmark (uniform n x n sampling)"};
     std::string sceneSpec = "builtin:cornell";
     int size = 512, strata = 6, threads = 0, lightSamples = 16, repeat = 3, maxDepth = 5;
-    std::string mode = aamap::toString(aamap::ShadingConfig().mode), filter = "box", lightSampling = "auto";
+    std::string mode = aamap::toString(aamap::ShadingSettings().mode), filter = "box", lightSampling = "auto";
     std::string filterMode = aamap::toString(aamap::PixelFilterSettings{}.mode);
     aamap::IrradianceCacheSettings cache;
     int gridStep = 4;
@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
     aamap::parse(mode, settings.shading.mode);  // CLI11 checked the name against the schema's
     aamap::parse(lightSampling, settings.shading.lightSampling);  // CLI11 checked the name
     settings.shading.cache = cache;
-    settings.shading.cacheGridStep = gridStep;
+    settings.shading.cache.gridStep = gridStep;
     settings.shading.maxDepth = maxDepth;
     settings.shading.hideEmitters = scene.render.hideEmitters;  // a Mitsuba file's integrator's, as its view
     aamap::parse(filter, settings.filter.type);

@@ -46,7 +46,7 @@ public:
             for (int x = 0; x < kW; ++x) {
                 const int rays = aamap && aamap->at(x, y) == 0.0f ? 1 : r.rpp;
                 const float v = x < kW / 2 ? 0.05f : x > kW / 2 ? 0.8f : 0.8f * (1.0f - 1.0f / (1.0f + rays));
-                t.image.at(x, y) = glm::vec3(v + (r.shadingMode == "path" ? 0.0f : shadingBias));
+                t.image.at(x, y) = glm::vec3(v + (r.shadingMode == ShadingMode::Path ? 0.0f : shadingBias));
                 t.primaryRays.at(x, y) = static_cast<std::uint16_t>(rays);
             }
         if (halfNoise >= 0.0f && r.strategy == "uniform" && r.rpp >= 4) {

@@ -154,12 +154,12 @@ TEST_F(Files, MitsubaIntegratorDecidesTheDepthsTheConfigLeavesOut) {
     EXPECT_TRUE(noted("asks 64 samples per pixel"));
     EXPECT_TRUE(noted("reference.rpp: 64 would match the file"));  // the reference traces the renders' 1
     // The film's filter where the config names none, said so; the key follows the file.
-    EXPECT_EQ(effective.image.filter, "gaussian");
+    EXPECT_EQ(effective.image.filter.type, PixelFilterType::Gaussian);
     EXPECT_TRUE(noted("image.filter gaussian from the scene file's film"));
     const ExperimentConfig boxGiven = loadConfig(cfg, {"image.filter=box"});
     EXPECT_NE(renderKey(silent, silent.renders[0]), renderKey(boxGiven, boxGiven.renders[0]));
     notes.clear();
-    EXPECT_EQ(withSceneRenderSettings(boxGiven, p.scene, notes).image.filter, "box");
+    EXPECT_EQ(withSceneRenderSettings(boxGiven, p.scene, notes).image.filter.type, PixelFilterType::Box);
     EXPECT_TRUE(noted("'gaussian' filter; the renders use image.filter box as the config says"));
     notes.clear();
 

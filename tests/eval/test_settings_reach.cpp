@@ -28,6 +28,8 @@
 #include "eval/runner.h"
 #include "eval/strategies.h"
 #include "eval/strategy_settings.h"
+#include "passes/snapshot_params.h"
+#include "tracer/shading_params.h"
 #include "scene/light_file.h"
 #include "scene/scene.h"
 #include "tests/common/temp_dir.h"
@@ -139,7 +141,7 @@ std::vector<std::string> tracedJobs(const ExperimentConfig& c) {
     RecordingBackend backend;
     runExperimentWith(c, dir.path() / "out", backend, RunnerOptions{"test", false});
     std::vector<std::string> jobs;
-    for (const RenderConfig& r : backend.jobs) jobs.push_back(fmt::format("{} {} {} {}", r.name, r.strategy, r.rpp, r.shadingMode));
+    for (const RenderConfig& r : backend.jobs) jobs.push_back(fmt::format("{} {} {} {}", r.name, r.strategy, r.rpp, r.shadingMode ? toString(*r.shadingMode) : "-"));
     return jobs;
 }
 
@@ -209,12 +211,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                          differs([](const ExperimentConfig& c, int) { return prepared(c).height; })};
     t["image.exposure"] = {{}, {"image.exposure=2.5"}, Renders::All, true,
                            becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.exposure; }, 2.5f)};
-    // The pixel filter: every traced image, never the Snapshot.
+    // The pixel filter: every traced image, never the Snapshot (the others from the schema).
     const auto filter = [](const ExperimentConfig& c, int) { return traceSettingsFor(c, c.renders.front(), 8, 8, -1).filter; };
-    t["image.filter"] = {{}, {"image.filter=tent"}, Renders::All, false,
-                         becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).type; }, PixelFilterType::Tent)};
-    t["image.filter_radius"] = {{}, {"image.filter_radius=1.5"}, Renders::All, false,
-                                becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).radius; }, 1.5f)};
     t["image.filter_stddev"] = {{"image.filter=gaussian"}, {"image.filter_stddev=0.3"}, Renders::All, false,
                                 becomes([filter](const ExperimentConfig& c, int i) { return filter(c, i).stddev; }, 0.3f)};
     t["image.filter_mode"] = {{"image.filter=gaussian"}, {"image.filter_mode=importance"}, Renders::All, false,
@@ -228,68 +226,8 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
     t["threads"] = {{}, {"threads=3"}, Renders::None, false, becomes([](const ExperimentConfig& c, int) {
                         return traceSettingsFor(c, c.renders.front(), 8, 8, -1).threads;
                     }, 3)};
-    // The Snapshot: its key and the renders that read its map.
-    t["snapshot.scale"] = {{}, {"snapshot.scale=2"}, Renders::UsingAamap, true,
-                           becomes([](const ExperimentConfig& c, int) { return snap(c, 0).scale; }, 2.0f)};
-    t["snapshot.area_light_samples"] = {{}, {"snapshot.area_light_samples=9"}, Renders::UsingAamap, true,
-                                        becomes([](const ExperimentConfig& c, int) { return snap(c, 0).areaLightSamples; }, 9)};
-    t["snapshot.blur_radius"] = {{}, {"snapshot.blur_radius=3"}, Renders::UsingAamap, true,
-                                 becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.blurRadius; }, 3)};
-    t["snapshot.flat_range"] = {{}, {"snapshot.flat_range=0.25"}, Renders::UsingAamap, true,
-                                becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.flatRange; }, 0.25f)};
-    t["snapshot.noise_floor"] = {{}, {"snapshot.noise_floor=0.125"}, Renders::UsingAamap, true,
-                                 becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.noiseFloor; }, 0.125f)};
-    t["snapshot.gain"] = {{}, {"snapshot.gain=3.5"}, Renders::UsingAamap, true,
-                          becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.gain; }, 3.5f)};
-    t["snapshot.environment_lights"] = {{}, {"snapshot.environment_lights=3"}, Renders::UsingAamap, true,
-                                        becomes([](const ExperimentConfig& c, int) { return snap(c, 0).environmentLights; }, 3)};
-    // The canonical JSON holds every key: the first base ("lists") has each at its default.
-    t["snapshot.soft_shadows"] = {{}, {"snapshot.soft_shadows=false"}, Renders::UsingAamap, true,
-                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).shadows.softShadows; }, false)};
-    t["snapshot.map"] = {{}, {"snapshot.map=geometric"}, Renders::UsingAamap, true,
-                         becomes([](const ExperimentConfig& c, int) { return snap(c, 0).map; }, passes::AamapSource::Geometric)};
-    // Read by the subpixel map only; in the keys whenever it is not at its default.
-    t["snapshot.subpixel"] = {{}, {"snapshot.subpixel=4"}, Renders::UsingAamap, true,
-                              becomes([](const ExperimentConfig& c, int) { return snap(c, 0).subpixel; }, 4)};
-    // Shading: every traced image, never the Snapshot.
-    t["shading.area_light_samples"] = {{}, {"shading.area_light_samples=9"}, Renders::All, false,
-                                       becomes([](const ExperimentConfig& c, int) { return shade(c, 0).areaLightSamples; }, 9)};
-    t["shading.mode"] = {{}, {"shading.mode=path"}, Renders::All, false,
-                         becomes([](const ExperimentConfig& c, int) { return shade(c, 0).mode; }, ShadingMode::Path)};
-    t["shading.max_depth"] = {{}, {"shading.max_depth=3"}, Renders::All, false,
-                              becomes([](const ExperimentConfig& c, int) { return shade(c, 0).maxDepth; }, 3)};
-    t["shading.russian_roulette"] = {{}, {"shading.russian_roulette=false"}, Renders::All, false,
-                                     becomes([](const ExperimentConfig& c, int) { return shade(c, 0).russianRoulette; }, false)};
-    t["shading.roulette_depth"] = {{}, {"shading.roulette_depth=2"}, Renders::All, false,
-                                   becomes([](const ExperimentConfig& c, int) { return shade(c, 0).rouletteDepth; }, 2)};
-    t["shading.hide_emitters"] = {{}, {"shading.hide_emitters=true"}, Renders::All, false,
-                                  becomes([](const ExperimentConfig& c, int) { return shade(c, 0).hideEmitters; }, true)};
-    t["shading.max_specular_depth"] = {{}, {"shading.max_specular_depth=2"}, Renders::All, false,
-                                       becomes([](const ExperimentConfig& c, int) { return shade(c, 0).maxSpecularDepth; }, 2)};
-    t["shading.glossy_reflection_alpha"] = {{}, {"shading.glossy_reflection_alpha=0.5"}, Renders::All, false,
-                                            becomes([](const ExperimentConfig& c, int) {
-                                                return shade(c, 0).glossyReflectionAlpha;
-                                            }, 0.5f)};
-    t["shading.light_selection"] = {{}, {"shading.light_selection=power"}, Renders::All, false,
-                                    becomes([](const ExperimentConfig& c, int) { return shade(c, 0).lightSelection; },
-                                            LightSelection::Power)};
-    t["shading.light_sampling"] = {{}, {"shading.light_sampling=area"}, Renders::All, false,
-                                   becomes([](const ExperimentConfig& c, int) { return shade(c, 0).lightSampling; },
-                                           LightSampling::Area)};
-    t["shading.texture_filter"] = {{}, {"shading.texture_filter=none"}, Renders::All, false,
-                                   becomes([](const ExperimentConfig& c, int) { return shade(c, 0).textureFilter; },
-                                           TextureFilter::None)};
-    // The irradiance cache, in cache mode (every render reads it; the other modes' keys leave it out).
-    const auto cache = [&](const std::string& key, const std::string& value, auto get, auto expected) {
-        t["shading.cache." + key] = {{"shading.mode=cache"}, {"shading.cache." + key + "=" + value}, Renders::All, false,
-                                     becomes([get](const ExperimentConfig& c, int) { return get(shade(c, 0)); }, expected)};
-    };
-    cache("bounces", "3", [](const ShadingSettings& s) { return s.cache.bounces; }, 3);
-    cache("divisions", "100", [](const ShadingSettings& s) { return s.cache.divisions; }, 100);
-    cache("supersamples", "16", [](const ShadingSettings& s) { return s.cache.supersamples; }, 16);
-    cache("accuracy", "0.35", [](const ShadingSettings& s) { return s.cache.accuracy; }, 0.35f);
-    cache("resolution", "20", [](const ShadingSettings& s) { return s.cache.resolution; }, 20);
-    cache("grid_step", "6", [](const ShadingSettings& s) { return s.cacheGridStep; }, 6);
+    // The snapshot, shading and shading.cache keys and the pixel filter's come from their schemas
+    // (schemaAlternatives below); only keys whose alternative needs another key are listed here.
     // One render's entry: its own key only.
     t["renders.#.name"] = {{}, {"renders.#.name=renamed"}, Renders::None, false,
                            becomes([](const ExperimentConfig& c, int i) { return c.renders[i].name; }, std::string("renamed"))};
@@ -365,8 +303,9 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
     return t;
 }
 
-// A value of a strategy parameter other than its default, inside its declared range.
+// A value of a key other than its default, inside its declared range.
 std::optional<std::string> otherValue(const ParamSpec& p) {
+    if (p.type == ParamType::Bool) return std::get<bool>(p.defaultParam()) ? "false" : "true";
     if (p.type == ParamType::Choice) {
         if (p.choices.size() < 2) return std::nullopt;
         return p.choices[1];  // the first is the default
@@ -376,6 +315,29 @@ std::optional<std::string> otherValue(const ParamSpec& p) {
     double v = p.defaultValue < p.hi ? (integer ? p.defaultValue + 1 : (p.defaultValue + p.hi) / 2) : p.lo;
     if (!integer && p.defaultValue < p.hi && p.hi > 1e3) v = p.defaultValue + 1;  // a finite, readable value
     return formatNumber(v);
+}
+
+// The keys of the sections the tracer and the Snapshot own, from their schemas: a key added there
+// is walked without an edit here. Its alternative is another value in its range; it must change
+// what the consumer receives (the Snapshot's settings, the tracer's shading or pixel filter), the
+// Snapshot's key and the keys of the renders that read it.
+void schemaAlternatives(std::map<std::string, Alternative>& t) {
+    const auto add = [&t](const std::string& section, const std::vector<ParamSpec>& specs, std::vector<std::string> given,
+                          Renders renders, bool snapshot, const std::function<void(const Change&)>& reaches) {
+        for (const ParamSpec& p : specs)
+            if (const auto value = otherValue(p))
+                t.try_emplace(section + "." + p.name, Alternative{given, {section + "." + p.name + "=" + *value}, renders,
+                                                                  snapshot, reaches});
+    };
+    add("snapshot", snapshotParams(), {}, Renders::UsingAamap, true,
+        differs([](const ExperimentConfig& c, int) { return snap(c, 0); }));
+    add("shading", shadingParams(), {}, Renders::All, false, differs([](const ExperimentConfig& c, int) { return shade(c, 0); }));
+    // The irradiance cache is read in cache mode only (the other modes' keys leave it out).
+    add("shading.cache", shadingCacheParams(), {"shading.mode=cache"}, Renders::All, false,
+        differs([](const ExperimentConfig& c, int) { return shade(c, 0); }));
+    add("image", pixelFilterSchema().specs(), {}, Renders::All, false, differs([](const ExperimentConfig& c, int) {
+            return traceSettingsFor(c, c.renders.front(), 8, 8, -1).filter;
+        }));
 }
 
 // --- The walk --------------------------------------------------------------------------------
@@ -470,6 +432,7 @@ protected:
 
 TEST_F(SettingsReach, EveryKeyChangesItsRendersItsSnapshotAndItsConsumer) {
     std::map<std::string, Alternative> table = alternatives(dir_.path());
+    schemaAlternatives(table);
     // Strategy parameters: an alternative for each, from the strategies table itself.
     for (const StrategyDescriptor& s : strategyRegistry())
         for (const ParamSpec& p : s.params) {

@@ -146,7 +146,7 @@ TEST(Sweep, ErrorsPointAtTheValue) {
 
 TEST(Sweep, ReferenceMetricsAndReportSections) {
     const ExperimentConfig c = parse("  - {strategy: aamap, rpp: [4, 16]}\n");
-    EXPECT_EQ(c.reference.type, "uniform");
+    EXPECT_EQ(c.reference.type, ReferenceType::Uniform);
     EXPECT_EQ(c.reference.rpp, 16);  // the largest rpp of the renders
     EXPECT_TRUE(c.metrics.flip);
     EXPECT_FALSE(c.metrics.flipHdr);
@@ -156,7 +156,7 @@ TEST(Sweep, ReferenceMetricsAndReportSections) {
                                      {"reference.rpp=64", "reference.mode=path", "metrics.flip_hdr=true",
                                       "shading.mode=cache", "report.plots=false"});
     EXPECT_EQ(d.reference.rpp, 64);
-    EXPECT_EQ(d.reference.mode, "path");
+    EXPECT_EQ(d.reference.mode, ShadingMode::Path);
     EXPECT_TRUE(d.metrics.flipHdr);
     EXPECT_EQ(d.shading.mode, ShadingMode::Cache);
     EXPECT_FALSE(d.report.plots);

@@ -253,7 +253,7 @@ TEST(CacheMode, OneRayMatches36AwayFromEdges) {
     const int size = 64;
     ShadingSettings sh = cacheShading(1, 256, 64);
     sh.cache.resolution = 16;  // coarser minimum radius: fewer misses in corners at this tiny size
-    sh.cacheGridStep = 1;
+    sh.cache.gridStep = 1;
     const TraceResult r1 = renderScene(scene, scene.views.front(), sh, size, 1);
     const TraceResult r36 = renderScene(scene, scene.views.front(), sh, size, 6);
     ShadingSettings direct;  // penumbrae: where the direct light's visibility is partial
