@@ -14,7 +14,7 @@ void CacheIntegrator::addIndirectDiffuse(const SurfaceHit& hit, const Sampler& s
                                          glm::vec3& L) const {
     // The hit's diffuse lobe as a Lambert surface of the same reflectance towards the viewer.
     L += bsdf::lambertEquivalent(*hit.material, hit.albedo, glm::dot(hit.wo, hit.shading)) * bsdf::kInvPi *
-         indirect_.indirectIrradiance(*this, hit, sampler, depth, rays);
+         indirect_.indirectIrradiance(hit, sampler, depth, rays);
 }
 
 }  // namespace aamap

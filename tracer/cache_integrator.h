@@ -11,9 +11,9 @@ class IndirectDiffuseSource {
 public:
     virtual ~IndirectDiffuseSource() = default;
     // Indirect irradiance E (W/m^2) at a diffuse hit, about hit.shading; the integrator reflects
-    // hit.albedo / pi * E. May call back into the integrator (radianceDirect, directLight).
-    virtual glm::vec3 indirectIrradiance(const DirectIntegrator& integrator, const SurfaceHit& hit,
-                                         const Sampler& sampler, int depth, RayCounts& rays) const = 0;
+    // hit.albedo / pi * E. Counts the rays it traces in `rays`.
+    virtual glm::vec3 indirectIrradiance(const SurfaceHit& hit, const Sampler& sampler, int depth,
+                                         RayCounts& rays) const = 0;
 };
 
 class CacheIntegrator final : public DirectIntegrator {

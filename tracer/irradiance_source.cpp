@@ -59,8 +59,7 @@ void IrradianceSource::build(std::span<const CachePoint> points) {
     tRenderRays = previous;
 }
 
-glm::vec3 IrradianceSource::indirectIrradiance(const DirectIntegrator&, const SurfaceHit& hit, const Sampler&, int,
-                                               RayCounts& rays) const {
+glm::vec3 IrradianceSource::indirectIrradiance(const SurfaceHit& hit, const Sampler&, int, RayCounts& rays) const {
     RayCounts* const previous = tRenderRays;
     tRenderRays = &rays;
     const glm::vec3 e = cache_.irradiance(hit.position, cacheNormal(hit), 0);

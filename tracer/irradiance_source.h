@@ -29,8 +29,8 @@ public:
     void build(std::span<const CachePoint> points);
 
     // E at the hit from the frozen cache (level 0). Rays of a miss are charged to `rays`.
-    glm::vec3 indirectIrradiance(const DirectIntegrator& integrator, const SurfaceHit& hit, const Sampler& sampler,
-                                 int depth, RayCounts& rays) const override;
+    glm::vec3 indirectIrradiance(const SurfaceHit& hit, const Sampler& sampler, int depth,
+                                 RayCounts& rays) const override;
 
     const IrradianceCache& cache() const { return cache_; }
     // Probe mode and the points it found uncovered (IrradianceCache::setProbe, takeMisses).

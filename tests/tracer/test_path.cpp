@@ -320,8 +320,7 @@ void expectLockstepEqualsSingleRays(const Scene& scene, ShadingMode mode) {
 // makeIntegrator is where a mode picks its integrator; the tracer asks that for its packet widths.
 TEST(Integrators, FactoryPicksTheModesClassAndPacketWidths) {
     struct Constant final : IndirectDiffuseSource {
-        glm::vec3 indirectIrradiance(const DirectIntegrator&, const SurfaceHit&, const Sampler&, int,
-                                     RayCounts&) const override {
+        glm::vec3 indirectIrradiance(const SurfaceHit&, const Sampler&, int, RayCounts&) const override {
             return glm::vec3(1.0f);
         }
     } source;
