@@ -114,6 +114,8 @@ glm::vec3 sumSpecularBranches(const SurfaceHit& hit, Follow&& follow) {
 
 class IndirectDiffuseSource;
 
+// What the tracer renders with (one per render, from makeIntegrator), and the steps every
+// integrator shares. Const and stateless per call: threads share one.
 class Integrator {
 public:
     virtual ~Integrator() = default;
@@ -162,7 +164,7 @@ public:
 
 protected:
     // name: for the log. autoSampling: what ShadingSettings::lightSampling's Auto means for this
-    // integrator (docs/tracer.md, "Area lights").
+    // integrator (docs/tracer.md, "Lights").
     Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading, const char* name,
                LightSampling autoSampling);
 

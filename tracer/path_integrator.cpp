@@ -36,7 +36,7 @@ bool lightToward(const SurfaceHit& hit, const glm::vec3& wi, float diffusePick, 
 
 }  // namespace
 
-// One light sample per vertex: Auto samples area lights by area (docs/tracer.md, "Area lights").
+// One light sample per vertex: Auto samples area lights by area (docs/tracer.md, "Lights").
 PathIntegrator::PathIntegrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading)
     : Integrator(geometry, lights, shading, "path", LightSampling::Area) {}
 
