@@ -1,17 +1,18 @@
 #pragma once
 // Radiance along a ray: the shading budget (docs/tracer.md), separate from the primary-ray
-// (antialiasing) budget. Three modes (ShadingSettings::mode):
-// - Direct: emission, direct light from every light type (point lights one shadow ray each, area
-//   lights an m x m stratified pattern per hit traced as 8-wide packets; with many lights, m x m
-//   samples spread over a per-hit contribution CDF, or the global power CDF, their shadow rays
-//   traced 8 at a time too), BSDF samples of glossy lobes (their emission hits MIS-weighted
-//   against the light samples, what else they hit shaded as Direct shades it) and mirror/glass
-//   recursion;
-// - Cache: Direct plus indirect diffuse from an IndirectDiffuseSource (the irradiance cache);
-// - Path: unbiased path tracing with next-event estimation, MIS and Russian roulette
-//   (path_integrator.cpp).
+// (antialiasing) budget. The tracer renders through the abstract Integrator; makeIntegrator picks
+// the class for ShadingSettings::mode, once per render:
+// - DirectIntegrator (direct_integrator.h): emission, direct light from every light type, BSDF
+//   samples of glossy lobes and mirror/glass recursion;
+// - CacheIntegrator (cache_integrator.h): Direct plus indirect diffuse from an
+//   IndirectDiffuseSource (the irradiance cache);
+// - PathIntegrator (path_integrator.h): unbiased path tracing with next-event estimation, MIS and
+//   Russian roulette.
+// Integrator itself holds what they share: the scene, the hit record (fillHit), shadow rays, the
+// environment and how area lights are viewed.
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 
 #include <embree3/rtcore.h>
 #include <glm/vec3.hpp>
@@ -111,23 +112,15 @@ glm::vec3 sumSpecularBranches(const SurfaceHit& hit, Follow&& follow) {
     return L;
 }
 
-class Integrator;
+class IndirectDiffuseSource;
 
-// The hook for indirect diffuse light in Cache mode (implemented by the irradiance cache).
-class IndirectDiffuseSource {
-public:
-    virtual ~IndirectDiffuseSource() = default;
-    // Indirect irradiance E (W/m^2) at a diffuse hit, about hit.shading; the integrator reflects
-    // hit.albedo / pi * E. May call back into the integrator (radianceDirect, directLight).
-    virtual glm::vec3 indirectIrradiance(const Integrator& integrator, const SurfaceHit& hit, const Sampler& sampler,
-                                         int depth, RayCounts& rays) const = 0;
-};
-
+// What the tracer renders with (one per render, from makeIntegrator), and the steps every
+// integrator shares. Const and stateless per call: threads share one.
 class Integrator {
 public:
-    // `indirect` is used in Cache mode only (not owned; may be null: then Cache shades as Direct).
-    Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading,
-               const IndirectDiffuseSource* indirect = nullptr);
+    virtual ~Integrator() = default;
+    Integrator(const Integrator&) = delete;
+    Integrator& operator=(const Integrator&) = delete;
 
     // Radiance arriving at `origin` from unit direction -dir. Counts every ray it traces in `rays`
     // (the primary ray in rays.primary). Allocates nothing. spread: the angle (radians) the ray's
@@ -138,29 +131,27 @@ public:
     // (rh: its Embree result, e.g. one lane of a packet of coherent primary rays).
     glm::vec3 primaryFromHit(const RTCRayHit& rh, const glm::vec3& dir, const Sampler& sampler, RayCounts& rays,
                              float spread = 0.0f) const;
-    // Path mode (ShadingMode::Path only): primaryFromHit for the lanes [0, count) of a packet of
-    // primary rays already traced, each with its own sampler and spread, into out[0, count). Each
-    // lane's radiance is the one primaryFromHit gives it; the paths' shadow and bounce rays are
-    // traced as packets too.
-    static constexpr int kPathPacket = 8;
-    void primaryPaths(const RayPacket<kPathPacket>& primaries, int count, const Sampler* samplers,
-                      const float* spreads, glm::vec3* out, RayCounts& rays) const;
 
-    // Building blocks (also for the irradiance cache). intersect: false on a miss; counts the ray
-    // in rays.other. radianceDirect: what Direct mode sees along a secondary ray (emission + direct
-    // light + specular recursion; no cache), depth = path vertex index for the sampler dimensions.
+    // The packet the tracer traces the next `samples` (>= 1) coherent primary rays of a pixel in:
+    // 1 (one ray, primary()), 4 or kMaxPacket (primaryPacket). By default 4 wide for 2-4 of them.
+    static constexpr int kMaxPacket = 8;
+    virtual int packetWidth(int samples) const { return samples == 1 ? 1 : samples <= 4 ? 4 : kMaxPacket; }
+    // primaryFromHit for the lanes [0, count) of a packet of primary rays already traced, each with
+    // its own sampler and spread, into out[0, count): each lane's radiance is the one
+    // primaryFromHit gives it (by default the lanes are shaded one by one, in lane order).
+    virtual void primaryPacket(const RayPacket<4>& primaries, int count, const Sampler* samplers,
+                               const float* spreads, glm::vec3* out, RayCounts& rays) const;
+    virtual void primaryPacket(const RayPacket<kMaxPacket>& primaries, int count, const Sampler* samplers,
+                               const float* spreads, glm::vec3* out, RayCounts& rays) const;
+
+    // The first hit along unit `dir` from `origin`: false on a miss; counts the ray in `counter`.
     // cone: the footprint the ray brings from `origin` (hit.cone gets its width at the hit).
     bool intersect(const glm::vec3& origin, const glm::vec3& dir, SurfaceHit& hit, std::uint64_t& counter,
                    RayCone cone = {}) const;
-    glm::vec3 radianceDirect(const glm::vec3& origin, const glm::vec3& dir, const Sampler& sampler, int depth,
-                             RayCounts& rays) const;
-    // Reflected radiance towards hit.wo from direct light (all light types), non-delta lobes only,
-    // by light samples alone (m x m per area light).
-    glm::vec3 directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
 
     // Radiance of the environment along a ray that leaves the scene in unit direction `dir`
-    // (black without one). Every mode returns it for escaping rays that are not hemisphere rays
-    // of the irradiance cache (the environment is sampled as direct light there).
+    // (black without one). Every integrator returns it for escaping rays that are not hemisphere
+    // rays of the irradiance cache (the environment is sampled as direct light there).
     glm::vec3 escaped(const glm::vec3& dir) const {
         return lights_.environment ? lights_.environment->radiance(dir) : glm::vec3(0.0f);
     }
@@ -169,96 +160,17 @@ public:
         return shading_.hideEmitters ? glm::vec3(0.0f) : escaped(dir);
     }
 
-    int areaLightGrid() const { return lightGrid_; }  // m: m x m samples per area light per hit
     const ShadingSettings& settings() const { return shading_; }
 
-private:
-    // What direct light at a hit spends: grid m (m x m light samples per area light, or in all
-    // with many lights, and for the environment) and the glossy samples taken there, against
-    // which the light samples' glossy part is MIS-weighted (0: light samples alone).
-    struct LightBudget {
-        int grid;
-        int glossySamples;
-    };
-    glm::vec3 directLight(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
-                          RayCounts& rays) const;
-    // Direct/Cache shading of a hit, following mirror/glass bounces and glossy samples up to
-    // maxSpecularDepth. emission: the weight of the hit's own emission (an MIS weight under a
-    // glossy sample). grid: the light grid m here (0: ShadingSettings' own).
-    glm::vec3 shadeDirect(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
-                          RayCounts& rays, float emission = 1.0f, int grid = 0) const;
-    // How many BSDF samples of the glossy lobe shadeDirect takes at a hit (0: none).
-    int glossySampleCount(const ShadingMaterial& m, int specular, float weight) const;
-    // The glossy lobe's reflection of the scene: `count` BSDF samples, what each hits shaded as
-    // shadeDirect shades (emission MIS-weighted against the light samples); escaping samples add
-    // nothing (the environment is direct light, environmentDirect).
-    // Their hits take grid / g light samples per axis (at least 1), so the g x g subtrees together
-    // take about as many light samples as the hit itself.
-    glm::vec3 glossyReflection(const SurfaceHit& hit, const Sampler& sampler, int depth, int specular, float weight,
-                               int count, int grid, RayCounts& rays) const;
-    // The solid-angle density with which directLight's light samples at `from` reach point `at`
-    // (a hit on area light `area`, seen along at.wo), summed over its samples: n_light pdf.
-    float lightSamplesPdf(const SurfaceHit& from, const SurfaceHit& at, std::size_t area, int grid) const;
-    glm::vec3 traceSpecular(const glm::vec3& origin, const glm::vec3& dir, RayCone cone, const Sampler& sampler,
-                            int depth, int specular, float weight, int grid, RayCounts& rays) const;
-    glm::vec3 directFewLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
-                              RayCounts& rays) const;
-    glm::vec3 directManyLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
-                               RayCounts& rays) const;
-    // Many lights, LightSelection::Contribution: samples distributed over a per-hit CDF.
-    glm::vec3 directPerHitLights(const SurfaceHit& hit, const Sampler& sampler, int depth, LightBudget budget,
-                                 RayCounts& rays) const;
-    // The view of the last area light sampled from one hit: per-hit selection takes runs of
-    // samples from one light, which then share its solid angles and sampling setup.
-    struct LastLightView {
-        std::size_t light = ~std::size_t{0};
-        LightView view;
-    };
-    // One shadow sample of light l for the many-light paths, divided by its selection probability,
-    // before its shadow ray: what it adds if the segment origin -> target (t up to tfar) is clear.
-    struct PendingShadow {
-        glm::vec3 target;
-        glm::vec3 contribution;
-        float tfar;
-    };
-    // False if the sample adds nothing whatever the visibility (faces away, zero weight).
-    // budget: as directLight's (the glossy lobe's part is MIS-weighted against its glossy samples).
-    bool prepareLightSample(const SurfaceHit& hit, std::size_t l, glm::vec2 u, float pick, LightBudget budget,
-                            LastLightView& last, PendingShadow& out) const;
-    // Traces the shadow rays of count <= 8 prepared samples from `origin` as one packet; the sum
-    // of the contributions of those that reach their light, in sample order.
-    glm::vec3 traceLightSamples(const glm::vec3& origin, const PendingShadow* samples, int count,
-                                RayCounts& rays) const;
-    // The lights at infinity (directional lights one shadow ray each, the environment m x m light
-    // and m x m BSDF samples with MIS; a constant environment BSDF samples only), for Direct/Cache.
-    glm::vec3 directInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, int grid, RayCounts& rays) const;
-    glm::vec3 environmentDirect(const SurfaceHit& hit, const glm::vec3& origin, const Sampler& sampler, int depth,
-                                int grid, RayCounts& rays) const;
-    // Path mode (path_integrator.cpp): the whole path from a primary hit.
-    glm::vec3 tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const;
-    // Path mode's steps (path_integrator.cpp). PathState: one path between two vertices;
-    // PathVertex: what scattering at a vertex asks the ray tracer for.
-    struct PathState;
-    struct PathVertex;
-    // Shades s.hit: adds its emission, prepares next-event estimation and samples the next
-    // direction (out says which rays to trace). Rays for lights at infinity are traced here.
-    void scatterPathVertex(PathState& s, const Sampler& sampler, PathVertex& out, RayCounts& rays) const;
-    // Adds the vertex's next-event estimate; visible: its shadow segment was clear.
-    void addNextEvent(PathState& s, const PathVertex& v, bool visible) const;
-    // Ends a path whose next ray left the scene: what the environment sends back along it.
-    void endPath(PathState& s, const PathVertex& v) const;
-    // One point or area light from the power CDF, MIS-weighted against BSDF sampling, before its
-    // shadow ray: false if it adds nothing whatever the visibility; else what it adds when the
-    // segment is clear.
-    bool prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                                glm::vec3& contribution, ShadowSegment& segment) const;
-    // Every directional light and one environment-map sample (a constant environment is left to
-    // BSDF sampling), their shadow rays traced here.
-    glm::vec3 nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                                RayCounts& rays) const;
-    // What a BSDF-sampled ray that left the scene brings back, MIS-weighted against the
-    // environment's light samples (pdfBefore: the BSDF sample's solid-angle pdf).
-    glm::vec3 escapedPath(const glm::vec3& dir, bool specularBefore, float pdfBefore) const;
+protected:
+    // name: for the log. autoSampling: what ShadingSettings::lightSampling's Auto means for this
+    // integrator (docs/tracer.md, "Lights").
+    Integrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading, const char* name,
+               LightSampling autoSampling);
+
+    // The radiance a camera ray brings back from its first hit (hit.cone: the camera's cone).
+    virtual glm::vec3 shadeCamera(const SurfaceHit& hit, const Sampler& sampler, RayCounts& rays) const = 0;
+
     // True if nothing blocks the segment from origin to target (shortened by `shorten` at the
     // target end). Traces one shadow ray.
     bool unoccluded(const glm::vec3& origin, const glm::vec3& target, float shorten, RayCounts& rays) const;
@@ -283,11 +195,24 @@ private:
     const EmbreeScene& geometry_;
     const LightSet& lights_;
     ShadingSettings shading_;
-    const IndirectDiffuseSource* indirect_;
     RTCScene scene_;
-    int lightGrid_;
-    int glossyGrid_;     // g: g x g glossy samples at a ray tree's first glossy hit (then 1)
-    bool bySolidAngle_;  // ShadingSettings::lightSampling resolved for the mode
+
+private:
+    template <int W>
+    void primaryLanes(const RayPacket<W>& primaries, int count, const Sampler* samplers, const float* spreads,
+                      glm::vec3* out, RayCounts& rays) const;
+
+    bool bySolidAngle_;  // ShadingSettings::lightSampling resolved for this integrator
 };
+
+// The integrator for shading.mode: the one place that maps a mode to its class. Cache mode reads
+// `indirect` (not owned, may be null: then it shades as Direct, which is what Cache mode without
+// a cache is).
+std::unique_ptr<Integrator> makeIntegrator(const EmbreeScene& geometry, const LightSet& lights,
+                                           const ShadingSettings& shading,
+                                           const IndirectDiffuseSource* indirect = nullptr);
+// Whether shading's integrator reads an IndirectDiffuseSource: Cache mode with bounces > 0, for
+// which makeRenderShading builds the irradiance cache.
+bool readsIndirectDiffuse(const ShadingSettings& shading);
 
 }  // namespace aamap

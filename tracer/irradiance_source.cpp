@@ -36,8 +36,10 @@ Bounds triangleBounds(const EmbreeScene& geometry) {
 
 }  // namespace
 
-IrradianceSource::IrradianceSource(const IrradianceCacheSettings& settings, const Bounds& sceneBounds)
-    : cache_(settings, sceneBounds, [this](const glm::vec3& o, const glm::vec3& d, int depth, std::uint64_t seed) {
+IrradianceSource::IrradianceSource(const IrradianceCacheSettings& settings, const Bounds& sceneBounds,
+                                   const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading)
+    : direct_(geometry, lights, shading),
+      cache_(settings, sceneBounds, [this](const glm::vec3& o, const glm::vec3& d, int depth, std::uint64_t seed) {
           return radiance(o, d, depth, seed);
       }) {}
 
@@ -50,16 +52,14 @@ glm::vec3 cacheNormal(const SurfaceHit& hit) { return hit.material->perturbed() 
 
 }  // namespace
 
-void IrradianceSource::build(const Integrator& integrator, std::span<const CachePoint> points) {
-    integrator_ = &integrator;
+void IrradianceSource::build(std::span<const CachePoint> points) {
     RayCounts* const previous = tRenderRays;
     tRenderRays = nullptr;  // the calling thread takes part in the pre-pass too
     cache_.build(points);
     tRenderRays = previous;
 }
 
-glm::vec3 IrradianceSource::indirectIrradiance(const Integrator&, const SurfaceHit& hit, const Sampler&, int,
-                                               RayCounts& rays) const {
+glm::vec3 IrradianceSource::indirectIrradiance(const SurfaceHit& hit, const Sampler&, int, RayCounts& rays) const {
     RayCounts* const previous = tRenderRays;
     tRenderRays = &rays;
     const glm::vec3 e = cache_.irradiance(hit.position, cacheNormal(hit), 0);
@@ -82,7 +82,7 @@ RadianceSample IrradianceSource::radiance(const glm::vec3& origin, const glm::ve
     RayCounts& rays = tRenderRays != nullptr ? *tRenderRays : prepassRays_.local();
     RadianceSample s;
     SurfaceHit hit;
-    if (!integrator_->intersect(origin, dir, hit, rays.other)) return s;
+    if (!direct_.intersect(origin, dir, hit, rays.other)) return s;
     s.distance = hit.distance;
     const ShadingMaterial& m = *hit.material;
     // Hidden light sources: an emitter's own emission is left out (L never adds Ke), since every
@@ -91,7 +91,7 @@ RadianceSample IrradianceSource::radiance(const glm::vec3& origin, const glm::ve
     const Sampler sampler(seed, 0, 0);
     glm::vec3 L(0.0f);
     if (m.kind != MaterialKind::Diffuse) L += specular(hit, sampler, depth, rays);
-    else if (m.diffuse || m.glossy) L += integrator_->directLight(hit, sampler, depth, rays);
+    else if (m.diffuse || m.glossy) L += direct_.directLight(hit, sampler, depth, rays);
     if (m.diffuse && depth < cache_.settings().bounces)
         L += bsdf::lambertEquivalent(m, hit.albedo, glm::dot(hit.wo, hit.shading)) * bsdf::kInvPi *
              cache_.irradiance(hit.position, cacheNormal(hit), depth);
@@ -101,19 +101,19 @@ RadianceSample IrradianceSource::radiance(const glm::vec3& origin, const glm::ve
 
 // A mirror or glass hit: its Lambert part's direct light, then each specular branch continues with
 // radianceDirect (Direct shading, emission included: light seen in a mirror is not sampled as
-// direct light). The branches are those of Integrator::shadeDirect (sumSpecularBranches).
+// direct light). The branches are those of DirectIntegrator::shadeDirect (sumSpecularBranches).
 glm::vec3 IrradianceSource::specular(const SurfaceHit& hit, const Sampler& sampler, int depth,
                                      RayCounts& rays) const {
     const ShadingMaterial& m = *hit.material;
     glm::vec3 L(0.0f);
-    if (m.diffuse) L += integrator_->directLight(hit, sampler, depth, rays);
-    if (integrator_->settings().maxSpecularDepth < 1) return L;
+    if (m.diffuse) L += direct_.directLight(hit, sampler, depth, rays);
+    if (direct_.settings().maxSpecularDepth < 1) return L;
     const glm::vec3 tint = m.kind == MaterialKind::Mirror
                                ? bsdf::deltaReflectance(m, std::clamp(glm::dot(hit.wo, hit.shading), 0.0f, 1.0f))
                                : m.ks;
     const auto follow = [&](const glm::vec3& d, float branch) {
         if (branch * bsdf::maxComponent(tint) < 1e-3f) return glm::vec3(0.0f);  // shadeDirect's cutoff
-        return tint * branch * integrator_->radianceDirect(hit.originFor(d), d, sampler, depth + 1, rays);
+        return tint * branch * direct_.radianceDirect(hit.originFor(d), d, sampler, depth + 1, rays);
     };
     L += sumSpecularBranches(hit, follow);
     return L;
@@ -144,7 +144,7 @@ RayCounts prepassRaysOf(const IrradianceSource& source, const CacheStats& s) {
 void RenderShading::addProbedRecords(const RayCounts& probeRays, double probeSeconds) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<CachePoint> missed = source->takeMisses();
-    if (!missed.empty()) source->build(*integrator, missed);
+    if (!missed.empty()) source->build(missed);
     CacheStats& s = prepass;
     s.probed = missed.size();
     s.records = source->cache().stats().records;
@@ -163,24 +163,19 @@ void cacheGrid(int width, int height, int step, int& gridW, int& gridH) {
 RenderShading makeRenderShading(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading,
                                 const PinholeCamera& camera, int width, int height, int threads) {
     RenderShading out;
-    if (shading.mode != ShadingMode::Cache || shading.cache.bounces <= 0) {
-        ShadingSettings plain = shading;
-        if (shading.mode == ShadingMode::Cache) {
-            spdlog::info("no cache: bounces {}", shading.cache.bounces);
-            plain.mode = ShadingMode::Direct;  // identical shading, without the integrator's warning
-        }
-        out.integrator = std::make_unique<Integrator>(geometry, lights, plain);
+    if (!readsIndirectDiffuse(shading)) {
+        out.integrator = makeIntegrator(geometry, lights, shading);
         return out;
     }
     const auto start = std::chrono::steady_clock::now();
     IrradianceCacheSettings settings = shading.cache;
     if (settings.threads == 0) settings.threads = threads;
-    out.source = std::make_unique<IrradianceSource>(settings, triangleBounds(geometry));
-    out.integrator = std::make_unique<Integrator>(geometry, lights, shading, out.source.get());
+    out.source = std::make_unique<IrradianceSource>(settings, triangleBounds(geometry), geometry, lights, shading);
+    out.integrator = makeIntegrator(geometry, lights, shading, out.source.get());
     int gridW = 0, gridH = 0;
     cacheGrid(width, height, shading.cache.gridStep, gridW, gridH);
     const std::vector<CachePoint> points = cameraCachePoints(geometry, camera, gridW, gridH);
-    out.source->build(*out.integrator, points);
+    out.source->build(points);
 
     CacheStats& s = out.prepass;
     s.built = true;

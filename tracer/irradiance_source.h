@@ -1,14 +1,15 @@
 #pragma once
 // Cache mode's indirect diffuse light (docs/tracer.md, the shading budget): an IndirectDiffuseSource over the
-// irradiance cache, whose hemisphere rays are shaded by the render's own Integrator. Wiring, ray
-// accounting and the candidate grid: docs/irradiance-cache.md, "Wiring".
+// irradiance cache, whose hemisphere rays are shaded as Direct mode shades (its own
+// DirectIntegrator). Wiring, ray accounting and the candidate grid: docs/irradiance-cache.md, "Wiring".
 #include <memory>
 #include <span>
 
 #include <glm/vec3.hpp>
 #include <tbb/enumerable_thread_specific.h>
 
-#include "tracer/integrator.h"
+#include "tracer/cache_integrator.h"
+#include "tracer/direct_integrator.h"
 #include "tracer/irradiance_cache.h"
 #include "tracer/tracer_types.h"
 
@@ -18,16 +19,18 @@ struct PinholeCamera;
 
 class IrradianceSource final : public IndirectDiffuseSource {
 public:
-    // `sceneBounds` sets the cache's scale (-ar). The cache is empty until build().
-    IrradianceSource(const IrradianceCacheSettings& settings, const Bounds& sceneBounds);
+    // `sceneBounds` sets the cache's scale (-ar). The hemisphere rays' hits are shaded with
+    // `shading` as Direct mode shades them (geometry and lights must outlive the source). The
+    // cache is empty until build().
+    IrradianceSource(const IrradianceCacheSettings& settings, const Bounds& sceneBounds, const EmbreeScene& geometry,
+                     const LightSet& lights, const ShadingSettings& shading);
 
-    // The pre-pass. `integrator` shades the hemisphere rays' hits (directLight, radianceDirect)
-    // here and during the render; it must be the one this source is passed to, and outlive it.
-    void build(const Integrator& integrator, std::span<const CachePoint> points);
+    // The pre-pass: records at `points` (and what their interpolation needs).
+    void build(std::span<const CachePoint> points);
 
     // E at the hit from the frozen cache (level 0). Rays of a miss are charged to `rays`.
-    glm::vec3 indirectIrradiance(const Integrator& integrator, const SurfaceHit& hit, const Sampler& sampler,
-                                 int depth, RayCounts& rays) const override;
+    glm::vec3 indirectIrradiance(const SurfaceHit& hit, const Sampler& sampler, int depth,
+                                 RayCounts& rays) const override;
 
     const IrradianceCache& cache() const { return cache_; }
     // Probe mode and the points it found uncovered (IrradianceCache::setProbe, takeMisses).
@@ -45,13 +48,15 @@ public:
 private:
     glm::vec3 specular(const SurfaceHit& hit, const Sampler& sampler, int depth, RayCounts& rays) const;
 
-    const Integrator* integrator_ = nullptr;
+    // The hemisphere rays' shading: Direct's, which never reads this source (no lookups under
+    // radianceDirect or directLight), so the render's own integrator would shade them alike.
+    DirectIntegrator direct_;
     IrradianceCache cache_;
     mutable tbb::enumerable_thread_specific<RayCounts> prepassRays_;
 };
 
 // What a render shades with: in Cache mode with bounces > 0 an IrradianceSource whose pre-pass
-// has run, and the Integrator that uses it; otherwise just the Integrator (Cache mode with
+// has run, and the integrator that reads it; otherwise just the integrator (Cache mode with
 // bounces 0 shades exactly as Direct). Members in this order: the integrator goes first.
 struct RenderShading {
     std::unique_ptr<IrradianceSource> source;  // null without a cache
@@ -71,8 +76,9 @@ struct RenderShading {
 // min(H, 32) so that small images still get a useful pre-pass.
 void cacheGrid(int width, int height, int step, int& gridW, int& gridH);
 
-// Builds the shading for one render: source, Integrator, then the pre-pass over the first hits of
-// the camera's candidate grid. `threads` (0 = all) is used when shading.cache.threads is 0.
+// Builds the shading for one render: the integrator makeIntegrator picks for shading.mode and, for
+// one that reads an indirect source, the source and its pre-pass over the first hits of the
+// camera's candidate grid. `threads` (0 = all) is used when shading.cache.threads is 0.
 RenderShading makeRenderShading(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading,
                                 const PinholeCamera& camera, int width, int height, int threads);
 

@@ -1,20 +1,11 @@
-// Path mode: unbiased path tracing, the ground truth for shading. Next-event estimation at every
-// non-delta vertex (one light sample, light picked on the power CDF, plus every directional light
-// and one environment-map sample), MIS with the power heuristic between light and BSDF sampling,
-// Russian roulette by throughput. Rays that leave the scene bring back the environment. Depth counts path
-// segments as Mitsuba's max_depth does.
-//
-// A path advances vertex by vertex: scatterPathVertex shades one vertex and says which shadow
-// segment and which next ray it needs; the caller traces them. tracePath traces them one at a
-// time; primaryPaths advances up to 8 paths in lockstep and traces their shadow segments
-// and their next rays as 8-wide Embree packets (docs/tracer.md, "Path mode").
+#include "tracer/path_integrator.h"
+
 #include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
 #include "tracer/bsdf.h"
-#include "tracer/integrator.h"
 #include "tracer/ray_packet.h"
 #include "tracer/shadow_packet.h"
 
@@ -45,8 +36,12 @@ bool lightToward(const SurfaceHit& hit, const glm::vec3& wi, float diffusePick, 
 
 }  // namespace
 
-glm::vec3 Integrator::nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                                        RayCounts& rays) const {
+// One light sample per vertex: Auto samples area lights by area (docs/tracer.md, "Lights").
+PathIntegrator::PathIntegrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading)
+    : Integrator(geometry, lights, shading, "path", LightSampling::Area) {}
+
+glm::vec3 PathIntegrator::nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                                            RayCounts& rays) const {
     glm::vec3 L(0.0f);
     float cosSurface = 0.0f;
     glm::vec3 origin;
@@ -64,7 +59,7 @@ glm::vec3 Integrator::nextEventInfinite(const SurfaceHit& hit, const Sampler& sa
     return L + e.f * s.radiance * (cosSurface * powerHeuristic(s.pdf, e.pdf) / s.pdf);
 }
 
-glm::vec3 Integrator::escapedPath(const glm::vec3& dir, bool specularBefore, float pdfBefore) const {
+glm::vec3 PathIntegrator::escapedPath(const glm::vec3& dir, bool specularBefore, float pdfBefore) const {
     if (!lights_.environment) return glm::vec3(0.0f);
     const EnvironmentSampler& env = *lights_.environment;
     // Only a map is light-sampled (nextEventInfinite); a constant sky comes from here alone.
@@ -73,8 +68,8 @@ glm::vec3 Integrator::escapedPath(const glm::vec3& dir, bool specularBefore, flo
 }
 
 
-bool Integrator::prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                                        glm::vec3& contribution, ShadowSegment& segment) const {
+bool PathIntegrator::prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
+                                            glm::vec3& contribution, ShadowSegment& segment) const {
     if (lights_.selectCdf.empty()) return false;
     glm::vec2 u = sampler.get2D(dims::path(depth, dims::PathSlot::Light));
     const std::size_t l = lights_.select(u.x);
@@ -119,7 +114,7 @@ bool Integrator::prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sa
 }
 
 // A path between two of its vertices: what carries over from one bounce to the next.
-struct Integrator::PathState {
+struct PathIntegrator::PathState {
     SurfaceHit hit;              // the vertex to scatter at
     glm::vec3 L{0.0f};           // radiance gathered so far
     glm::vec3 beta{1.0f};        // throughput up to `hit`
@@ -133,7 +128,7 @@ struct Integrator::PathState {
 // What scattering at one vertex asks of the ray tracer: a shadow segment for next-event
 // estimation and the ray the path goes on along. Either may be missing.
 // Only the flags are reset per vertex: the vectors are written before they are read.
-struct Integrator::PathVertex {
+struct PathIntegrator::PathVertex {
     bool nextEvent;  // NEE was done: L += neeBeta * (finite where its segment is clear + infinite)
     bool shadow;     // finite has a segment to test
     bool infiniteLights;
@@ -144,7 +139,7 @@ struct Integrator::PathVertex {
     void reset() { nextEvent = shadow = infiniteLights = next = false; }
 };
 
-void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVertex& out, RayCounts& rays) const {
+void PathIntegrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVertex& out, RayCounts& rays) const {
     const SurfaceHit& hit = s.hit;
     const ShadingMaterial& m = *hit.material;
     const int depth = s.depth;
@@ -260,17 +255,17 @@ void Integrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVer
     s.before = hit.position;
 }
 
-void Integrator::addNextEvent(PathState& s, const PathVertex& v, bool visible) const {
+void PathIntegrator::addNextEvent(PathState& s, const PathVertex& v, bool visible) const {
     glm::vec3 nee = visible ? v.finite : glm::vec3(0.0f);
     if (v.infiniteLights) nee += v.infinite;
     s.L += v.neeBeta * nee;
 }
 
-void Integrator::endPath(PathState& s, const PathVertex& v) const {
+void PathIntegrator::endPath(PathState& s, const PathVertex& v) const {
     s.L += s.beta * escapedPath(v.nextDir, s.specularBefore, s.pdfBefore);
 }
 
-glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const {
+glm::vec3 PathIntegrator::tracePath(const SurfaceHit& first, const Sampler& sampler, RayCounts& rays) const {
     PathState s;
     s.hit = first;
     for (;;) {
@@ -291,9 +286,9 @@ glm::vec3 Integrator::tracePath(const SurfaceHit& first, const Sampler& sampler,
     return s.L;
 }
 
-void Integrator::primaryPaths(const RayPacket<kPathPacket>& primaries, int count, const Sampler* samplers,
-                              const float* spreads, glm::vec3* out, RayCounts& rays) const {
-    constexpr int W = kPathPacket;
+void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int count, const Sampler* samplers,
+                                   const float* spreads, glm::vec3* out, RayCounts& rays) const {
+    constexpr int W = kMaxPacket;
     PathState s[W];
     int lanes[W];  // the paths still going, in lane order
     int active = 0;

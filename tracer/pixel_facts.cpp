@@ -53,7 +53,7 @@ PixelFacts tracePixelFacts(const EmbreeScene& geometry, const LightSet& lights, 
                            const PinholeCamera& camera, int width, int height, int threads) {
     PixelFacts facts(width, height);
     const ShadingSettings shading;
-    const Integrator integrator(geometry, lights, shading);
+    const std::unique_ptr<Integrator> integrator = makeIntegrator(geometry, lights, shading);  // for intersect
     const std::size_t lightCount = lights.points.size() + lights.areas.size();
     const float invW = 1.0f / static_cast<float>(width), invH = 1.0f / static_cast<float>(height);
 
@@ -70,7 +70,7 @@ PixelFacts tracePixelFacts(const EmbreeScene& geometry, const LightSet& lights, 
                 const glm::vec3 dir = glm::normalize(camera.direction(u, v));
                 SurfaceHit hit;
                 std::uint64_t counter = 0;
-                if (!integrator.intersect(camera.origin, dir, hit, counter)) {
+                if (!integrator->intersect(camera.origin, dir, hit, counter)) {
                     bits |= Background;
                     continue;
                 }

@@ -70,10 +70,10 @@ public:
 
     // The hot path of uniform/aamap sampling: one thread-local lookup per pixel. With k > 1 the
     // k x k primary rays of the pixel are coherent (one origin, directions within a pixel): they
-    // are traced as Embree packets (8 wide, 4 wide for the last 2-4, singly for a last one), then
-    // shaded one by one in sample order, so the sum (and the image) is the same as tracing them
-    // singly. Path mode shades a packet's lanes as paths in lockstep (Integrator::primaryPaths),
-    // its last 2-4 in an 8-wide packet too.
+    // are traced as Embree packets of the width the integrator asks for (Integrator::packetWidth:
+    // 8 wide, 4 wide for the last 2-4, singly for a last one), then shaded in sample order
+    // (Integrator::primaryPacket), so the sum (and the image) is the same as tracing them singly.
+    // Path mode advances a packet's lanes as paths in lockstep, its last 2-4 in an 8-wide packet too.
     glm::vec3 pixel(int x, int y, int k) const override {
         ThreadCounters& counters = counters_.local();
         glm::dvec3 sum(0.0);
@@ -134,28 +134,29 @@ public:
 
 private:
     // Samples index(0), ..., index(count - 1) of pixel (x, y), handed to `accumulate` in that
-    // order: 8-wide packets, 4 wide for a last 2-4 (8 wide in path mode), a single ray for a last one.
+    // order, in packets as wide as the integrator asks for the samples left.
     template <class Index, class Accumulate>
     void tracePackets(int x, int y, int k, int count, const Index& index, ThreadCounters& counters,
                       Accumulate& accumulate) const {
         for (int first = 0; first < count;) {
             const int left = count - first;
             const auto from = [&index, first](int lane) { return index(first + lane); };
-            if (left == 1) {
+            const int width = integrator_.packetWidth(left);
+            if (width == 1) {
                 const int s = index(first);
                 accumulate(radiance(x, y, s % k, s / k, k, counters, nullptr));
                 ++first;
-            } else if (left <= 4 && integrator_.settings().mode != ShadingMode::Path) {
-                first += tracePacket<4>(x, y, k, from, left, counters, accumulate);
+            } else if (width == 4) {
+                first += tracePacket<4>(x, y, k, from, std::min(left, 4), counters, accumulate);
             } else {
-                first += tracePacket<8>(x, y, k, from, std::min(left, 8), counters, accumulate);
+                constexpr int W = Integrator::kMaxPacket;
+                first += tracePacket<W>(x, y, k, from, std::min(left, W), counters, accumulate);
             }
         }
     }
 
     // Samples index(0), ..., index(count - 1) of pixel (x, y) as one packet of primary rays,
-    // handed to `accumulate` in that order; returns count. Path mode goes on with the lanes'
-    // paths in lockstep (their rays traced as packets).
+    // shaded by the integrator and handed to `accumulate` in that order; returns count.
     template <int W, class Index, class Accumulate>
     int tracePacket(int x, int y, int k, const Index& index, int count, ThreadCounters& counters,
                     Accumulate& accumulate) const {
@@ -165,25 +166,15 @@ private:
             packet.set(lane, camera_.origin, direction(x, y, s % k, s / k, k));
         }
         packet.traceFirst(geometry_.handle(), count, true);
-        if constexpr (W == Integrator::kPathPacket) {
-            if (integrator_.settings().mode == ShadingMode::Path) {
-                Sampler samplers[W];
-                float spreads[W];
-                glm::vec3 L[W];
-                for (int lane = 0; lane < count; ++lane) {
-                    samplers[lane] = Sampler(pixelIndex(x, y), static_cast<std::uint32_t>(index(lane)), seed_);
-                    spreads[lane] = spread(packet.dir[lane], k);
-                }
-                integrator_.primaryPaths(packet, count, samplers, spreads, L, counters.rays);
-                for (int lane = 0; lane < count; ++lane) accumulate(L[lane]);
-                return count;
-            }
-        }
+        Sampler samplers[W];
+        float spreads[W];
+        glm::vec3 L[W];
         for (int lane = 0; lane < count; ++lane) {
-            const Sampler sampler(pixelIndex(x, y), static_cast<std::uint32_t>(index(lane)), seed_);
-            accumulate(integrator_.primaryFromHit(packet.hit(lane), packet.dir[lane], sampler, counters.rays,
-                                                  spread(packet.dir[lane], k)));
+            samplers[lane] = Sampler(pixelIndex(x, y), static_cast<std::uint32_t>(index(lane)), seed_);
+            spreads[lane] = spread(packet.dir[lane], k);
         }
+        integrator_.primaryPacket(packet, count, samplers, spreads, L, counters.rays);
+        for (int lane = 0; lane < count; ++lane) accumulate(L[lane]);
         return count;
     }
 
@@ -272,7 +263,8 @@ TraceResult Tracer::render(const View& view, const TraceSettings& settings, cons
     const PixelFilter pixelBox;
     const PixelFilter& filmFilter = convolve ? pixelBox : filter;
     const PinholeCamera camera = PinholeCamera::fromView(view);
-    // Cache mode: builds the irradiance cache (its pre-pass) and the Integrator that reads it.
+    // The integrator for the shading mode; in Cache mode also the irradiance cache it reads (its
+    // pre-pass done).
     RenderShading shading =
         makeRenderShading(impl_->geometry, impl_->lights, settings.shading, camera, W, H, settings.threads);
     const Integrator& integrator = *shading.integrator;

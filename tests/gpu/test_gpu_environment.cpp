@@ -82,7 +82,8 @@ struct Traced {
 Traced trace(const Scene& scene, const View& view) {
     const EmbreeScene geometry(scene);
     const LightSet lights = buildLights(scene, geometry);
-    const Integrator integrator(geometry, lights, ShadingSettings{});
+    const std::unique_ptr<Integrator> owned = makeIntegrator(geometry, lights, ShadingSettings{});
+    const Integrator& integrator = *owned;
     const PinholeCamera camera = PinholeCamera::fromView(view);
     Traced t;
     for (int y = 0; y < kSize; ++y)

@@ -91,7 +91,8 @@ TEST_P(SpotShading, AgreesWithTheDirectLight) {
 
     const EmbreeScene geometry(scene);
     const LightSet lights = buildLights(scene, geometry);
-    const Integrator integrator(geometry, lights, ShadingSettings{});
+    const std::unique_ptr<Integrator> owned = makeIntegrator(geometry, lights, ShadingSettings{});
+    const Integrator& integrator = *owned;
     const PinholeCamera camera = PinholeCamera::fromView(view);
     // Past LightSet::kFewLights the tracer samples lights instead of summing them, so there the
     // reference is the sum itself: kd / pi * I * emissionFactor * cos / d^2 over the lights.

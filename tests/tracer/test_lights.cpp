@@ -141,7 +141,8 @@ void expectSpotKnownAnswers(ShadingMode mode, const Spot& spot) {
     ShadingSettings shading;
     shading.mode = mode;
     shading.maxDepth = 2;  // path: direct light only (the plane sees nothing else)
-    const Integrator integrator(geometry, lights, shading);
+    const std::unique_ptr<Integrator> owned = makeIntegrator(geometry, lights, shading);
+    const Integrator& integrator = *owned;
     // On the axis, inside the inner cone, across the falloff band, and outside the outer cone.
     for (double angle : {0.0, 12.0, 21.0, 25.0, 30.0, 35.0, 39.0, 41.0, 55.0}) {
         const glm::dvec3 x = pointAtAngle(spot, angle);
@@ -236,7 +237,8 @@ TEST(SpotLight, PerHitSelectionOverManyGreySpotsIsExact) {
     ShadingSettings shading;
     shading.lightSelection = LightSelection::Contribution;
     shading.areaLightSamples = 4;
-    const Integrator integrator(geometry, lights, shading);
+    const std::unique_ptr<Integrator> owned = makeIntegrator(geometry, lights, shading);
+    const Integrator& integrator = *owned;
     int lit = 0;
     for (double x = -3.0; x <= 3.0; x += 0.5)
         for (double z = -3.0; z <= 3.0; z += 0.75) {

@@ -9,8 +9,11 @@
 
 #include "tests/tracer/material_scenes.h"
 #include "tracer/embree_scene.h"
+#include "tracer/cache_integrator.h"
+#include "tracer/direct_integrator.h"
 #include "tracer/integrator.h"
 #include "tracer/lights.h"
+#include "tracer/path_integrator.h"
 #include "tracer/ray_packet.h"
 #include "tracer/sampler.h"
 
@@ -230,8 +233,9 @@ Scene scaledRoom(float s);
 // packets; each lane must come out exactly as the path traced one ray at a time (the room has a
 // mirror, glass, an area and a point light, and an open side that bounce rays escape through),
 // with the same rays, for full and partly filled packets.
-void expectLockstepEqualsSingleRays(const Scene& scene);
+void expectLockstepEqualsSingleRays(const Scene& scene, ShadingMode mode = ShadingMode::Path);
 TEST(PathMode, LockstepPacketsEqualSingleRayPaths) { expectLockstepEqualsSingleRays(scaledRoom(1.0f)); }
+TEST(DirectMode, PacketsEqualSingleRays) { expectLockstepEqualsSingleRays(scaledRoom(1.0f), ShadingMode::Direct); }
 
 // The room with Mitsuba's BSDFs: rough plastic walls, an anisotropic rough conductor for the
 // mirror, a rough dielectric for the glass block (lights sampled through it, from both sides).
@@ -273,15 +277,16 @@ TEST(PathMode, BitIdenticalForAnyThreadCountWithMitsubaBsdfs) {
     EXPECT_EQ(a.nonFiniteSamples, 0u);
 }
 
-void expectLockstepEqualsSingleRays(const Scene& scene) {
+void expectLockstepEqualsSingleRays(const Scene& scene, ShadingMode mode) {
     const EmbreeScene geometry(scene);
     const LightSet lights = buildLights(scene, geometry);
     ShadingSettings sh;
-    sh.mode = ShadingMode::Path;
+    sh.mode = mode;
     sh.maxDepth = 8;
-    const Integrator integrator(geometry, lights, sh);
+    const std::unique_ptr<Integrator> owned = makeIntegrator(geometry, lights, sh);
+    const Integrator& integrator = *owned;
     const glm::vec3 eye(0.0f, 1.0f, 3.9f);
-    constexpr int W = Integrator::kPathPacket;
+    constexpr int W = Integrator::kMaxPacket;
     int compared = 0;
     for (int pixel = 0; pixel < 256; ++pixel) {
         const int count = pixel % 3 == 0 ? 3 : W;
@@ -298,7 +303,7 @@ void expectLockstepEqualsSingleRays(const Scene& scene) {
         packet.traceFirst(geometry.handle(), count, true);
         glm::vec3 lockstep[W];
         RayCounts packetRays;
-        integrator.primaryPaths(packet, count, samplers, spreads, lockstep, packetRays);
+        integrator.primaryPacket(packet, count, samplers, spreads, lockstep, packetRays);
         RayCounts singleRays;
         for (int i = 0; i < count; ++i) {
             const glm::vec3 single = integrator.primaryFromHit(packet.hit(i), packet.dir[i], samplers[i], singleRays);
@@ -310,6 +315,39 @@ void expectLockstepEqualsSingleRays(const Scene& scene) {
         EXPECT_EQ(packetRays.other, singleRays.other);
     }
     EXPECT_GT(compared, 1500);
+}
+
+// makeIntegrator is where a mode picks its integrator; the tracer asks that for its packet widths.
+TEST(Integrators, FactoryPicksTheModesClassAndPacketWidths) {
+    struct Constant final : IndirectDiffuseSource {
+        glm::vec3 indirectIrradiance(const SurfaceHit&, const Sampler&, int, RayCounts&) const override {
+            return glm::vec3(1.0f);
+        }
+    } source;
+    const Scene scene = scaledRoom(1.0f);
+    const EmbreeScene geometry(scene);
+    const LightSet lights = buildLights(scene, geometry);
+    ShadingSettings sh;
+    const auto direct = makeIntegrator(geometry, lights, sh);
+    EXPECT_NE(dynamic_cast<const DirectIntegrator*>(direct.get()), nullptr);
+    EXPECT_EQ(dynamic_cast<const CacheIntegrator*>(direct.get()), nullptr);
+    EXPECT_EQ(direct->packetWidth(1), 1);
+    EXPECT_EQ(direct->packetWidth(3), 4);
+    EXPECT_EQ(direct->packetWidth(5), 8);
+    sh.mode = ShadingMode::Path;
+    const auto path = makeIntegrator(geometry, lights, sh);
+    EXPECT_NE(dynamic_cast<const PathIntegrator*>(path.get()), nullptr);
+    EXPECT_EQ(path->packetWidth(1), 1);
+    EXPECT_EQ(path->packetWidth(2), 8);
+    sh.mode = ShadingMode::Cache;
+    EXPECT_TRUE(readsIndirectDiffuse(sh));
+    EXPECT_NE(dynamic_cast<const CacheIntegrator*>(makeIntegrator(geometry, lights, sh, &source).get()), nullptr);
+    // Without a source Cache mode shades as Direct.
+    const auto uncached = makeIntegrator(geometry, lights, sh);
+    EXPECT_NE(dynamic_cast<const DirectIntegrator*>(uncached.get()), nullptr);
+    EXPECT_EQ(dynamic_cast<const CacheIntegrator*>(uncached.get()), nullptr);
+    sh.cache.bounces = 0;
+    EXPECT_FALSE(readsIndirectDiffuse(sh));
 }
 
 // A room with a thin shelf 0.02 units above the floor, a mirror and a glass block, rendered at
