@@ -96,7 +96,7 @@ MUTANTS = [
       "if (abs(j - k) <= r) sums[k] += v;", "if (abs(j - k) < r) sums[k] += v;",
       r"^FilterTest\.", "GPU blur: the window's last rows left out"),
     m("glsl-laplacian-abs", "glsl", "glsl/laplacian.comp",
-      "imageStore(edges, ivec2(x, y0 + k), vec4(abs(sum)));", "imageStore(edges, ivec2(x, y0 + k), vec4(sum));",
+      "hi - lo >= pc.flatRange ? abs(sum) : 0.0));", "hi - lo >= pc.flatRange ? sum : 0.0));",
       r"^FilterTest\.", "GPU Laplacian: signed instead of absolute"),
     m("glsl-reduce-max", "glsl", "glsl/reduce.comp",
       "v = max(v, imageLoad(map, ivec2(i, j)).r);", "v = imageLoad(map, ivec2(i, j)).r;",
@@ -167,13 +167,20 @@ MUTANTS = [
     m("filter-radius-dropped", "tracer", "tracer/strategies/supersample.cpp",
       'p.real("filter_radius")', "0.6",
       r"^tracer\.StrategyParams", "supersample filter_radius never reaches the sampler"),
-    m("light-selection-dropped", "runner", "eval/strategy_settings.cpp",
-      "s.lightSelection = h.lightSelection;",
-      "s.lightSelection = LightSelection::Contribution;",
-      r"^eval\.SettingsReach", "shading.light_selection never reaches the tracer"),
+    m("light-selection-dropped", "runner", "tracer/shading_params.cpp",
+      '{{"contribution", LightSelection::Contribution}, {"power", LightSelection::Power}}',
+      '{{"contribution", LightSelection::Contribution}, {"power", LightSelection::Contribution}}',
+      r"^eval\.SettingsReach", "shading.light_selection: power never reaches the tracer (the schema binds the wrong value)"),
+    m("cache-seed-dropped", "runner", "eval/strategy_settings.cpp",
+      "    s.cache.seed = c.seed;", "",
+      r"^eval\.ShadingSettings", "the irradiance cache's records ignore the experiment's seed"),
+    m("cache-mode-as-direct", "tracer", "tracer/make_integrator.cpp",
+      "if (indirect != nullptr) return std::make_unique<CacheIntegrator>(geometry, lights, shading, *indirect);",
+      "if (indirect != nullptr) return std::make_unique<DirectIntegrator>(geometry, lights, shading);",
+      r"^tracer\.(CacheMode|Integrators)", "cache mode renders without its irradiance cache"),
     m("reference-mode-dropped", "runner", "eval/runner.cpp",
       'RenderConfig r{"reference", "reference", baselineStrategyName(), c.reference.rpp, {}, c.reference.mode};',
-      'RenderConfig r{"reference", "reference", baselineStrategyName(), c.reference.rpp, {}, ""};',
+      'RenderConfig r{"reference", "reference", baselineStrategyName(), c.reference.rpp, {}, std::nullopt};',
       r"^eval\.(SettingsReach|Runner)", "reference.mode ignored: the reference traced in the renders' mode"),
     m("cache-entry-without-record", "runner", "eval/render_cache.cpp",
       "return fs::is_regular_file(record(key), ec);", "return fs::exists(entry(key), ec);",
@@ -187,7 +194,7 @@ EXECUTABLES = [
     (r"tracer\.", ["test_tracer"]), (r"scene\.", ["test_scene"]), ("SettingsReach", ["test_settings_reach"]),
     ("CacheKeys", ["test_eval"]), ("RenderCache", ["test_eval"]), ("MetricSettings", ["test_eval"]), ("Runner", ["test_eval"]),
     (r"Filters\.", ["test_cpu_filters"]), ("FilterTest", ["test_gpu_filters"]), ("SpotShading", ["test_gpu_spot"]),
-    (r"metrics\.", ["test_metrics"]),
+    (r"metrics\.", ["test_metrics"]), ("ShadingSettings", ["test_camera"]),
 ]
 
 
@@ -282,7 +289,10 @@ def main():
     log = (Path(args.scratch) if not args.in_place else REPO / "build") / "mutate.log"
     log.parent.mkdir(parents=True, exist_ok=True)
     log.write_text("")
-    env = dict(os.environ, CMAKE_CXX_COMPILER_LAUNCHER="ccache", CMAKE_C_COMPILER_LAUNCHER="ccache")
+    # ccache, where installed, makes each mutant's rebuild incremental across runs.
+    env = dict(os.environ)
+    if shutil.which("ccache"):
+        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CMAKE_C_COMPILER_LAUNCHER="ccache")
     print(f"tree {tree}, build {build}, log {log}", flush=True)
 
     # Every snippet must occur exactly once, or the mutant tests nothing.

@@ -4,9 +4,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/install-deps.sh
-tools/python-env.sh
+# The venv's downloads overlap the build (they wait on the network, the build on the cores).
+tools/python-env.sh > .venv-setup.log 2>&1 &
+venv_pid=$!
 cmake --preset release
 cmake --build --preset release
+if ! wait "$venv_pid"; then cat .venv-setup.log >&2; exit 1; fi
+cat .venv-setup.log
 ctest --preset release -j "$(nproc)" "$@"
 
 # Robustness (docs/robustness.md): the parser and tracer tests again under ASan+UBSan (clang), and

@@ -19,10 +19,13 @@ namespace aamap {
 
 class BlockSums;  // tracer/block_sums.h
 
+// The baseline of speedups (the registry's first, "uniform"): one name for every comparison.
+const std::string& baselineStrategyName();
+
 // Which sampling strategy a render uses, by name (strategyRegistry()), with its parameters
 // (checked against the strategy's schema; missing ones take their defaults).
 struct StrategySettings {
-    std::string name = "uniform";
+    std::string name = baselineStrategyName();
     int strata = 1;  // n: at most n x n rays per pixel (per sub-pixel for supersample)
     StrategyParams params;
     // Strategies that use the aamap: pixel p's map value. Must match the render resolution. Not owned.
@@ -87,8 +90,6 @@ struct StrategyDescriptor {
 // Every strategy, in documentation order; the first ("uniform") is the baseline of speedups.
 const std::deque<StrategyDescriptor>& strategyRegistry();
 const StrategyDescriptor* findStrategy(const std::string& name);  // null for an unknown name
-// The baseline of speedups (the registry's first, "uniform"): one name for every comparison.
-const std::string& baselineStrategyName();
 std::vector<std::string> strategyNames();
 // Adds (or replaces) a strategy at run time: for tests and for custom RenderBackends. Not
 // thread-safe; call before parsing configs.
