@@ -226,7 +226,7 @@ TEST(CacheMode, RoughPlasticThreadIndependentAndCloseToPathMode) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(meanCache[c] / meanPath[c], 1.0, 0.08) << "channel " << c;
 }
 
-// A closed white room (albedo 0.8, so the third bounce still carries a fifth of the indirect
+// A closed white room (albedo 0.8, so the third bounce still carries a quarter of the indirect
 // light), a block on the floor and a small ceiling light, seen from inside towards a corner: edges,
 // corners, a contact shadow and a ceiling lit only indirectly. The cache with B = 3 bounces against
 // path mode's max_depth 5 (no Russian roulette, two seeds for the reference's own error), as
