@@ -130,7 +130,11 @@ bool IrradianceCache::lookup(const Index& index, std::span<const IrradianceRecor
     bool any = false;
     index.grid.forEachNear(p, [&](std::uint32_t id) {
         const IrradianceRecord& r = records[id];
-        if (r.level > level) return;  // deeper records are coarser: never used above their level
+        // A record holds the light of its own level's remaining bounces (level L: bounces - L), so
+        // it is used at that level only. A shallower record would add the bounces the path at
+        // this level no longer has: Radiance's "lvl <= current" test lets it, which biases a
+        // B-bounce cache above the B-bounce path-traced answer.
+        if (r.level != level) return;
         const float e = recordError(r, p, n);
         if (!(e < a)) return;  // Ward: w = 1/e > 1/a
         // "Behind" test: a record in front of p (p below its tangent plane, averaged with ours)

@@ -59,7 +59,7 @@ struct IrradianceRecord {
     glm::vec3 normal{0.0f, 0.0f, 1.0f};
     glm::vec3 irradiance{0.0f};  // E (RGB), W/m^2 in scene units
     float radius = 1.0f;         // R_i: clamped harmonic-mean distance to the surfaces seen
-    int level = 0;               // bounce level it was computed for; used at levels >= this
+    int level = 0;               // bounce level it was computed for; used at that level only
     std::array<glm::vec3, 3> gradT{};  // dE_c/dp for c = r, g, b (Ward & Heckbert translational)
     std::array<glm::vec3, 3> gradR{};  // rotational: E_c(n) ~ E_c + dot(cross(n_i, n), gradR[c])
     bool operator==(const IrradianceRecord&) const = default;

@@ -226,6 +226,73 @@ TEST(CacheMode, RoughPlasticThreadIndependentAndCloseToPathMode) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(meanCache[c] / meanPath[c], 1.0, 0.08) << "channel " << c;
 }
 
+// A closed white room (albedo 0.8, so the third bounce still carries a quarter of the indirect
+// light), a block on the floor and a small ceiling light, seen from inside towards a corner: edges,
+// corners, a contact shadow and a ceiling lit only indirectly. The cache with B = 3 bounces against
+// path mode's max_depth 5 (no Russian roulette, two seeds for the reference's own error), as
+// 4 x 4 block means of luminance. Each level's records hold that level's remaining bounces only,
+// so the image mean agrees within the reference's error plus 0.5%; and as -ad, -as and -aa
+// tighten, the blocks' mean error shrinks towards the reference's own (measured: 0.95% at -ad 64
+// -aa 0.4, 0.28% at -ad 256 -aa 0.15, reference 0.28%). A record used at deeper levels than its
+// own, as Radiance does, puts the mean 4.8% high.
+TEST(CacheMode, ClosedRoomConvergesToPathAsSettingsTighten) {
+    testing::SceneBuilder b;
+    const auto white = b.material("white", glm::vec3(0.8f));
+    const glm::vec3 X(2, 0, 0), Y(0, 2, 0), Z(0, 0, 2), o(-1, 0, -1);
+    b.quad(o, Z, X, white);      // floor, faces +y
+    b.quad(o + Y, X, Z, white);  // ceiling, faces -y
+    b.quad(o, X, Y, white);      // back, faces +z
+    b.quad(o + Z, Y, X, white);  // front, faces -z
+    b.quad(o, Y, Z, white);      // left, faces +x
+    b.quad(o + X, Z, Y, white);  // right, faces -x
+    b.box({-0.6f, 0.0f, -0.6f}, {0.0f, 0.7f, 0.0f}, white);
+    b.areaLightQuad({0.2f, 1.999f, 0.2f}, {0.3f, 0, 0}, {0, 0, 0.3f}, glm::vec3(40.0f));
+    const View view = testing::lookAt({0.7f, 1.2f, 0.8f}, {-1.0f, 0.4f, -1.0f}, 90.0f);
+    const int size = 24, blocks = 4, bs = size / blocks;
+    ShadingSettings path;
+    path.mode = ShadingMode::Path;
+    path.maxDepth = 5;
+    path.russianRoulette = false;
+    const TraceResult refA = renderScene(b.scene(), view, path, size, 16, 0, 5);
+    const TraceResult refB = renderScene(b.scene(), view, path, size, 16, 0, 6);
+    const auto blockMeans = [&](const TraceResult& r) {
+        std::vector<double> m(blocks * blocks, 0.0);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x)
+                m[(y / bs) * blocks + x / bs] += luminance(r.image.pixels()[static_cast<std::size_t>(y) * size + x]);
+        return m;
+    };
+    const std::vector<double> a = blockMeans(refA), bm = blockMeans(refB);
+    double refMean = 0.0, refNoise = 0.0;  // mean |A - B| / 2 relative: the reference's own block error
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        refMean += 0.5 * (a[i] + bm[i]);
+        refNoise += 0.5 * std::abs(a[i] - bm[i]) / (0.5 * (a[i] + bm[i]));
+    }
+    refNoise /= static_cast<double>(a.size());
+    const auto error = [&](const TraceResult& r, double& mean) {
+        const std::vector<double> c = blockMeans(r);
+        double e = 0.0;
+        mean = 0.0;
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            const double ref = 0.5 * (a[i] + bm[i]);
+            e += std::abs(c[i] - ref) / ref;
+            mean += c[i];
+        }
+        return e / static_cast<double>(c.size());
+    };
+    ShadingSettings coarse = cacheShading(3, 64, 16);
+    coarse.cache.accuracy = 0.4f;
+    ShadingSettings fine = cacheShading(3, 256, 64);
+    fine.cache.accuracy = 0.15f;
+    double coarseMean = 0.0, fineMean = 0.0;
+    const double coarseError = error(renderScene(b.scene(), view, coarse, size, 2), coarseMean);
+    const double fineError = error(renderScene(b.scene(), view, fine, size, 2), fineMean);
+    EXPECT_LT(refNoise, 0.01) << "too few path samples";
+    EXPECT_NEAR(fineMean / refMean, 1.0, 0.005 + refNoise) << "coarse " << coarseMean / refMean;
+    EXPECT_LT(fineError, coarseError);
+    EXPECT_LT(fineError, 0.005 + refNoise) << "coarse " << coarseError << ", reference noise " << refNoise;
+}
+
 // -ab 0 means no cache: exactly the Direct image, and no pre-pass.
 TEST(CacheMode, ZeroBouncesIsDirect) {
     const Scene scene = builtinScene("cornell");

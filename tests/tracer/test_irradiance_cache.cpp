@@ -81,12 +81,14 @@ TEST(IrradianceCache, ErrorAndWeightOnHandCases) {
     EXPECT_FALSE(cache.interpolate({0, 0, 0}, glm::normalize(glm::vec3(0.3f, 0, 1)), 0, e));  // 1-cos > 0.04
     // Behind: a point below the record's tangent plane (across an inside corner) is not covered.
     EXPECT_FALSE(cache.interpolate({0.1f, 0, -0.2f}, {0, 0, 1}, 0, e));
-    // Levels: a level-1 record is not used at level 0.
+    // Levels: a record is used at its own level only. A level-1 record is not used at level 0,
+    // nor a level-0 record at level 1: it holds one bounce more than a level-1 lookup may add.
     IrradianceRecord deep = record({2, 2, 2}, {0, 0, 1}, 2.0f);
     deep.level = 1;
     cache.insert(deep);
     EXPECT_FALSE(cache.interpolate({2, 2, 2}, {0, 0, 1}, 0, e));
     EXPECT_TRUE(cache.interpolate({2, 2, 2}, {0, 0, 1}, 1, e));
+    EXPECT_FALSE(cache.interpolate({0, 0, 0}, {0, 0, 1}, 1, e));
 }
 
 TEST(IrradianceCache, GradientExtrapolationIsExactForLinearFields) {
