@@ -74,7 +74,8 @@ std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
     std::string atInfinity = directional > 0 ? fmt::format(", {} directional", directional) : std::string();
     if (map) atInfinity += fmt::format(", up to {} from the environment map", fromMap);
     std::string text = fmt::format("scene: {} triangles; lights: {} point, {} cosine-lobe point, {} spot, {} area "
-                                   "(x {} point samples each){} -> {} light samples in the raster\n",
+                                   "(up to {} point samples each, by solid angle over the view){} -> at most {} light "
+                                   "samples in the raster\n",
                                    scene.mesh.triangles.size(), points, lobes, spots, areas, s.areaLightSamples,
                                    atInfinity, samples);
     if (scene.environment)

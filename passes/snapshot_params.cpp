@@ -45,7 +45,11 @@ const Schema<SnapshotConfig>& snapshotSchema() {
     static const Schema<S> schema = [] {
         Schema<S> s;
         s.field(&S::scale, "scale", in(1.0, 4.0), 1.5, "snapshot resolution / render resolution")
-            .field(&S::areaLightSamples, "area_light_samples", in(1, 64), 5, "point lights approximating each area light")
+            .field(&S::areaLightSamples, "area_light_samples", in(1, 64), 5,
+                   "at most this many point lights approximating each area light")
+            .field(&S::areaLightSolidAngle, "area_light_solid_angle", in(0.0, 12.6), 0.04,
+                   "an area light gets one point sample per this many steradians of its mean solid angle over "
+                   "the visible region (at least 1, at most area_light_samples; 0: always area_light_samples)")
             .field(&S::environmentLights, "environment_lights", in(0, 16), 1,
                    "the environment map's brightest regions as shadowed directional lights")
             .field(&S::softShadows, "soft_shadows", true,

@@ -42,6 +42,8 @@ const std::map<std::string, Field>& fields() {
         {"image.filter_mode", [](const ExperimentConfig& c) { return ParamValue(c.image.filterMode); }},
         {"snapshot.scale", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.scale); }},
         {"snapshot.area_light_samples", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.areaLightSamples); }},
+        {"snapshot.area_light_solid_angle",
+         [](const ExperimentConfig& c) { return ParamValue(c.snapshot.areaLightSolidAngle); }},
         {"snapshot.environment_lights", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.environmentLights); }},
         {"snapshot.soft_shadows", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.softShadows); }},
         {"snapshot.blur_radius", [](const ExperimentConfig& c) { return ParamValue(c.snapshot.blurRadius); }},

@@ -233,6 +233,10 @@ std::map<std::string, Alternative> alternatives(const std::filesystem::path& dir
                            becomes([](const ExperimentConfig& c, int) { return snap(c, 0).scale; }, 2.0f)};
     t["snapshot.area_light_samples"] = {{}, {"snapshot.area_light_samples=9"}, Renders::UsingAamap, true,
                                         becomes([](const ExperimentConfig& c, int) { return snap(c, 0).areaLightSamples; }, 9)};
+    t["snapshot.area_light_solid_angle"] = {{}, {"snapshot.area_light_solid_angle=0.5"}, Renders::UsingAamap, true,
+                                            becomes([](const ExperimentConfig& c, int) {
+                                                return snap(c, 0).areaLightSolidAngle;
+                                            }, 0.5f)};
     t["snapshot.blur_radius"] = {{}, {"snapshot.blur_radius=3"}, Renders::UsingAamap, true,
                                  becomes([](const ExperimentConfig& c, int) { return snap(c, 0).filter.blurRadius; }, 3)};
     t["snapshot.flat_range"] = {{}, {"snapshot.flat_range=0.25"}, Renders::UsingAamap, true,
