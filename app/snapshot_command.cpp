@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <vector>
 
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
@@ -59,7 +60,8 @@ View pickView(const SnapshotOptions& o, const Scene& scene, int width, int heigh
 
 // Why the scene needs (or does not need) its light-dependent passes, ahead of the compiled graph:
 // passes the scene does not call for are never declared, so the graph alone cannot say so.
-std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
+// areaSamples: the point samples each area light got (SnapshotResult::areaLightSamples).
+std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s, const std::vector<int>& areaSamples) {
     int spots = 0, lobes = 0;
     for (const PointLight& p : scene.pointLights) {
         if (glm::dot(p.normal, p.normal) > 0.0f) ++lobes;
@@ -70,13 +72,17 @@ std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s) {
     const int directional = static_cast<int>(scene.directionalLights.size());
     const bool map = scene.environment && !scene.environment->map.empty();
     const int fromMap = map ? s.environmentLights : 0;  // at most: a dark map may give fewer
-    const int samples = static_cast<int>(scene.pointLights.size()) + areas * s.areaLightSamples + directional + fromMap;
+    int areaTotal = 0;
+    for (const int n : areaSamples) areaTotal += n;
+    if (areaSamples.size() != scene.areaLights.size()) areaTotal = areas * s.areaLightSamples;
+    const int samples = static_cast<int>(scene.pointLights.size()) + areaTotal + directional + fromMap;
     std::string atInfinity = directional > 0 ? fmt::format(", {} directional", directional) : std::string();
     if (map) atInfinity += fmt::format(", up to {} from the environment map", fromMap);
     std::string text = fmt::format("scene: {} triangles; lights: {} point, {} cosine-lobe point, {} spot, {} area "
-                                   "(x {} point samples each){} -> {} light samples in the raster\n",
-                                   scene.mesh.triangles.size(), points, lobes, spots, areas, s.areaLightSamples,
-                                   atInfinity, samples);
+                                   "({} point samples in all, by solid angle over the view, at most {} each){} -> {} "
+                                   "light samples in the raster\n",
+                                   scene.mesh.triangles.size(), points, lobes, spots, areas, areaTotal,
+                                   s.areaLightSamples, atInfinity, samples);
     if (scene.environment)
         text += fmt::format("  environment: {}; the rest as an SH ambient term (unshadowed)\n",
                             map ? fmt::format("a {}x{} map, its {} brightest region(s) as directional lights",
@@ -183,7 +189,7 @@ int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::str
     writeExr(out / "aamap.exr", r.aamap);
     writePng(out / "aamap.png", quantise(r.aamap));
     if (!o.dot.empty()) writeTextAtomically(o.dot, r.dot);
-    if (o.explain) fmt::print("{}{}", sceneDecisions(scene, settings), r.explain);
+    if (o.explain) fmt::print("{}{}", sceneDecisions(scene, settings, r.areaLightSamples), r.explain);
 
     double gpu = 0.0;
     for (const PassTiming& t : r.passTimes) gpu += t.gpuMilliseconds;

@@ -52,6 +52,9 @@ layout(push_constant) uniform Push { GBufferPush pc; };
 layout(std140, binding = GBUFFER_BINDING_LIGHTS) uniform Lights { GpuLight lights[GBUFFER_MAX_LIGHTS]; };
 
 const float kInvPi = 0.31830988618379067;
+// Whether any drawn material has a microfacet lobe (LIGHTING_SPEC_MICROFACET): without one the
+// lobe's code folds away. Unset (1): evaluated where a vertex says so.
+layout(constant_id = LIGHTING_SPEC_MICROFACET) const uint kMicrofacet = 1u;
 
 #ifdef GBUFFER_SHADOWS
 layout(binding = GBUFFER_BINDING_SHADOW) uniform texture2DArray shadowCubes;
@@ -83,7 +86,7 @@ vec3 lobeView = vec3(0.0, 0.0, 1.0);
 // cos^ns(alpha), or its microfacet lobe (glsl/microfacet.glsl) with a plastic's base through the
 // coating.
 vec3 brdf(vec3 kd, vec3 wi) {
-    if (lobe.x != float(GBUFFER_LOBE_PHONG)) {
+    if (kMicrofacet != 0u && lobe.x != float(GBUFFER_LOBE_PHONG)) {
         const vec3 li = toLocal(lobeFrame, wi);
         if (li.z <= 0.0 || lobeView.z <= 0.0) return vec3(0.0);
         return microfacetLobe(lobeView, li, lobe, lobeEta, lobeK, specular.xyz, kd);
@@ -174,7 +177,7 @@ void main() {
 #endif
     mirrorOfView = reflect(-normalize(toCamera), n);
     phongKs = specular.xyz * ((specular.w + 2.0) * 0.5 * kInvPi);
-    if (lobe.x != float(GBUFFER_LOBE_PHONG)) {
+    if (kMicrofacet != 0u && lobe.x != float(GBUFFER_LOBE_PHONG)) {
         lobeFrame = microfacetFrame(n);
         lobeView = toLocal(lobeFrame, normalize(toCamera));
     }

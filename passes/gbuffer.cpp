@@ -126,8 +126,11 @@ glm::mat4 SnapshotView::reversedViewProjection() const {
 
 graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour,
                                const std::string& depth, const SnapshotView& view, const GBufferShadows& shadows,
-                               const GBufferGrey& grey) {
+                               const GBufferGrey& grey, bool cullToView) {
     const bool shadowed = !shadows.resource.empty();
+    const ViewFrustum frustum = ViewFrustum::fromViewProjection(view.reversedViewProjection());
+    if (cullToView && scene_->vertexCount() > 0) updateCulledDraw(frustum);
+    const CulledDraw* culled = cullToView && scene_->vertexCount() > 0 ? &culled_ : nullptr;
     std::vector<graph::Access> accesses{graph::writes(colour, graph::Usage::ColorAttachment),
                                         graph::writes(depth, graph::Usage::DepthAttachment)};
     if (!grey.resource.empty()) accesses.push_back(graph::writes(grey.resource, graph::Usage::ColorAttachment));
@@ -152,13 +155,47 @@ graph::PassId GBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& exe
                       : drawsGlass() ? fmt::format("; then {} glass triangles over what they show, Fresnel-weighted",
                                                    scene_->glassVertexCount() / 3)
                                      : fmt::format("; {} glass triangles seen through ({})",
-                                                   scene_->glassVertexCount() / 3, glassUnsupported_))};
-    pass.record = [this, colour, depth, push, &pipeline, shadow = shadows.resource, grey = grey.resource,
-                   glass](vk::PassContext& pc) {
-        record(pc, colour, grey, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass(), glass);
+                                                   scene_->glassVertexCount() / 3, glassUnsupported_)) +
+                     (culled == nullptr ? std::string()
+                                        : fmt::format("; {} of {} opaque triangles in the view frustum",
+                                                      culled->indexCount / 3, scene_->vertexCount() / 3))};
+    pass.record = [this, colour, depth, push, &pipeline, shadow = shadows.resource, grey = grey.resource, glass,
+                   culled](vk::PassContext& pc) {
+        record(pc, colour, grey, depth, pipeline, shadow, {&push, 1}, hasDepthPrepass(), glass, {}, culled);
     };
     const graph::PassId id = vk::declarePass(graph, executor, std::move(pass));
     return id;
+}
+
+void GBufferPass::updateCulledDraw(const ViewFrustum& frustum) {
+    if (culled_.scene == scene_ && culled_.frustum == frustum && culled_.indexCount > 0) return;
+    const std::uint32_t triangles = scene_->vertexCount() / 3;
+    const std::vector<std::uint32_t> kept = trianglesInView(scene_->vertexPositions(), triangles, frustum);
+    std::vector<std::uint32_t> prepass, shading;
+    const bool shared = hasDepthPrepass();
+    shading.reserve(3 * kept.size());
+    if (shared) {
+        // The shading draw walks the kept triangles in reverse (ties: the mesh's first wins, as
+        // without culling); the pre-pass takes them in order, on the shared positions.
+        prepass.reserve(3 * kept.size());
+        const std::span<const std::uint32_t> index = scene_->positionIndex();
+        for (const std::uint32_t t : kept)
+            for (std::uint32_t k = 0; k < 3; ++k) prepass.push_back(index[3 * t + k]);
+        for (auto it = kept.rbegin(); it != kept.rend(); ++it)
+            for (std::uint32_t k = 0; k < 3; ++k) shading.push_back(3 * *it + k);
+    } else {
+        for (const std::uint32_t t : kept)
+            for (std::uint32_t k = 0; k < 3; ++k) shading.push_back(3 * t + k);
+    }
+    culled_.indexCount = static_cast<std::uint32_t>(shading.size());
+    if (shading.empty()) shading.push_back(0);  // a buffer needs a size; nothing reads it
+    if (prepass.empty()) prepass.push_back(0);
+    culled_.shadingIndices = vk::uploadBuffer(*context_, std::as_bytes(std::span<const std::uint32_t>(shading)),
+                                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    culled_.prepassIndices = vk::uploadBuffer(*context_, std::as_bytes(std::span<const std::uint32_t>(prepass)),
+                                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+    culled_.frustum = frustum;
+    culled_.scene = scene_;
 }
 
 const vk::Pipeline& GBufferPass::pipelineFor(vk::PrepareFn& prepare, bool shadowed, bool mirrored, bool grey,
@@ -223,7 +260,7 @@ graph::PassId GBufferPass::addReflected(graph::RenderGraph& graph, vk::GraphExec
 void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const std::string& grey,
                          const std::string& depth, const vk::Pipeline& pipeline, const std::string& shadow,
                          std::span<const gpu::GBufferPush> draws, bool prepass, const vk::Pipeline* glass,
-                         std::span<const VkRect2D> scissors) const {
+                         std::span<const VkRect2D> scissors, const CulledDraw* culled) const {
     const vk::Image& target = pc.image(colour);
     const vk::Image& z = pc.image(depth);
     const VkExtent2D extent{target.info().width, target.info().height};
@@ -262,8 +299,9 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
         const VkBuffer vb = scene_->positionBuffer().handle();
         const VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-        vkCmdBindIndexBuffer(cmd, scene_->positionIndexBuffer().handle(), 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, vertexCount, 1, 0, 0, 0);
+        vkCmdBindIndexBuffer(cmd, culled ? culled->prepassIndices.handle() : scene_->positionIndexBuffer().handle(), 0,
+                             VK_INDEX_TYPE_UINT32);
+        if (!culled || culled->indexCount > 0) vkCmdDrawIndexed(cmd, culled ? culled->indexCount : vertexCount, 1, 0, 0, 0);
     }
     if (vertexCount > 0) {
         pipeline.bind(cmd);
@@ -279,7 +317,8 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
         const VkBuffer vb = scene_->vertexBuffer().handle();
         const VkDeviceSize offset = 0;
         vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-        if (prepass) vkCmdBindIndexBuffer(cmd, scene_->reversedTriangleBuffer().handle(), 0, VK_INDEX_TYPE_UINT32);
+        if (culled) vkCmdBindIndexBuffer(cmd, culled->shadingIndices.handle(), 0, VK_INDEX_TYPE_UINT32);
+        else if (prepass) vkCmdBindIndexBuffer(cmd, scene_->reversedTriangleBuffer().handle(), 0, VK_INDEX_TYPE_UINT32);
         for (std::size_t d = 0; d < draws.size(); ++d) {
             const gpu::GBufferPush& push = draws[d];
             if (d < scissors.size()) {
@@ -287,8 +326,13 @@ void GBufferPass::record(vk::PassContext& pc, const std::string& colour, const s
                 vkCmdSetScissor(cmd, 0, 1, &rect);
             }
             pipeline.pushConstants(cmd, push);
-            if (prepass) vkCmdDrawIndexed(cmd, vertexCount, 1, 0, 0, 0);
-            else vkCmdDraw(cmd, vertexCount, 1, 0, 0);
+            if (culled) {
+                if (culled->indexCount > 0) vkCmdDrawIndexed(cmd, culled->indexCount, 1, 0, 0, 0);
+            } else if (prepass) {
+                vkCmdDrawIndexed(cmd, vertexCount, 1, 0, 0, 0);
+            } else {
+                vkCmdDraw(cmd, vertexCount, 1, 0, 0);
+            }
         }
     }
     if (glass != nullptr) {  // one view: the camera's (add)

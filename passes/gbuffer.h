@@ -30,6 +30,7 @@
 #include "engine/vk/resources.h"
 #include "glsl/shared/snapshot_interface.h"
 #include "passes/scene_gpu.h"
+#include "passes/view_budget.h"
 #include "scene/camera.h"
 
 namespace aamap::passes {
@@ -82,11 +83,12 @@ public:
     GBufferPass(VulkanContext& context, const SceneGpu& scene);
 
     // Declares the pass "gbuffer" (writes `colour` and `depth`, and grey.resource if not empty;
-    // reads the shadow maps if any) and registers its recording for the view. This object must
-    // outlive execution.
+    // reads the shadow maps if any) and registers its recording for the view. cullToView: the
+    // opaque draws take only the triangles the view's frustum keeps (passes/view_budget.h; index
+    // lists kept for the view until it changes). This object must outlive execution.
     graph::PassId add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& colour,
                       const std::string& depth, const SnapshotView& view, const GBufferShadows& shadows = {},
-                      const GBufferGrey& grey = {});
+                      const GBufferGrey& grey = {}, bool cullToView = false);
 
     // Declares pass `pass`, which renders the scene once per view into layer i of the layered
     // `colour` and `depth` (the G-buffer's shading, clipped to each view's plane).
@@ -103,11 +105,21 @@ public:
     const std::string& glassUnsupported() const { return glassUnsupported_; }
 
 private:
+    // The opaque triangles one view draws: index lists for the pre-pass (shared positions) and the
+    // shading draw (the vertex buffer; reversed after a pre-pass).
+    struct CulledDraw {
+        vk::Buffer prepassIndices, shadingIndices;
+        std::uint32_t indexCount = 0;
+        ViewFrustum frustum;
+        const SceneGpu* scene = nullptr;
+    };
+    void updateCulledDraw(const ViewFrustum& frustum);
     bool hasDepthPrepass() const { return depthPipeline_.handle() != VK_NULL_HANDLE; }
     // scissors: one per draw (width 0: the whole target), or empty for none.
     void record(vk::PassContext& pc, const std::string& colour, const std::string& grey, const std::string& depth,
                 const vk::Pipeline& pipeline, const std::string& shadow, std::span<const gpu::GBufferPush> draws,
-                bool prepass, const vk::Pipeline* glass, std::span<const VkRect2D> scissors = {}) const;
+                bool prepass, const vk::Pipeline* glass, std::span<const VkRect2D> scissors = {},
+                const CulledDraw* culled = nullptr) const;
 
     // The shading pipeline of each variant, specialised for the scene's light list of
     // `lightsVersion` (older versions are dropped: their recordings must be declared again
@@ -132,6 +144,7 @@ private:
     std::uint64_t glassLightsVersion_ = 0;
     std::string glassUnsupported_;
     vk::Pipeline depthPipeline_;  // the pre-pass (SceneGpu::sharedPositions() only)
+    CulledDraw culled_;           // the camera's view, when add culls to it
 };
 
 }  // namespace aamap::passes

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include <aamap/spirv.h>
+#include <fmt/format.h>
 
 #include "engine/vk/context.h"
 #include "glsl/shared/snapshot_interface.h"
@@ -111,6 +112,18 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
     const vk::Pipeline& pipeline = pipelines_[shadowed ? 1 : 0];  // built by prepare()
     gpu::GeometryPush push{};
     push.viewProj = view.reversedViewProjection();  // reversed depth, as the G-buffer
+    const ViewFrustum frustum = ViewFrustum::fromViewProjection(push.viewProj);
+    if (triangleCount_ > 0 && !(viewValid_ && viewFrustum_ == frustum)) {
+        std::vector<std::uint32_t> indices;
+        for (const std::uint32_t t : trianglesInView(scene_->vertexPositions(), triangleCount_, frustum))
+            indices.insert(indices.end(), {3 * t, 3 * t + 1, 3 * t + 2});
+        viewIndexCount_ = static_cast<std::uint32_t>(indices.size());
+        if (indices.empty()) indices.push_back(0);  // a buffer needs a size; nothing reads it
+        viewIndices_ = vk::uploadBuffer(*context_, std::as_bytes(std::span<const std::uint32_t>(indices)),
+                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+        viewFrustum_ = frustum;
+        viewValid_ = true;
+    }
     push.cameraPos = glm::vec4(view.camera.origin, 1.0f);
     push.cameraForward = glm::vec4(view.camera.forward, 0.0f);
     push.shadow =
@@ -120,6 +133,7 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
                  shadowed ? "rasterise normals, view depth, object/material ids and the shadow occlusion mask "
                             "for the geometric aamap"
                           : "rasterise normals, view depth and object/material ids for the geometric or subpixel aamap"};
+    pass.desc.purpose += fmt::format("; {} of {} triangles in the view frustum", viewIndexCount_ / 3, triangleCount_);
     pass.prepare = [this] { prepare(); };
     pass.record = [this, push, &pipeline, shadow = shadows.resource](vk::PassContext& pc) {
         if (!prepared() || !pipeline.handle())
@@ -162,7 +176,8 @@ void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& execu
             const VkBuffer vb = scene_->vertexBuffer().handle();
             const VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-            vkCmdDraw(cmd, triangleCount_ * 3, 1, 0, 0);
+            vkCmdBindIndexBuffer(cmd, viewIndices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+            if (viewIndexCount_ > 0) vkCmdDrawIndexed(cmd, viewIndexCount_, 1, 0, 0, 0);
         }
         vkCmdEndRendering(cmd);
     };

@@ -16,6 +16,7 @@
 #include "engine/vk/pipeline.h"
 #include "engine/vk/resources.h"
 #include "passes/gbuffer.h"
+#include "passes/view_budget.h"
 #include "passes/scene_gpu.h"
 #include "scene/scene.h"
 #include "passes/snapshot_graph.h"
@@ -52,6 +53,12 @@ private:
     std::vector<glm::uvec2> pendingIds_;  // (object, material) per drawn triangle until prepare()
     vk::Buffer ids_;
     std::uint32_t triangleCount_ = 0;
+    // The triangles in the last add()'s view frustum (passes/view_budget.h), as an index list in
+    // mesh order (ties resolve as in the unculled draw; gl_VertexIndex still names the triangle).
+    vk::Buffer viewIndices_;
+    std::uint32_t viewIndexCount_ = 0;
+    ViewFrustum viewFrustum_;
+    bool viewValid_ = false;
 };
 
 }  // namespace aamap::passes

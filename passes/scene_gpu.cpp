@@ -134,6 +134,7 @@ struct FlatMesh {
     std::vector<std::uint32_t> drawn;
     std::uint32_t cameraVertices = 0, allVertices = 0;
     bool alphaMasked = false;
+    bool microfacet = false;  // some drawn material has a microfacet lobe
 };
 
 // What glass vertices carry in their kd slot (a dielectric has no diffuse albedo): the Fresnel
@@ -186,6 +187,7 @@ FlatMesh flatten(const Scene& scene, const TextureAtlas& atlas, bool textured) {
             v.base = {p[k], n, isGlass(t) ? glassKd(m) : id < materials.size() ? ms.kd : m.kd, m.ke,
                       id < materials.size() ? ms.specular : glm::vec4(0.0f), {}, {}, {}};
             const gpu::GpuLobe lobe = id < materials.size() ? ms.lobe : gpu::GpuLobe{};
+            flat.microfacet |= lobe.model != GBUFFER_LOBE_PHONG;
             packHalves({lobe.model, lobe.alphaU, lobe.alphaV, lobe.distribution}, v.base.lobe);
             packHalves(lobe.eta, v.base.eta);
             packHalves(lobe.k, v.base.k);
@@ -251,6 +253,7 @@ SceneGpu::SceneGpu(VulkanContext& context, const Scene& scene) : context_(&conte
     if (textured_) atlas_ = uploadAtlas(context, atlas);
     FlatMesh flat = flatten(scene, atlas, textured_);
     alphaMasked_ = flat.alphaMasked;
+    microfacet_ = flat.microfacet;
     vertexCount_ = flat.cameraVertices;
     occluderVertexCount_ = flat.allVertices;
     drawnTriangles_ = std::move(flat.drawn);
@@ -349,6 +352,7 @@ std::vector<std::uint32_t> SceneGpu::lightingConstants(std::uint32_t pcf) const 
             for (int c = 0; c < 3; ++c) constants[first + 3 * f + c] = std::bit_cast<std::uint32_t>(fields[f][c]);
         constants[first + 12] = std::bit_cast<std::uint32_t>(l.cone.w);  // the patch's half side
     }
+    constants[LIGHTING_SPEC_MICROFACET] = microfacet_ ? 1u : 0u;
     constants[LIGHTING_SPEC_AMBIENT] = ambient_ ? 1u : 0u;
     for (int i = 0; i < 9; ++i)
         for (int c = 0; c < 3; ++c)

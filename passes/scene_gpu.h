@@ -116,6 +116,7 @@ private:
     glm::vec3 coverCentre_{0.0f};  // the sphere every directional shadow map covers
     float coverRadius_ = 1.0f;
     bool ambient_ = false;
+    bool microfacet_ = false;  // some drawn material has a microfacet lobe (LIGHTING_SPEC_MICROFACET)
     glm::vec3 background_{0.0f};
     std::array<glm::vec3, 9> ambientSH_{};
     std::uint64_t lightsVersion_ = 0;

@@ -101,10 +101,44 @@ ShadowCubePass::FaceLists ShadowCubePass::cullPerFace(std::span<const glm::vec3>
     return lists;
 }
 
-void ShadowCubePass::updateFaceLists(const SceneGpu& scene, float nearPlane) {
-    if (listsScene_ == &scene && listsVersion_ == scene.lightsVersion() && listsNear_ == nearPlane) return;
-    FaceLists lists =
-        cullPerFace(scene.vertexPositions(), scene.lightPositions(), nearPlane, scene.lightDirectional());
+void ShadowCubePass::updateFaceLists(const SceneGpu& scene, float nearPlane, const ViewFrustum* view,
+                                     std::span<const float> cullRadii) {
+    if (listsScene_ != &scene || listsVersion_ != scene.lightsVersion() || listsNear_ != nearPlane) {
+        baseLists_ = cullPerFace(scene.vertexPositions(), scene.lightPositions(), nearPlane, scene.lightDirectional());
+        listsScene_ = &scene;
+        listsVersion_ = scene.lightsVersion();
+        listsNear_ = nearPlane;
+        viewListsValid_ = false;
+    }
+    const bool culled = view != nullptr;
+    if (viewListsValid_ && listsCulled_ == culled && (!culled || (listsView_ == *view &&
+                                                                  std::equal(cullRadii.begin(), cullRadii.end(),
+                                                                             listsRadii_.begin(), listsRadii_.end()))))
+        return;
+    FaceLists lists;
+    if (!culled) {
+        lists = baseLists_;
+    } else {
+        const std::span<const glm::vec3> positions = scene.vertexPositions();
+        const std::span<const glm::vec3> lights = scene.lightPositions();
+        const std::span<const std::uint8_t> directional = scene.lightDirectional();
+        lists.indices.reserve(baseLists_.indices.size());
+        for (std::size_t layer = 0; layer < baseLists_.ranges.size(); ++layer) {
+            const std::size_t light = layer / 6;
+            const auto [first, count] = baseLists_.ranges[layer];
+            const auto begin = static_cast<std::uint32_t>(lists.indices.size());
+            const std::span<const std::uint32_t> face(baseLists_.indices.data() + first, count);
+            if (light < directional.size() && directional[light] != 0) {
+                lists.indices.insert(lists.indices.end(), face.begin(), face.end());  // at infinity: all of it
+            } else {
+                const float radius = light < cullRadii.size() ? cullRadii[light] : 0.0f;
+                cullShadowCasters(positions, face, lights[light], radius, *view, lists.indices);
+            }
+            lists.ranges.emplace_back(begin, static_cast<std::uint32_t>(lists.indices.size()) - begin);
+        }
+        listsView_ = *view;
+        listsRadii_.assign(cullRadii.begin(), cullRadii.end());
+    }
     if (scene.sharedPositions()) {
         const std::span<const std::uint32_t> shared = scene.positionIndex();
         for (std::uint32_t& i : lists.indices) i = shared[i];
@@ -113,14 +147,14 @@ void ShadowCubePass::updateFaceLists(const SceneGpu& scene, float nearPlane) {
     if (lists.indices.empty()) lists.indices.push_back(0);  // a buffer needs a size; no range reads it
     faceIndices_ = vk::uploadBuffer(*context_, std::as_bytes(std::span<const std::uint32_t>(lists.indices)),
                                     VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
-    listsScene_ = &scene;
-    listsVersion_ = scene.lightsVersion();
-    listsNear_ = nearPlane;
+    viewListsValid_ = true;
+    listsCulled_ = culled;
 }
 
 graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& resource,
                                   const SceneGpu& scene, std::span<const std::string> lightNames,
-                                  std::uint32_t faceSize, float nearPlane) {
+                                  std::uint32_t faceSize, float nearPlane, const ViewFrustum* view,
+                                  std::span<const float> cullRadii) {
     const auto lights = static_cast<std::uint32_t>(lightNames.size());
     if (lights == 0 || lights != scene.lightCount())
         throw std::logic_error("ShadowCubePass::add: one name per light of the scene, and at least one");
@@ -138,7 +172,7 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
 
     std::uint64_t kept = 0;
     if (scene.occluderVertexCount() > 0) {
-        updateFaceLists(scene, nearPlane);
+        updateFaceLists(scene, nearPlane, view, cullRadii);
         for (const auto& range : faceRanges_) kept += range.second;
     }
     const std::uint32_t occluders = scene.occluderVertexCount();
@@ -152,8 +186,9 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
     vk::PassDeclaration pass;
     pass.desc = {kShadowPass, graph::QueueKind::Graphics, {graph::writes(resource, graph::Usage::DepthAttachment)},
                  fmt::format("shadow cube maps ({}^2 per face, 6 layers each; a directional light's orthographic map fills "
-                             "the first) for {} light{}: {}; per-face culling draws {:.1f}% of triangles x faces{}",
+                             "the first) for {} light{}: {}; per-face culling draws {:.1f}% of triangles x faces{}{}",
                              faceSize, lights, lights == 1 ? "" : "s", names, 100.0 * keptShare,
+                             view != nullptr ? " (those that can shadow a point in view)" : "",
                              scene.alphaMasked() ? "; alpha test from the texture atlas (the scene has masks)" : "")};
     pass.prepare = [this, &scene] { buildPipeline(scene); };
     pass.record = [this, &scene, &pipeline, resource, push, layers](vk::PassContext& pc) {

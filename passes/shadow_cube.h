@@ -38,6 +38,7 @@
 #include "engine/vk/pipeline.h"
 #include "passes/scene_gpu.h"
 #include "passes/snapshot_graph.h"
+#include "passes/view_budget.h"
 
 namespace aamap::passes {
 
@@ -52,9 +53,13 @@ public:
     // cube maps of `scene`'s lights (lightNames: one per light, for --explain) from its
     // vertices. Throws std::invalid_argument past the device's layer limits. `scene` and this
     // object must outlive execution.
+    // view: when not null, each face draws only the triangles that can shadow a point in that
+    // frustum (passes/view_budget.h cullShadowCasters; cullRadii[i]: how far light i's patch
+    // reaches from it, 0 for a point); null: every triangle of the face, for views the frustum
+    // does not cover (mirrors).
     graph::PassId add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& resource,
                       const SceneGpu& scene, std::span<const std::string> lightNames, std::uint32_t faceSize,
-                      float nearPlane);
+                      float nearPlane, const ViewFrustum* view = nullptr, std::span<const float> cullRadii = {});
 
     // The index list of each face (layer 6i+f): triangles of `positions` (three vertices each) not
     // entirely outside one side of the face's pyramid from light i, nor entirely nearer than
@@ -72,14 +77,21 @@ private:
     // The variant `scene` needs: shared positions, or masked when it has alpha masks.
     vk::Pipeline& pipelineSlot(const SceneGpu& scene) const { return pipelines_[scene.alphaMasked() ? 1 : 0]; }
     void buildPipeline(const SceneGpu& scene) const;  // the executor's prepare step
-    void updateFaceLists(const SceneGpu& scene, float nearPlane);
+    void updateFaceLists(const SceneGpu& scene, float nearPlane, const ViewFrustum* view,
+                         std::span<const float> cullRadii);
 
     VulkanContext* context_;
     // Built when the pass is kept: shared positions (12-byte stride), or masked (alpha test, the
     // scene's textured vertices). Index: 0, 1.
     mutable vk::Pipeline pipelines_[2];
     std::uint32_t maxLayers_ = 0;
-    // Face lists for (scene, its light set, near plane), rebuilt when any of them changes.
+    // Face lists for (scene, its light set, near plane), rebuilt when any of them changes (indices
+    // into the scene's unshared positions), then culled for the view and uploaded.
+    FaceLists baseLists_;
+    bool viewListsValid_ = false;
+    bool listsCulled_ = false;
+    ViewFrustum listsView_;
+    std::vector<float> listsRadii_;
     vk::Buffer faceIndices_;
     std::vector<std::pair<std::uint32_t, std::uint32_t>> faceRanges_;
     const SceneGpu* listsScene_ = nullptr;

@@ -21,6 +21,7 @@
 #include "passes/scene_gpu.h"
 #include "passes/shadow_cube.h"
 #include "passes/subpixel_map.h"
+#include "passes/view_budget.h"
 #include "glsl/shared/subpixel_map.h"
 #include "scene/camera.h"
 #include "scene/lights.h"
@@ -99,7 +100,8 @@ struct SnapshotRenderer::Impl {
     passes::GeometricEdgePass geometricEdges;
     passes::SubpixelMapPass subpixel;
     vk::GraphExecutor executor;
-    int lightSamples = -1;  // k the light buffer was built for
+    std::vector<int> areaSamples{-1};  // samples per area light the light buffer was built for
+    std::vector<float> cullRadii;      // per light of the buffer: how far its patch reaches
     int environmentLights = -1;  // and the environment's extracted lights
     bool softShadows = false;    // and whether area-light samples had patches
     std::vector<std::string> lightNames;     // of the light buffer, in order
@@ -121,25 +123,68 @@ struct SnapshotRenderer::Impl {
           subpixel(c),
           executor(c) {}
 
-    void updateLights(int k, int fromEnvironment, bool soft) {
-        if (k == lightSamples && fromEnvironment == environmentLights && soft == softShadows) return;
-        if (k < 1 && !lighting.areaLights.empty())
-            throw std::invalid_argument("SnapshotSettings::areaLightSamples must be at least 1, got " +
-                                        std::to_string(k));
+    // Point samples per area light for the view's region (passes/view_budget.h).
+    std::vector<int> samplesFor(const Bounds& region, int maxSamples, float solidAnglePerSample) const {
+        std::vector<int> counts;
+        for (const AreaLight& area : lighting.areaLights) {
+            double total = 0.0;
+            glm::dvec3 centre(0.0), normal(0.0);
+            for (std::uint32_t t : area.triangles) {
+                const double a = triangleArea(lighting.mesh, t);
+                const glm::uvec3 v = lighting.mesh.triangles[t];
+                centre += a * (glm::dvec3(lighting.mesh.positions[v.x]) + glm::dvec3(lighting.mesh.positions[v.y]) +
+                               glm::dvec3(lighting.mesh.positions[v.z])) / 3.0;
+                normal += a * glm::dvec3(triangleNormal(lighting.mesh, t));
+                total += a;
+            }
+            if (!(total > 0.0)) {
+                counts.push_back(std::max(maxSamples, 1));
+                continue;
+            }
+            centre /= total;
+            // A curved or two-faced light (mean normal well short of unit length) counts from every side.
+            const glm::dvec3 n = glm::length(normal) > 0.9 * total ? glm::normalize(normal) : glm::dvec3(0.0);
+            const double omega = passes::meanSolidAngle(total, glm::vec3(centre), glm::vec3(n), region);
+            counts.push_back(passes::areaLightSamplesFor(omega, solidAnglePerSample, maxSamples));
+        }
+        return counts;
+    }
+
+    void updateLights(const std::vector<int>& counts, int fromEnvironment, bool soft) {
+        if (counts == areaSamples && fromEnvironment == environmentLights && soft == softShadows) return;
+        for (const int k : counts)
+            if (k < 1)
+                throw std::invalid_argument("SnapshotSettings::areaLightSamples must be at least 1, got " +
+                                            std::to_string(k));
         if (fromEnvironment < 0 || fromEnvironment > 16)
             throw std::invalid_argument("SnapshotSettings::environmentLights must be in [0, 16], got " +
                                         std::to_string(fromEnvironment));
         std::vector<PointLight> lights = lighting.pointLights;
         std::vector<float> patchHalfSides(lights.size(), 0.0f);  // true point lights: hard shadows
-        for (const AreaLight& area : lighting.areaLights) {
+        cullRadii.assign(lights.size(), 0.0f);
+        for (std::size_t a = 0; a < lighting.areaLights.size(); ++a) {
+            const AreaLight& area = lighting.areaLights[a];
+            const int k = counts[a];
             const std::vector<PointLight> samples = approximateAreaLight(lighting, area, k);
-            lights.insert(lights.end(), samples.begin(), samples.end());
-            // Each sample stands for 1/k of the light: a square of that area, whose penumbra its
-            // shadow lookup spreads (glsl/shadow_visibility.glsl softShadowVisibility).
             double total = 0.0;
             for (std::uint32_t t : area.triangles) total += triangleArea(lighting.mesh, t);
+            // Each sample stands for 1/k of the light: a square of that area, whose penumbra its
+            // shadow lookup spreads (glsl/shadow_visibility.glsl softShadowVisibility).
             const float halfSide = soft ? static_cast<float>(0.5 * std::sqrt(total / k)) : 0.0f;
             patchHalfSides.insert(patchHalfSides.end(), samples.size(), halfSide);
+            for (const PointLight& sample : samples) {
+                // How far the light reaches from the sample: the view cull of its shadow faces keeps
+                // every triangle between any point of the light and the view (soft shadows filter
+                // over the whole patch; hard ones need only the sample, but the margin is cheap).
+                float reach = 0.0f;
+                for (std::uint32_t t : area.triangles) {
+                    const glm::uvec3 v = lighting.mesh.triangles[t];
+                    for (const std::uint32_t i : {v.x, v.y, v.z})
+                        reach = std::max(reach, glm::length(lighting.mesh.positions[i] - sample.position));
+                }
+                cullRadii.push_back(reach);
+            }
+            lights.insert(lights.end(), samples.begin(), samples.end());
         }
         std::vector<DirectionalLight> directionals = lighting.directionalLights;
         std::optional<passes::EnvironmentLighting> env;
@@ -152,8 +197,11 @@ struct SnapshotRenderer::Impl {
         lightNames.clear();
         for (const PointLight& l : lights) lightNames.push_back(l.name);
         for (const DirectionalLight& d : directionals)
-            if (glm::length(d.direction) > 0.0f) lightNames.push_back(d.name);
-        lightSamples = k;
+            if (glm::length(d.direction) > 0.0f) {
+                lightNames.push_back(d.name);
+                cullRadii.push_back(0.0f);
+            }
+        areaSamples = counts;
         environmentLights = fromEnvironment;
         softShadows = soft;
     }
@@ -161,7 +209,8 @@ struct SnapshotRenderer::Impl {
 
 // The one step from the config section to the passes' settings (float where the GPU takes float).
 SnapshotSettings::SnapshotSettings(const SnapshotConfig& c)
-    : scale(static_cast<float>(c.scale)), areaLightSamples(c.areaLightSamples), environmentLights(c.environmentLights),
+    : scale(static_cast<float>(c.scale)), areaLightSamples(c.areaLightSamples),
+      areaLightSolidAngle(static_cast<float>(c.areaLightSolidAngle)), environmentLights(c.environmentLights),
       map(c.map), subpixel(c.subpixel) {
     filter.blurRadius = c.blurRadius;
     filter.flatRange = static_cast<float>(c.flatRange);
@@ -183,8 +232,11 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         throw std::invalid_argument("SnapshotSettings::scale must be positive");
     validate(settings.shadows);
     Impl& s = *impl_;
-    s.updateLights(settings.areaLightSamples, settings.environmentLights,
-                   settings.shadows.enabled && settings.shadows.softShadows);
+    if (settings.areaLightSamples < 1 && !s.lighting.areaLights.empty())
+        throw std::invalid_argument("SnapshotSettings::areaLightSamples must be at least 1, got " +
+                                    std::to_string(settings.areaLightSamples));
+    if (!(settings.areaLightSolidAngle >= 0.0f) || !std::isfinite(settings.areaLightSolidAngle))
+        throw std::invalid_argument("SnapshotSettings::areaLightSolidAngle must be finite and non-negative");
 
     auto scaled = [&](int v) {
         return static_cast<std::uint32_t>(std::max(1L, std::lround(settings.scale * static_cast<float>(v))));
@@ -201,6 +253,11 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     snapshotView.camera = PinholeCamera::fromView(view);
     clipPlanes(s.bounds, snapshotView.camera.origin, s.emptyMesh, snapshotView.nearPlane, snapshotView.farPlane);
     snapshotView.sceneSize = glm::length(s.bounds.extent());
+    // What the view needs (passes/view_budget.h): the area lights' samples for the region it sees.
+    const glm::mat4 viewProj = snapshotView.reversedViewProjection();
+    const Bounds region = s.emptyMesh ? s.bounds : passes::visibleRegion(viewProj, s.bounds);
+    s.updateLights(s.samplesFor(region, settings.areaLightSamples, settings.areaLightSolidAngle),
+                   settings.environmentLights, settings.shadows.enabled && settings.shadows.softShadows);
 
     s.executor.clear();
     graph::RenderGraph graph;
@@ -227,8 +284,12 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         shadows.depthBias = settings.shadows.depthBias;
         shadows.slopeBias = settings.shadows.slopeBias;
         shadows.pcf = static_cast<std::uint32_t>(settings.shadows.pcf);
+        // Mirrors show points outside the frustum, which need every caster.
+        const bool mirrorsInView =
+            s.mirrors.anyInView(snapshotView, {snapW, snapH}) || s.probes.anyInView(snapshotView, {snapW, snapH});
+        const passes::ViewFrustum frustum = passes::ViewFrustum::fromViewProjection(viewProj);
         s.shadows->add(graph, s.executor, shadows.resource, s.sceneGpu, s.lightNames, shadows.faceSize,
-                       shadows.nearPlane);
+                       shadows.nearPlane, mirrorsInView ? nullptr : &frustum, s.cullRadii);
     }
     // The G-buffer writes the aamap's grey itself unless something changes the snapshot after the
     // opaque draw (a mirror composite, glass blended over it) or the map does not read the grey:
@@ -241,7 +302,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
             graph::imageResource(passes::kGrey, passes::GBufferPass::kGreyFormat, graph::Size::relative(passes::kSnapshot)));
         grey = {passes::kGrey, settings.filter.exposure};
     }
-    s.gbuffer.add(graph, s.executor, passes::kSnapshot, passes::kDepth, snapshotView, shadows, grey);
+    s.gbuffer.add(graph, s.executor, passes::kSnapshot, passes::kDepth, snapshotView, shadows, grey, true);
     std::string mirrorWhy;
     s.mirrors.add(graph, s.executor, s.gbuffer, passes::kSnapshot, passes::kDepth, snapshotView, {snapW, snapH},
                   shadows, &mirrorWhy);
@@ -289,8 +350,17 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     for (const vk::PassTime& t : run.passTimes) result.passTimes.push_back({t.pass, t.milliseconds});
     result.deviceName = s.context.deviceName();
     result.explain = explainWithPurposes(graph, compiled) + "mirrors: " + mirrorWhy + "\ncurved mirrors: " + probeWhy + "\n";
+    if (!s.lighting.areaLights.empty()) {
+        result.explain += fmt::format("area-light samples (one per {} sr of mean solid angle over the visible region, "
+                                      "at most {}):",
+                                      settings.areaLightSolidAngle, settings.areaLightSamples);
+        for (std::size_t a = 0; a < s.lighting.areaLights.size() && a < s.areaSamples.size(); ++a)
+            result.explain += fmt::format("{} '{}' {}", a ? "," : "", s.lighting.areaLights[a].name, s.areaSamples[a]);
+        result.explain += "\n";
+    }
     result.dot = compiled.toDot();
     result.shadowCubeMaps = shadowed ? static_cast<int>(s.sceneGpu.lightCount()) : 0;
+    result.areaLightSamples = s.areaSamples;
     result.totalSeconds = secondsSince(start);
     return result;
 }

@@ -37,7 +37,10 @@ struct SnapshotSettings {
     explicit SnapshotSettings(const SnapshotConfig& config);
 
     float scale;           // snapshot resolution / render resolution (768 for 512); not the subpixel map's
-    int areaLightSamples;  // point samples per area light (the paper used 5)
+    int areaLightSamples;  // at most this many point samples per area light (the paper used 5)
+    // One sample per this many steradians of an area light's mean solid angle over the visible
+    // region (passes/view_budget.h); 0: every area light gets areaLightSamples.
+    float areaLightSolidAngle;
     // The environment map's brightest regions shaded as this many shadowed directional lights
     // (0..16; 0: the whole map goes to the SH ambient term). passes/environment_lighting.h.
     int environmentLights;
@@ -77,6 +80,7 @@ struct SnapshotResult {
     std::string dot;      // the compiled graph as Graphviz DOT (CompiledGraph::toDot())
     int shadowCubeMaps = 0;  // cube maps rendered: one per shadowed point light / area-light sample
                              // (and per directional light: its orthographic map takes a cube's layers)
+    std::vector<int> areaLightSamples;  // the point samples each area light got, in the scene's order
 };
 
 // What of the scene the Snapshot cannot show the way the tracer will, one sentence each (curved

@@ -48,7 +48,12 @@ const Schema<SnapshotConfig>& snapshotSchema() {
                 "snapshot resolution / render resolution (the paper: 768 for 512); the subpixel map rasterises at "
                 "`snapshot.subpixel` x the render resolution instead")
             .field(&S::areaLightSamples, "area_light_samples", in(1, 64), 5,
-                   "point lights approximating each area light (the paper: 5)")
+                   "at most this many point lights approximating each area light (the paper: 5)")
+            .field(&S::areaLightSolidAngle, "area_light_solid_angle", in(0.0, 12.6), 0.04,
+                   "an area light gets one point sample per this many steradians of its mean solid angle over the "
+                   "visible region (at least 1, at most `area_light_samples`; 0: always `area_light_samples`); the "
+                   "soft-shadow filter spreads each sample over its patch (docs/architecture.md, \"Samples and "
+                   "casters by need\")")
             .field(&S::environmentLights, "environment_lights", in(0, 16), 1,
                    "the environment map's brightest regions shaded as this many shadowed directional lights; the "
                    "rest is an SH ambient term (0: all of it); no effect without a map (docs/architecture.md, "

@@ -26,7 +26,10 @@ struct SnapshotConfig {
     SnapshotConfig();  // snapshotSchema()'s defaults
 
     double scale;           // snapshot resolution / render resolution
-    int areaLightSamples;   // point lights approximating each area light
+    int areaLightSamples;   // at most this many point lights approximating each area light
+    // Steradians of an area light's mean solid angle over the visible region per point sample
+    // (passes/view_budget.h); 0: every area light gets areaLightSamples.
+    double areaLightSolidAngle;
     // The environment map's brightest regions as this many shadowed directional lights (0: all of
     // it in the SH ambient term); no effect without an environment map.
     int environmentLights;

@@ -30,7 +30,12 @@ int main(int argc, char** argv) {
     app.add_option("--lights", lightFile, "light file added to the scene (docs/lights.md)");
     app.add_option("--size", size, "render resolution (square)");
     app.add_option("--scale", options.settings.scale, "snapshot resolution / render resolution");
-    app.add_option("--area-samples", options.settings.areaLightSamples, "point samples per area light");
+    app.add_option("--area-samples", options.settings.areaLightSamples, "at most this many point samples per area light");
+    app.add_option("--area-solid-angle", options.settings.areaLightSolidAngle,
+                   "steradians of an area light's mean solid angle over the view per sample (0: always --area-samples)");
+    std::string mapName = "luminance";
+    app.add_option("--map", mapName, "snapshot.map: luminance, geometric, combined or subpixel");
+    app.add_option("--subpixel", options.settings.subpixel, "the subpixel map's samples per pixel side k");
     app.add_option("--shadow-resolution", options.settings.shadows.resolution, "shadow cube-face size (texels)");
     app.add_option("--shadow-pcf", options.settings.shadows.pcf, "shadow PCF kernel side (1: one tap)");
     bool noShadows = false;
@@ -44,6 +49,10 @@ int main(int argc, char** argv) {
     app.add_flag("--explain", explain, "print the compiled render graph");
     CLI11_PARSE(app, argc, argv);
     options.width = options.height = size;
+    if (!aamap::passes::parse(mapName, options.settings.map)) {
+        std::fprintf(stderr, "unknown --map '%s'\n", mapName.c_str());
+        return 2;
+    }
     options.settings.shadows.enabled = !noShadows;
     options.settings.shadows.softShadows = !hardShadows;
     options.settings.keepDebugImages = false;  // the aamap alone, as the experiment pipeline reads it

@@ -55,10 +55,10 @@ SnapshotBenchResult runSnapshotBench(VulkanContext& context, const Scene& scene,
 std::string formatSnapshotBench(const SnapshotBenchResult& result, const SnapshotBenchOptions& options) {
     const long sw = std::lround(options.settings.scale * static_cast<float>(options.width));
     const long sh = std::lround(options.settings.scale * static_cast<float>(options.height));
-    std::string out = fmt::format("device: {}\nsnapshot {}x{} for a {}x{} render, {} area-light samples, "
+    std::string out = fmt::format("device: {}\nsnapshot {}x{} for a {}x{} render, map {}, up to {} area-light samples, "
                                   "{}, median of {} runs after {} warm-up\n",
                                   result.deviceName, sw, sh, options.width, options.height,
-                                  options.settings.areaLightSamples,
+                                  passes::toString(options.settings.map), options.settings.areaLightSamples,
                                   options.settings.shadows.enabled
                                       ? fmt::format("shadows {}^2 per face, pcf {}", options.settings.shadows.resolution,
                                                     options.settings.shadows.pcf)

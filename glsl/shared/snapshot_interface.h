@@ -100,7 +100,10 @@ struct GpuLight {
 // that E(n) = sum_i c_i Y_i(n). After the inline lights.
 #define LIGHTING_SPEC_AMBIENT (LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * LIGHTING_INLINE_LIGHTS)
 #define LIGHTING_SPEC_AMBIENT_SH (LIGHTING_SPEC_AMBIENT + 1)
-#define LIGHTING_SPEC_COUNT (LIGHTING_SPEC_AMBIENT_SH + 27)
+// uint: 1 if some drawn material has a microfacet lobe (GpuLobe); 0 folds the lobe's code away,
+// which lavapipe would otherwise run for every light and pixel (both sides of the branch).
+#define LIGHTING_SPEC_MICROFACET (LIGHTING_SPEC_AMBIENT_SH + 27)
+#define LIGHTING_SPEC_COUNT (LIGHTING_SPEC_MICROFACET + 1)
 
 struct GBufferPush {
     mat4 viewProj;   // world -> Vulkan clip space

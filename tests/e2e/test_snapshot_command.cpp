@@ -64,9 +64,14 @@ TEST_F(SnapshotCommand, WritesImagesExplainAndDot) {
     ASSERT_EQ(r.code, 0) << r.err;
     for (const char* f : {"snapshot.png", "laplacian.png", "aamap.png", "aamap.exr"})
         EXPECT_TRUE(fs::exists(dir_ / "out" / f)) << f;
-    // The scene's own quad light plus the file's disk: 2 area lights x 2 samples, and the spot.
-    EXPECT_NE(r.out.find("1 spot, 2 area (x 2 point samples each) -> 5 light samples"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("shadow pass: 5 cube map(s)"), std::string::npos) << r.out;
+    // The scene's own quad light plus the file's disk, each small over the box: one sample each
+    // (snapshot.area_light_solid_angle), at most 2; and the spot.
+    EXPECT_NE(r.out.find("1 spot, 2 area (2 point samples in all, by solid angle over the view, at most 2 each) -> 3 "
+                         "light samples"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("shadow pass: 3 cube map(s)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("at most 2): 'light' 1, 'lamp' 1"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("kept   'shadow': writes 'shadow.cubes' -> read by 'gbuffer'"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("kept   'gbuffer'"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("culled '"), std::string::npos) << r.out;

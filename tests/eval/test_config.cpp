@@ -216,7 +216,8 @@ TEST(ConfigHash, StableUnderFormattingAndDefaults) {
     EXPECT_EQ(ca.canonicalJson(),
               R"({"scene":"builtin:cornell","view":null,"view_index":0,"lights":[],)"
               R"("image":{"width":512,"height":512,"exposure":1.0},"seed":1,"threads":0,)"
-              R"("snapshot":{"scale":1.5,"area_light_samples":5,"environment_lights":1,"soft_shadows":true,)"
+              R"("snapshot":{"scale":1.5,"area_light_samples":5,"area_light_solid_angle":0.04,"environment_lights":1,)"
+              R"("soft_shadows":true,)"
               R"("blur_radius":1,"flat_range":0.00392156862745098,"noise_floor":0.02,"gain":1.0,"map":"luminance",)"
               R"("subpixel":2},)"
               R"("shading":{"area_light_samples":16,"mode":"direct","max_depth":5,"russian_roulette":true,)"

@@ -157,6 +157,7 @@ TEST_F(SnapshotFeaturePairs, EveryPairComposesInOneGraph) {
             SnapshotRenderer renderer(context(), scene);
             SnapshotSettings settings;
             settings.scale = 1.0f;
+            settings.areaLightSolidAngle = 0.0f;  // every area light gets areaLightSamples
             SnapshotResult r;
             ASSERT_NO_THROW(r = renderer.render(view, kSize, kSize, settings));
             ++pairs;

@@ -163,6 +163,7 @@ TEST_F(SnapshotShadows, AreaLightSamplesEachGetACubeMap) {
     ASSERT_EQ(scene.areaLights.size(), 1u);
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;
+    settings.areaLightSolidAngle = 0.0f;  // every area light gets areaLightSamples
     for (int k : {1, 3, 5}) {
         settings.areaLightSamples = k;
         const SnapshotResult r = renderer.render(topView(), 32, 32, settings);
@@ -178,6 +179,7 @@ TEST_F(SnapshotShadows, ChangingTheLightSamplesAndBackGivesTheFreshSnapshot) {
     const Scene scene = boxUnderLamp();
     SnapshotSettings settings;
     settings.scale = 1.0f;
+    settings.areaLightSolidAngle = 0.0f;  // the sample counts as given
     SnapshotRenderer reused(context(), scene);
     std::vector<float> firstAamap;
     SnapshotResult last;
@@ -221,6 +223,60 @@ TEST_F(SnapshotShadows, OccluderDarkensTheSurface) {
     // Lit floor far from the box looks the same with or without the box: no acne.
     EXPECT_NEAR(b.snapshot.at(60, 32).r, a.snapshot.at(60, 32).r, 1e-5f);
     EXPECT_NEAR(b.snapshot.at(60, 5).r, a.snapshot.at(60, 5).r, 1e-5f);
+}
+
+// The view culls (passes/view_budget.h): a caster outside the frustum still shadows the floor in
+// view, and the G-buffer draws only what the frustum holds.
+TEST_F(SnapshotShadows, CasterOutsideTheViewStillShadowsIt) {
+    SnapshotSettings settings;
+    settings.scale = 1.0f;
+    // Straight down on the floor right of the box: x in [0.42, 1.58] at z = 0, and the box (x <=
+    // 0.25) is outside the frustum at every height; its shadow reaches x = 0.5.
+    const View view = viewDownZ({1.0f, 0.0f, 1.0f}, 60.0f);
+    SnapshotRenderer boxed(context(), boxScene(true));
+    SnapshotRenderer open(context(), boxScene(false));
+    const SnapshotResult b = boxed.render(view, 64, 64, settings);
+    const SnapshotResult a = open.render(view, 64, 64, settings);
+    EXPECT_NE(b.explain.find("opaque triangles in the view frustum"), std::string::npos) << b.explain;
+    EXPECT_NE(b.explain.find("2 of 12 opaque triangles"), std::string::npos) << b.explain;  // the floor alone
+    const PinholeCamera camera = PinholeCamera::fromView(view);
+    int shadowed = -1, lit = -1;
+    for (int x = 0; x < 64; ++x) {
+        const glm::vec3 d = camera.direction((x + 0.5f) / 64.0f, 0.5f);
+        const float floorX = camera.origin.x + (-camera.origin.z / d.z) * d.x;
+        if (floorX > 0.43f && floorX < 0.47f) shadowed = x;
+        if (floorX > 0.9f && floorX < 1.1f) lit = x;
+    }
+    ASSERT_GE(shadowed, 0);
+    ASSERT_GE(lit, 0);
+    const float unshadowed = a.snapshot.at(shadowed, 32).r;
+    EXPECT_GT(unshadowed, 0.0f);
+    EXPECT_LT(b.snapshot.at(shadowed, 32).r, 0.1f * unshadowed);
+    EXPECT_NEAR(b.snapshot.at(lit, 32).r, a.snapshot.at(lit, 32).r, 1e-5f);
+}
+
+// Area-light samples by need: the lamp gets fewer than the cap when it looks small over the
+// region in view, every sample its cube map, and a solid angle per sample of 0 gives the cap.
+TEST_F(SnapshotShadows, AreaLightSamplesFollowTheSolidAngle) {
+    const Scene scene = boxUnderLamp();
+    SnapshotRenderer renderer(context(), scene);
+    SnapshotSettings settings;
+    settings.areaLightSamples = 16;
+    settings.areaLightSolidAngle = 0.05f;
+    // The 0.4 x 0.4 lamp at z = 1.5 over the floor: about 0.16 / 1.5^2 = 0.07 sr below it, less
+    // beside it, so a few samples, not 16.
+    const SnapshotResult r = renderer.render(topView(), 32, 32, settings);
+    ASSERT_EQ(r.areaLightSamples.size(), 1u);
+    EXPECT_GE(r.areaLightSamples[0], 1);
+    EXPECT_LE(r.areaLightSamples[0], 4);
+    EXPECT_EQ(r.shadowCubeMaps, r.areaLightSamples[0]);
+    EXPECT_NE(r.explain.find("area-light samples"), std::string::npos) << r.explain;
+    // A smaller solid angle per sample: more samples, up to the cap.
+    settings.areaLightSolidAngle = 0.001f;
+    EXPECT_EQ(renderer.render(topView(), 32, 32, settings).areaLightSamples[0], 16);
+    settings.areaLightSolidAngle = 0.0f;
+    settings.areaLightSamples = 5;
+    EXPECT_EQ(renderer.render(topView(), 32, 32, settings).shadowCubeMaps, 5);
 }
 
 // --- Soft shadows of area-light samples ------------------------------------------------------
@@ -296,6 +352,7 @@ PenumbraProfile penumbraProfile(VulkanContext& context, bool soft, int samples) 
     SnapshotSettings settings;
     settings.scale = 1.0f;
     settings.areaLightSamples = samples;
+    settings.areaLightSolidAngle = 0.0f;  // exactly `samples`: the filter's penumbra per sample count
     settings.shadows.softShadows = soft;
     const int size = 160;
     SnapshotRenderer shadowed(context, lampOverPlate(true));
