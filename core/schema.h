@@ -2,9 +2,9 @@
 // A config section's schema bound to the struct that holds it: each key declared once, with the
 // field it fills, its type, range, default and doc, and for a choice the enum value of each name.
 //
-//   Schema<SnapshotConfig> s;
-//   s.field(&SnapshotConfig::blurRadius, "blur_radius", in(0, 16), 1, "box blur radius ...")
-//    .choice(&SnapshotConfig::map, "map", {{"luminance", AamapSource::Luminance}, ...}, "...");
+//   Schema<SnapshotSettings> s;
+//   s.field(&SnapshotSettings::scale, "scale", in(1.0, 4.0), 1.5, "snapshot resolution / render ...")
+//    .choice(&SnapshotSettings::map, "map", {{"luminance", AamapSource::Luminance}, ...}, "...");
 //
 // From the one list come the struct's defaults (setDefaults, called by the struct's constructor),
 // the ParamSpecs the readers, --set keys, --help lines, CLI options and docs tables are generated
@@ -55,14 +55,16 @@ public:
     // An int or real member.
     template <class M>
         requires(std::is_arithmetic_v<M> && !std::is_same_v<M, bool>)
-    Schema& field(M T::*member, std::string name, ParamRange range, M fallback, std::string doc) {
+    Schema& field(M T::*member, std::string name, ParamRange range, std::type_identity_t<M> fallback, std::string doc) {
         ParamSpec spec;
         spec.name = std::move(name);
         spec.type = std::is_integral_v<M> ? ParamType::Int : ParamType::Real;
         spec.lo = range.lo;
         spec.hi = range.hi;
         spec.openLo = range.openLo;
-        spec.defaultValue = static_cast<double>(fallback);
+        // A float field's default as the float holds it, so that the default reads back equal.
+        if constexpr (std::is_same_v<M, float>) spec.defaultValue = shortestDouble(fallback);
+        else spec.defaultValue = static_cast<double>(fallback);
         spec.doc = std::move(doc);
         add({std::move(spec),
              [member](const T& t) -> ParamValue {

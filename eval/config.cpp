@@ -312,7 +312,7 @@ std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-10";  // bump as the render key
+    j["format"] = "aamap-snapshot-11";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c, true);
     addSubpixelThreshold(c, j);
@@ -353,20 +353,50 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
 
 std::string ExperimentConfig::canonicalJson() const { return canonical(*this).dump(); }
 
-std::string ExperimentConfig::hash() const {
-    nlohmann::ordered_json j = canonical(*this);
-    j.erase("threads");
-    return fnv1a64Hex(j.dump());
+std::string ExperimentConfig::hashJson() const {
+    Json j;
+    j["scene"] = scene;
+    j["view"] = view ? Json(*view) : Json(nullptr);
+    if (camera) j["camera"] = cameraJson(*camera);
+    if (lightFile) j["light_file"] = *lightFile;
+    j["lights"] = lightsJson(*this);
+    j["seed"] = seed;
+    // The schema sections by the keys not at their default, as the cache keys hold them: a key
+    // added later leaves every hash as it was. Threads never change an image.
+    for (const ConfigSection& s : configSections()) {
+        const ParamValues all = s.values(*this);
+        ParamValues changed;
+        for (const ParamSpec& p : s.params)
+            if (const ParamValue* v = all.find(p.name); v != nullptr && !(*v == p.defaultParam()) && p.name != "threads")
+                changed.set(p.name, *v);
+        if (s.path.empty()) {
+            const Json top = toJson(changed);
+            for (const auto& [key, value] : top.items()) j[key] = value;
+        } else if (!changed.entries().empty()) {
+            j[s.path] = toJson(changed);
+        }
+    }
+    j["renders"] = Json::array();
+    for (const RenderConfig& r : renders)
+        j["renders"].push_back({{"name", r.name}, {"series", r.series}, {"strategy", r.strategy}, {"rpp", r.rpp},
+                                {"params", paramsJson(r)}});
+    j["reference"] = {{"type", toString(reference.type)},
+                      {"rpp", reference.rpp},
+                      {"mode", reference.mode ? toString(*reference.mode) : ""},
+                      {"path", reference.path}};
+    return j.dump();
 }
 
-SnapshotConfig snapshotFromOverrides(const std::vector<std::string>& overrides) {
+std::string ExperimentConfig::hash() const { return fnv1a64Hex(hashJson()); }
+
+SnapshotSettings snapshotFromOverrides(const std::vector<std::string>& overrides) {
     yaml::Context ctx("--set");
     YAML::Node root(YAML::NodeType::Map);
     std::vector<std::string> keys;
     for (const ParamSpec& p : snapshotParams()) keys.push_back("snapshot." + p.name);
     for (const std::string& o : overrides) yaml::applyOverride(root, o, keys, ctx);
     MapReader snap(ctx, root["snapshot"], "snapshot", sectionKeyNames(snapshotParams()));
-    SnapshotConfig c;
+    SnapshotSettings c;
     readSection(ctx, snap, snapshotSchema(), c);
     return c;
 }

@@ -50,7 +50,8 @@ struct CameraConfig {
     double fov = 45.0;  // degrees, the full horizontal angle; the vertical one follows the image
 };
 
-// SnapshotConfig: the `snapshot` section, declared with its schema in passes/snapshot_params.h.
+// The `snapshot` section is the passes' SnapshotSettings, declared with its schema in
+// passes/snapshot_params.h.
 
 // The `shading` section is the tracer's ShadingSettings, declared with its schema in
 // tracer/shading_params.h.
@@ -124,7 +125,7 @@ struct ExperimentConfig {
     ImageConfig image;
     std::uint64_t seed = 1;
     int threads = 0;  // 0: all hardware threads
-    SnapshotConfig snapshot;
+    SnapshotSettings snapshot;
     ShadingSettings shading;  // the tracer's own struct, bound by the schema (tracer/shading_params.h)
     std::vector<RenderConfig> renders;
     ReferenceConfig reference;
@@ -151,8 +152,12 @@ struct ExperimentConfig {
 
     // Every field with defaults filled in, keys in schema order, as JSON text (compact).
     std::string canonicalJson() const;
-    // FNV-1a 64 of canonicalJson() without `threads` (which never changes an image), 16 hex digits.
-    std::string hash() const;
+    // What identifies the experiment: canonicalJson()'s content with the schema sections reduced to
+    // the keys not at their default (so a key added later changes no hash) and without `threads`
+    // (which never changes an image).
+    std::string hashJson() const;
+    std::string hash() const;  // FNV-1a 64 of hashJson(), 16 hex digits
+
 };
 
 // The cache key of one render: FNV-1a 64 of the canonical JSON of everything its image depends on
@@ -178,7 +183,7 @@ std::string fnv1a64Hex(const std::string& text);
 
 // The `snapshot` section from overrides alone ("snapshot.blur_radius=2", the --set options of
 // `aamap snapshot`), read as `aamap run` reads its --set: the same checks and errors. Throws InputError.
-SnapshotConfig snapshotFromOverrides(const std::vector<std::string>& overrides);
+SnapshotSettings snapshotFromOverrides(const std::vector<std::string>& overrides);
 
 // The --camera option of `aamap snapshot` and `aamap view`: the config's camera mapping as YAML
 // flow text ("{position: [0, 1, 5], look_at: [0, 1, 0], fov: 50}"). Throws InputError.

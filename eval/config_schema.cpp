@@ -132,7 +132,7 @@ const std::vector<ConfigSection>& configSections() {
     static const std::vector<ConfigSection> sections = {
         bound<E>("", topLevelSchema(), [](const E& c) -> const E& { return c; }),
         bound<ImageConfig>("image", imageSchema(), [](const E& c) -> const ImageConfig& { return c.image; }),
-        bound<SnapshotConfig>("snapshot", snapshotSchema(), [](const E& c) -> const SnapshotConfig& { return c.snapshot; }),
+        bound<SnapshotSettings>("snapshot", snapshotSchema(), [](const E& c) -> const SnapshotSettings& { return c.snapshot; }),
         bound<ShadingSettings>("shading", shadingSchema(), [](const E& c) -> const ShadingSettings& { return c.shading; }),
         bound<IrradianceCacheSettings>("shading.cache", shadingCacheSchema(),
                                        [](const E& c) -> const IrradianceCacheSettings& { return c.shading.cache; }),

@@ -208,17 +208,6 @@ struct SnapshotRenderer::Impl {
 };
 
 // The one step from the config section to the passes' settings (float where the GPU takes float).
-SnapshotSettings::SnapshotSettings(const SnapshotConfig& c)
-    : scale(static_cast<float>(c.scale)), areaLightSamples(c.areaLightSamples),
-      areaLightSolidAngle(static_cast<float>(c.areaLightSolidAngle)), environmentLights(c.environmentLights),
-      map(c.map), subpixel(c.subpixel) {
-    filter.blurRadius = c.blurRadius;
-    filter.flatRange = static_cast<float>(c.flatRange);
-    filter.noiseFloor = static_cast<float>(c.noiseFloor);
-    filter.gain = static_cast<float>(c.gain);
-    shadows.softShadows = c.softShadows;
-}
-
 SnapshotRenderer::SnapshotRenderer(VulkanContext& context, const Scene& scene)
     : impl_(std::make_unique<Impl>(context, scene)) {}
 SnapshotRenderer::~SnapshotRenderer() = default;

@@ -40,8 +40,49 @@ bool parse(const std::string& name, AamapSource& source) {
 
 // The filter chain's defaults are the GLSL header's (its shaders' specialisation defaults), the
 // subpixel map's k range its header's: one definition each, which the schema names.
-const Schema<SnapshotConfig>& snapshotSchema() {
-    using S = SnapshotConfig;
+namespace {
+
+// The keys of the section that the passes take in their own structs: soft_shadows (its default
+// ShadowSettings' own) and the aamap filter chain's (their defaults glsl/shared/aamap_filter.h's).
+const Schema<ShadowSettings>& shadowKeys() {
+    using H = ShadowSettings;
+    static const Schema<H> schema = [] {
+        Schema<H> s;
+        s.field(&H::softShadows, "soft_shadows", ShadowSettings{}.softShadows,
+                   "each point sample of an area light casts the soft shadow of the patch of light it stands for (a "
+                   "blocker search and a filter of the penumbra's width in its shadow map, "
+                   "[architecture.md](architecture.md), \"Soft shadows of area-light samples\"); false: hard "
+                   "shadows from every sample. Point and spot lights cast hard shadows either way. Only `false` "
+                   "enters the cache keys");
+        return s;
+    }();
+    return schema;
+}
+
+const Schema<FilterParams>& filterKeys() {
+    using F = FilterParams;
+    static const Schema<F> schema = [] {
+        Schema<F> s;
+        s.field(&F::blurRadius, "blur_radius", in(0, 16), AAMAP_DEFAULT_BLUR_RADIUS,
+                   "box blur radius after the 5x5 Laplacian, in snapshot pixels")
+            .field(&F::flatRange, "flat_range", in(0.0, 1.0), AAMAP_DEFAULT_FLAT_RANGE,
+                   "the Laplacian counts only where the grey spans at least this over a texel's 3x3 window (1/255: "
+                   "one 8-bit code value); flat texels beside an edge, which one ray already renders, get 0 "
+                   "([architecture.md](architecture.md), \"The aamap filter chain\"); 0: everywhere, the paper's "
+                   "chain")
+            .field(&F::noiseFloor, "noise_floor", in(0.0, 1.0), AAMAP_DEFAULT_NOISE_FLOOR,
+                   "blurred edge responses below this are smooth shading: map = 0")
+            .field(&F::gain, "gain", above(0.0, 1e6), AAMAP_DEFAULT_GAIN,
+                   "map = clamp(gain * (blurred - noise_floor), 0, 1)");
+        return s;
+    }();
+    return schema;
+}
+
+}  // namespace
+
+const Schema<SnapshotSettings>& snapshotSchema() {
+    using S = SnapshotSettings;
     static const Schema<S> schema = [] {
         Schema<S> s;
         s.field(&S::scale, "scale", in(1.0, 4.0), 1.5,
@@ -58,23 +99,8 @@ const Schema<SnapshotConfig>& snapshotSchema() {
                    "the environment map's brightest regions shaded as this many shadowed directional lights; the "
                    "rest is an SH ambient term (0: all of it); no effect without a map (docs/architecture.md, "
                    "\"Lights at infinity in the Snapshot\")")
-            .field(&S::softShadows, "soft_shadows", true,
-                   "each point sample of an area light casts the soft shadow of the patch of light it stands for (a "
-                   "blocker search and a filter of the penumbra's width in its shadow map, "
-                   "[architecture.md](architecture.md), \"Soft shadows of area-light samples\"); false: hard "
-                   "shadows from every sample. Point and spot lights cast hard shadows either way. Only `false` "
-                   "enters the cache keys")
-            .field(&S::blurRadius, "blur_radius", in(0, 16), AAMAP_DEFAULT_BLUR_RADIUS,
-                   "box blur radius after the 5x5 Laplacian, in snapshot pixels")
-            .field(&S::flatRange, "flat_range", in(0.0, 1.0), AAMAP_DEFAULT_FLAT_RANGE,
-                   "the Laplacian counts only where the grey spans at least this over a texel's 3x3 window (1/255: "
-                   "one 8-bit code value); flat texels beside an edge, which one ray already renders, get 0 "
-                   "([architecture.md](architecture.md), \"The aamap filter chain\"); 0: everywhere, the paper's "
-                   "chain")
-            .field(&S::noiseFloor, "noise_floor", in(0.0, 1.0), AAMAP_DEFAULT_NOISE_FLOOR,
-                   "blurred edge responses below this are smooth shading: map = 0")
-            .field(&S::gain, "gain", above(0.0, 1e6), AAMAP_DEFAULT_GAIN,
-                   "map = clamp(gain * (blurred - noise_floor), 0, 1)")
+            .include(&S::shadows, shadowKeys())
+            .include(&S::filter, filterKeys())
             .choice(&S::map, "map", passes::mapNames(),
                     "what the map is built from: the luminance Laplacian (the paper), G-buffer discontinuities "
                     "(depth, normal, object and material id, shadow-map visibility per light when shadows are on; "
@@ -92,7 +118,7 @@ const Schema<SnapshotConfig>& snapshotSchema() {
     return schema;
 }
 
-SnapshotConfig::SnapshotConfig() { snapshotSchema().setDefaults(*this); }
+SnapshotSettings::SnapshotSettings() { snapshotSchema().setDefaults(*this); }
 
 const std::vector<ParamSpec>& snapshotParams() { return snapshotSchema().specs(); }
 

@@ -1,13 +1,14 @@
 #pragma once
-// The `snapshot` config section, declared once: each key bound to the SnapshotConfig field that
-// holds it (core/schema.h), with its range, default and doc. The structs' defaults, the config
+// The `snapshot` config section, declared once: each key bound to the SnapshotSettings field that
+// holds it (core/schema.h), with its range, default and doc. The struct's defaults, the config
 // reader, --set, the CLI options of `aamap snapshot`, --help, the cache keys and docs/config.md's
-// rows are generated from snapshotSchema(). No Vulkan: the config reader links only this.
+// key table are generated from snapshotSchema(). No Vulkan: the config reader links only this.
 #include <string>
 #include <vector>
 
 #include "core/params.h"
 #include "core/schema.h"
+#include "passes/filter_params.h"
 
 namespace aamap {
 namespace passes {
@@ -20,33 +21,53 @@ bool parse(const std::string& name, AamapSource& source);  // false for an unkno
 
 }  // namespace passes
 
-// The Snapshot's settings as the config holds them (doubles: the canonical form prints the numbers
-// written). Every field's default is its schema default: no second copy here.
-struct SnapshotConfig {
-    SnapshotConfig();  // snapshotSchema()'s defaults
-
-    double scale;           // snapshot resolution / render resolution
-    int areaLightSamples;   // at most this many point lights approximating each area light
-    // Steradians of an area light's mean solid angle over the visible region per point sample
-    // (passes/view_budget.h); 0: every area light gets areaLightSamples.
-    double areaLightSolidAngle;
-    // The environment map's brightest regions as this many shadowed directional lights (0: all of
-    // it in the SH ambient term); no effect without an environment map.
-    int environmentLights;
-    // Area-light samples' shadows filtered over the penumbra of their patch of the light
-    // (passes/snapshot.h ShadowSettings); false: hard shadows from every sample.
-    bool softShadows;
-    int blurRadius;         // the aamap filter chain (glsl/shared/aamap_filter.h)
-    double flatRange;
-    double noiseFloor;
-    double gain;
-    passes::AamapSource map;  // what the map is built from (passes/geometric_aamap.h)
-    int subpixel;             // the subpixel map's samples per pixel side (passes/subpixel_map.h)
-
-    bool operator==(const SnapshotConfig&) const = default;
+// Shadow cube maps, one per point light and per area-light sample.
+struct ShadowSettings {
+    bool enabled = true;     // no lights: no shadow pass either way
+    int resolution = 256;    // texels per cube-face side
+    float depthBias = 0.5f;  // constant bias, in shadow-map texels at the receiver
+    float slopeBias = 1.0f;  // times tan(incidence angle), in texels (slope-scaled bias)
+    int pcf = 1;             // percentage-closer filter kernel side in texels; 1 = one tap
+    // Area-light samples filter their lookups over the penumbra of the patch of the light each
+    // stands for (PCSS): smooth penumbrae. Point and spot lights keep the pcf lookup either way.
+    // The config key snapshot.soft_shadows.
+    bool softShadows = true;
+    bool operator==(const ShadowSettings&) const = default;
 };
 
-const Schema<SnapshotConfig>& snapshotSchema();
+// What one Snapshot run takes. The `snapshot` config section binds its fields (snapshotSchema(),
+// which declares each key's default, the filter's from glsl/shared/aamap_filter.h): the config
+// holds this struct, and the passes read it. The run's own choices (exposure, the FLIP
+// threshold, read-backs) sit beside the keys.
+struct SnapshotSettings {
+    SnapshotSettings();  // snapshotSchema()'s defaults
+
+    float scale;           // snapshot resolution / render resolution (768 for 512); not the subpixel map's
+    int areaLightSamples;  // at most this many point samples per area light (the paper used 5)
+    // One sample per this many steradians of an area light's mean solid angle over the visible
+    // region (passes/view_budget.h); 0: every area light gets areaLightSamples.
+    float areaLightSolidAngle;
+    // The environment map's brightest regions shaded as this many shadowed directional lights
+    // (0..16; 0: the whole map goes to the SH ambient term). passes/environment_lighting.h.
+    int environmentLights;
+    FilterParams filter;  // blur_radius, flat_range, noise_floor, gain; exposure from image.exposure
+    bool keepDebugImages = true;  // also read back snapshot colour and laplacian
+    // Also build and read back the aamap's block-sum tables (passes/block_sums.h) for adaptive
+    // subsampling; false leaves the block-sum passes culled.
+    bool blockSums = false;
+    // Edges the aamap is built from: the luminance Laplacian (the paper), G-buffer
+    // discontinuities, or their max (passes/geometric_aamap.h), or the subpixel prediction.
+    passes::AamapSource map;
+    // The subpixel map: k x k samples per render pixel (the raster runs at k x the render
+    // resolution; `scale` does not apply), and the FLIP threshold its predicted error is held
+    // against (glsl/shared/subpixel_map.h; metrics.flip_threshold).
+    int subpixel;
+    float flipThreshold = 0.1f;
+    ShadowSettings shadows;  // soft_shadows
+    bool operator==(const SnapshotSettings&) const = default;
+};
+
+const Schema<SnapshotSettings>& snapshotSchema();
 const std::vector<ParamSpec>& snapshotParams();  // snapshotSchema().specs()
 
 }  // namespace aamap

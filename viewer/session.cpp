@@ -75,8 +75,8 @@ ViewerSession::ViewerSession(VulkanContext& context, const ExperimentConfig& con
       snapshotRenderer_(context, prepared_.scene),
       tracer_(prepared_.scene) {
     for (const std::string& note : sceneNotes_) spdlog::info("{}", note);
-    params_.blurRadius = config.snapshot.blurRadius;
-    params_.noiseFloor = config.snapshot.noiseFloor;
+    params_.blurRadius = config.snapshot.filter.blurRadius;
+    params_.noiseFloor = config.snapshot.filter.noiseFloor;
     params_.strata = render.strata();
     const StrategyDescriptor* strategy = findStrategy(render.strategy);
     if (strategy != nullptr && strategy->usesAamap) params_.strategy = render.strategy;

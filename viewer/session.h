@@ -34,8 +34,8 @@ bool parse(const std::string& name, ViewMode& mode);  // "snapshot", "laplacian"
 // The Snapshot side starts at the config section's defaults (passes/snapshot_params.h), the trace
 // side at adaptive subsampling's declaration (tracer/strategies/subsample.h).
 struct ViewerParams {
-    int blurRadius = SnapshotConfig().blurRadius;
-    double noiseFloor = SnapshotConfig().noiseFloor;
+    int blurRadius = SnapshotSettings().filter.blurRadius;
+    float noiseFloor = SnapshotSettings().filter.noiseFloor;
     std::string strategy = kSubsampleStrategyName;
     int strata = 4;
     // Parameters of the traced strategy (spacing, threshold, ...), by name; setParams clamps those

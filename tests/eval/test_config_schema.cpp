@@ -191,7 +191,7 @@ TEST(ConfigSchema, CacheKeysOfAHandBuiltConfigMatchTheParsedOne) {
     EXPECT_TRUE(snapshotKeyNames(hand).empty());
     const ExperimentConfig defaults = hand;
     std::vector<std::string> schema;
-    for (const Schema<SnapshotConfig>::Field& f : snapshotSchema().fields()) {
+    for (const Schema<SnapshotSettings>::Field& f : snapshotSchema().fields()) {
         ExperimentConfig one = defaults;
         const ParamSpec& p = f.spec;
         const ParamValue other = p.type == ParamType::Bool     ? ParamValue(!std::get<bool>(p.defaultParam()))

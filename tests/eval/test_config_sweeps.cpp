@@ -49,7 +49,7 @@ TEST(ConfigSweeps, CartesianProductWithTheFirstKeySlowest) {
         {"builtin:cornell", 1}, {"builtin:cornell", 2}, {"builtin:spheres-plane", 1}, {"builtin:spheres-plane", 2}};
     for (std::size_t i = 0; i < 4; ++i) {
         EXPECT_EQ(e.variants[i].scene, expected[i].first);
-        EXPECT_EQ(e.variants[i].snapshot.blurRadius, expected[i].second);
+        EXPECT_EQ(e.variants[i].snapshot.filter.blurRadius, expected[i].second);
         EXPECT_EQ(e.variants[i].timing.repeats, 3);  // what is not swept is the same everywhere
         EXPECT_EQ(e.sweptValues[i][0], expected[i].first);
     }
@@ -102,8 +102,8 @@ TEST(ConfigSweeps, ZippedListsVaryTogether) {
     const int radius[] = {0, 1, 2}, gain[] = {1, 2, 4};
     for (std::size_t i = 0; i < 6; ++i) {
         EXPECT_EQ(e.variants[i].scene, i < 3 ? "builtin:cornell" : "builtin:spheres-plane");
-        EXPECT_EQ(e.variants[i].snapshot.blurRadius, radius[i % 3]);
-        EXPECT_DOUBLE_EQ(e.variants[i].snapshot.gain, gain[i % 3]);
+        EXPECT_EQ(e.variants[i].snapshot.filter.blurRadius, radius[i % 3]);
+        EXPECT_DOUBLE_EQ(e.variants[i].snapshot.filter.gain, gain[i % 3]);
     }
     const std::string body = "scene: builtin:cornell\nsnapshot: {blur_radius: [0, 1], gain: [1, 2, 4]}\n";
     EXPECT_EQ(lineOf(body + "zip: [[snapshot.blur_radius, snapshot.gain]]\nrenders: [{strategy: uniform, rpp: 1}]\n"), 3);
