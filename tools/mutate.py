@@ -136,9 +136,9 @@ MUTANTS = [
       "return 10.0 * std::log10(peak * peak / mse);", "return 20.0 * std::log10(peak * peak / mse);",
       r"^metrics\.PixelError", "PSNR doubled"),
     # --- config, cache keys, runner -------------------------------------------------------------
-    m("blur-radius-dropped", "runner", "passes/snapshot.cpp",
-      "    filter.blurRadius = c.blurRadius;\n", "",
-      r"^eval\.SettingsReach", "snapshot.blur_radius never reaches the Snapshot"),
+    m("snapshot-section-dropped", "runner", "eval/experiment.cpp",
+      "    SnapshotSettings s(c.snapshot);", "    SnapshotSettings s;",
+      r"^eval\.SettingsReach", "the config's snapshot section never reaches the Snapshot (its defaults do)"),
     m("exposure-dropped", "runner", "eval/experiment.cpp",
       "    s.filter.exposure = static_cast<float>(c.image.exposure);  // edges as the viewer will see them\n", "",
       r"^eval\.SettingsReach", "image.exposure never reaches the Snapshot's greyscale"),
