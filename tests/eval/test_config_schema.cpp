@@ -222,10 +222,6 @@ TEST(ConfigSchema, DocsHoldTheGeneratedKeyTable) {
     const std::string doc = test::readText(std::string(AAMAP_SOURCE_DIR) + "/docs/config.md");
     EXPECT_NE(doc.find("<!-- keys -->\n" + configKeysMarkdown() + "<!-- /keys -->"), std::string::npos)
         << "docs/config.md's key table is stale: run tools/update_cli_docs.py";
-    for (const Key& k : allKeys()) {
-        const std::string row = fmt::format("| `{}` | {}, `{}` |", k.dotted, docType(*k.spec), toString(k.spec->defaultParam()));
-        EXPECT_NE(configKeysMarkdown().find(row), std::string::npos) << row;
-    }
 }
 
 // A value away from its default, for the key walks below: the other end of the range, the other
