@@ -122,7 +122,8 @@ namespace {
 // A section bound to the part of the config that holds it.
 template <class T>
 ConfigSection bound(std::string path, const Schema<T>& schema, const T& (*part)(const ExperimentConfig&)) {
-    return {std::move(path), schema.specs(), [&schema, part](const ExperimentConfig& c) { return schema.values(part(c)); }};
+    return {std::move(path), schema.specs(),
+            [&schema, part](const ExperimentConfig& c) { return schema.values(part(c)); }};
 }
 
 }  // namespace
@@ -132,8 +133,10 @@ const std::vector<ConfigSection>& configSections() {
     static const std::vector<ConfigSection> sections = {
         bound<E>("", topLevelSchema(), [](const E& c) -> const E& { return c; }),
         bound<ImageConfig>("image", imageSchema(), [](const E& c) -> const ImageConfig& { return c.image; }),
-        bound<SnapshotSettings>("snapshot", snapshotSchema(), [](const E& c) -> const SnapshotSettings& { return c.snapshot; }),
-        bound<ShadingSettings>("shading", shadingSchema(), [](const E& c) -> const ShadingSettings& { return c.shading; }),
+        bound<SnapshotSettings>("snapshot", snapshotSchema(),
+                                [](const E& c) -> const SnapshotSettings& { return c.snapshot; }),
+        bound<ShadingSettings>("shading", shadingSchema(),
+                               [](const E& c) -> const ShadingSettings& { return c.shading; }),
         bound<IrradianceCacheSettings>("shading.cache", shadingCacheSchema(),
                                        [](const E& c) -> const IrradianceCacheSettings& { return c.shading.cache; }),
         bound<MetricsConfig>("metrics", metricsSchema(), [](const E& c) -> const MetricsConfig& { return c.metrics; }),

@@ -458,7 +458,8 @@ ImageRGB Runner::loadFileReference(const std::vector<Job>& jobs) {
 // against it, which is its antialiasing share.
 void Runner::addAntialiasingShares(Results& results, const std::vector<Job>& jobs, std::size_t listed,
                                    const ImageRGB& reference) const {
-    const bool groundTruth = c_.reference.type == ReferenceType::File || c_.reference.modeOr(c_.shading.mode) != c_.shading.mode;
+    const bool groundTruth =
+        c_.reference.type == ReferenceType::File || c_.reference.modeOr(c_.shading.mode) != c_.shading.mode;
     if (!groundTruth) return;
     std::optional<std::size_t> floor;
     for (std::size_t i = 0; i < listed; ++i)
