@@ -319,6 +319,22 @@ std::string snapshotKey(const ExperimentConfig& c) {
     return fnv1a64Hex(j.dump());
 }
 
+namespace {
+
+Json rendersJson(const ExperimentConfig& c) {
+    Json renders = Json::array();
+    for (const RenderConfig& r : c.renders)
+        renders.push_back({{"name", r.name}, {"series", r.series}, {"strategy", r.strategy}, {"rpp", r.rpp},
+                           {"params", paramsJson(r)}});
+    return renders;
+}
+
+Json referenceJson(const ReferenceConfig& r) {
+    return {{"type", toString(r.type)}, {"rpp", r.rpp}, {"mode", r.mode ? toString(*r.mode) : ""}, {"path", r.path}};
+}
+
+}  // namespace
+
 static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     Json j;
     j["scene"] = c.scene;
@@ -337,14 +353,8 @@ static nlohmann::ordered_json canonical(const ExperimentConfig& c) {
     j["threads"] = c.threads;
     j["snapshot"] = snapshotJson(c, false);
     j["shading"] = shadingJson(c);
-    j["renders"] = Json::array();
-    for (const RenderConfig& r : c.renders)
-        j["renders"].push_back({{"name", r.name}, {"series", r.series}, {"strategy", r.strategy}, {"rpp", r.rpp},
-                                {"params", paramsJson(r)}});
-    j["reference"] = {{"type", toString(c.reference.type)},
-                      {"rpp", c.reference.rpp},
-                      {"mode", c.reference.mode ? toString(*c.reference.mode) : ""},
-                      {"path", c.reference.path}};
+    j["renders"] = rendersJson(c);
+    j["reference"] = referenceJson(c.reference);
     j["metrics"] = sectionJson(metricsSchema(), c.metrics, false);
     j["report"] = sectionJson(reportSchema(), c.report, false);
     j["timing"] = sectionJson(timingSchema(), c.timing, false);
@@ -364,26 +374,16 @@ std::string ExperimentConfig::hashJson() const {
     // The schema sections by the keys not at their default, as the cache keys hold them: a key
     // added later leaves every hash as it was. Threads never change an image.
     for (const ConfigSection& s : configSections()) {
-        const ParamValues all = s.values(*this);
-        ParamValues changed;
-        for (const ParamSpec& p : s.params)
-            if (const ParamValue* v = all.find(p.name); v != nullptr && !(*v == p.defaultParam()) && p.name != "threads")
-                changed.set(p.name, *v);
-        if (s.path.empty()) {
-            const Json top = toJson(changed);
-            for (const auto& [key, value] : top.items()) j[key] = value;
-        } else if (!changed.entries().empty()) {
-            j[s.path] = toJson(changed);
+        const Json changed = toJson(s.changed(*this));
+        if (!s.path.empty()) {
+            if (!changed.empty()) j[s.path] = changed;
+            continue;
         }
+        for (const auto& [key, value] : changed.items())
+            if (key != "threads") j[key] = value;
     }
-    j["renders"] = Json::array();
-    for (const RenderConfig& r : renders)
-        j["renders"].push_back({{"name", r.name}, {"series", r.series}, {"strategy", r.strategy}, {"rpp", r.rpp},
-                                {"params", paramsJson(r)}});
-    j["reference"] = {{"type", toString(reference.type)},
-                      {"rpp", reference.rpp},
-                      {"mode", reference.mode ? toString(*reference.mode) : ""},
-                      {"path", reference.path}};
+    j["renders"] = rendersJson(*this);
+    j["reference"] = referenceJson(reference);
     return j.dump();
 }
 

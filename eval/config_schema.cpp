@@ -123,7 +123,8 @@ namespace {
 template <class T>
 ConfigSection bound(std::string path, const Schema<T>& schema, const T& (*part)(const ExperimentConfig&)) {
     return {std::move(path), schema.specs(),
-            [&schema, part](const ExperimentConfig& c) { return schema.values(part(c)); }};
+            [&schema, part](const ExperimentConfig& c) { return schema.values(part(c)); },
+            [&schema, part](const ExperimentConfig& c) { return schema.changed(part(c)); }};
 }
 
 }  // namespace
@@ -163,6 +164,9 @@ std::string helpEntry(const ParamSpec& p) {
 
 }  // namespace
 
+namespace {
+
+// The type cell of a key's row: "int in [1, 64]", "number in (0, 1]", "bool", "`a`, `b` or `c`".
 std::string docType(const ParamSpec& p) {
     if (p.type == ParamType::Bool) return "bool";
     if (p.type == ParamType::Choice) {
@@ -173,6 +177,8 @@ std::string docType(const ParamSpec& p) {
     }
     return fmt::format("{} in {}", p.type == ParamType::Int ? "int" : "number", p.rangeText());
 }
+
+}  // namespace
 
 std::string configKeysMarkdown() {
     std::string out = "| Key | Type, default | Meaning |\n|---|---|---|\n";

@@ -30,16 +30,15 @@ const std::vector<ParamSpec>& timingParams();
 struct ConfigSection {
     std::string path;  // "snapshot", "shading.cache"; "" for the top-level scalars
     const std::vector<ParamSpec>& params;
-    // Every key's value in a config, read from the field the schema binds it to.
-    std::function<ParamValues(const ExperimentConfig&)> values;
+    // Every key's value in a config, read from the field the schema binds it to, and only the keys
+    // not at their default (Schema::values and Schema::changed of the section's part of the config).
+    std::function<ParamValues(const ExperimentConfig&)> values, changed;
 };
 // Every schema-declared section, in the order of the config's documentation.
 const std::vector<ConfigSection>& configSections();
 
 // "snapshot.scale", ..., "view_index": every schema key as --set names it.
 std::vector<std::string> sectionKeys();
-// The type cell of a key's row: "int in [1, 64]", "number in (0, 1]", "bool", "`a`, `b` or `c`".
-std::string docType(const ParamSpec& p);
 // docs/config.md's table of every schema key (type, range, default, doc), as `aamap run
 // --list-keys` prints it and tools/update_cli_docs.py copies it.
 std::string configKeysMarkdown();
