@@ -26,7 +26,7 @@ struct KeyInput {
     std::function<void(const test::TempDir&)> editFiles;  // an edit of the files the config names
 };
 
-const char* kConfig = R"(scene: builtin:cornell
+const char* kLightFileConfig = R"(scene: builtin:cornell
 light_file: lights.yaml
 lights:
   - {type: quad, position: [0, 1.9, 0], normal: [0, -1, 0], size: [0.4, 0.4], radiance: [5, 5, 5]}
@@ -73,10 +73,10 @@ const char* kRoom = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
 const char* kLights = "- {type: point, position: [0, 1.5, 0], intensity: [2, 2, 2]}\n";
 
-// kConfig with a Gaussian pixel filter (the one filter with a stddev).
+// kLightFileConfig with a Gaussian pixel filter (the one filter with a stddev).
 const std::string& gaussianConfig() {
     static const std::string config = [] {
-        std::string c = kConfig;
+        std::string c = kLightFileConfig;
         const std::string image = "exposure: 1.0}";
         c.replace(c.find(image), image.size(), "exposure: 1.0, filter: gaussian}");
         return c;
@@ -87,7 +87,7 @@ const std::string& gaussianConfig() {
 std::vector<KeyInput> inputs() {
     std::vector<KeyInput> v;
     const auto set = [&](std::string name, std::string override) {
-        v.push_back({std::move(name), kConfig, {std::move(override)}, {}});
+        v.push_back({std::move(name), kLightFileConfig, {std::move(override)}, {}});
     };
     set("Seed", "seed=2");
     set("ShadingAreaLightSamples", "shading.area_light_samples=4");
@@ -124,13 +124,13 @@ std::vector<KeyInput> inputs() {
     v.push_back({"SceneFileContent", kFileConfig, {}, [](const test::TempDir& d) {
                      d.write("room.obj", "v 0 0 0\nv 1 0 0\nv 0 1.5 0\nf 1 2 3\n");
                  }});
-    v.push_back({"LightFileContent", kConfig, {}, [](const test::TempDir& d) {
+    v.push_back({"LightFileContent", kLightFileConfig, {}, [](const test::TempDir& d) {
                      d.write("lights.yaml", "- {type: point, position: [0, 1.5, 0], intensity: [2, 2, 2.5]}\n");
                  }});
-    v.push_back({"LightFileLightAdded", kConfig, {}, [](const test::TempDir& d) {
+    v.push_back({"LightFileLightAdded", kLightFileConfig, {}, [](const test::TempDir& d) {
                      d.write("lights.yaml", std::string(kLights) + "- {type: point, position: [1, 1, 0], intensity: [1, 1, 1]}\n");
                  }});
-    v.push_back({"ViewFile", kConfig, {"view=a.vf"}, {}});
+    v.push_back({"ViewFile", kLightFileConfig, {"view=a.vf"}, {}});
     v.push_back({"EnvironmentMapName", kSkyConfig, {"lights.0.map=other_sky.exr"}, {}});
     v.push_back({"EnvironmentMapContent", kSkyConfig, {}, [](const test::TempDir& d) {
                      writeExr(d.path() / "sky.exr", skyImage(0.6f));
@@ -185,7 +185,7 @@ INSTANTIATE_TEST_SUITE_P(CacheKeys, CacheKeyInputs, ::testing::ValuesIn(inputs()
 TEST(CacheKeys, LabelsThreadsAndMetricsLeaveEveryKeyAlone) {
     test::TempDir dir;
     dir.write("lights.yaml", kLights);
-    const auto parse = [&](const std::vector<std::string>& o) { return parseConfig(kConfig, dir.path() / "exp.yaml", o); };
+    const auto parse = [&](const std::vector<std::string>& o) { return parseConfig(kLightFileConfig, dir.path() / "exp.yaml", o); };
     const ExperimentConfig before = parse({});
     for (const char* o : {"renders.0.name=first", "renders.1.series=Map", "threads=2", "metrics.flip=false",
                                  "metrics.flip_threshold=0.2", "metrics.ppd=30", "metrics.mse_threshold=0.001",

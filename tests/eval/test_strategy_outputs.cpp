@@ -46,7 +46,7 @@ public:
     }
 };
 
-const char* const kConfig = R"(scene: builtin:cornell
+const char* const kCombinedMapConfig = R"(scene: builtin:cornell
 image: {width: 16, height: 8}
 snapshot: {map: combined}
 renders:
@@ -60,7 +60,7 @@ report: {plots: false}
 TEST(StrategyOutputs, TracedMaskBlockSumSourceAndHybridParameters) {
     const fs::path out = fs::path(::testing::TempDir()) / "strategy_outputs";
     fs::remove_all(out);
-    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml", {});
+    const ExperimentConfig c = parseConfig(kCombinedMapConfig, "exp.yaml", {});
     EXPECT_EQ(c.snapshot.map, passes::AamapSource::Combined);
     SubsamplingBackend backend;
     runExperimentWith(c, out, backend, RunnerOptions{"test-rev", false});

@@ -24,7 +24,7 @@ std::string configWith(const std::string& strategy, const std::string& key, cons
                        value);
 }
 
-ExperimentConfig parse(const std::string& text, const std::vector<std::string>& overrides = {}) {
+ExperimentConfig parseWithOverrides(const std::string& text, const std::vector<std::string>& overrides = {}) {
     return parseConfig(text, "exp.yaml", overrides);
 }
 
@@ -76,7 +76,7 @@ TEST(StrategyRegistry, EveryChoiceRoundTrips) {
                 SCOPED_TRACE(s.name + "." + p.name + "=" + choice);
                 const StrategyParams resolved = resolveParams(s, StrategyParams{{p.name, choice}});
                 EXPECT_EQ(resolved.choice(p.name), choice);
-                const ExperimentConfig c = parse(configWith(s.name, p.name, choice));
+                const ExperimentConfig c = parseWithOverrides(configWith(s.name, p.name, choice));
                 EXPECT_EQ(c.renders[0].params.choice(p.name), choice);
                 EXPECT_NE(renderKeyJson(c, c.renders[0]).find(fmt::format("\"{}\":\"{}\"", p.name, choice)),
                           std::string::npos);
@@ -89,7 +89,7 @@ TEST(StrategyRegistry, EveryChoiceRoundTrips) {
 
 // The cache keys write numbers as doubles and choices by name, so existing caches stay valid.
 TEST(StrategyRegistry, RenderKeysKeepTheirParameterFormat) {
-    const ExperimentConfig c = parse("scene: builtin:cornell\nrenders:\n  - {strategy: aamap-subsample, rpp: 4}\n"
+    const ExperimentConfig c = parseWithOverrides("scene: builtin:cornell\nrenders:\n  - {strategy: aamap-subsample, rpp: 4}\n"
                                      "  - {strategy: supersample, rpp: 4, filter: gaussian}\n");
     EXPECT_NE(renderKeyJson(c, c.renders[0]).find(R"("params":{"spacing":8.0,"threshold":0.0,"gradient_tolerance":2.0,"mapping":"paper"})"),
               std::string::npos)
@@ -105,10 +105,10 @@ TEST(StrategyRegistry, ConfigAcceptsDefaultsAndRejectsOutOfRangeAtTheValue) {
         for (const ParamSpec& p : s.params) {
             SCOPED_TRACE(s.name + "." + p.name);
             const std::string fallback = toString(p.defaultParam());
-            const ExperimentConfig c = parse(configWith(s.name, p.name, fallback));
+            const ExperimentConfig c = parseWithOverrides(configWith(s.name, p.name, fallback));
             EXPECT_EQ(*c.renders[0].params.find(p.name), p.defaultParam());
             // The same render without the key: the default fills in, with the same cache key.
-            const ExperimentConfig bare = parse(fmt::format("scene: builtin:cornell\nrenders:\n  - strategy: {}\n"
+            const ExperimentConfig bare = parseWithOverrides(fmt::format("scene: builtin:cornell\nrenders:\n  - strategy: {}\n"
                                                             "    rpp: 4\n", s.name));
             EXPECT_EQ(renderKeyJson(bare, bare.renders[0]), renderKeyJson(c, c.renders[0]));
 
@@ -120,7 +120,7 @@ TEST(StrategyRegistry, ConfigAcceptsDefaultsAndRejectsOutOfRangeAtTheValue) {
             for (const std::string& value : bad) {
                 SCOPED_TRACE(value);
                 try {
-                    parse(configWith(s.name, p.name, value));
+                    parseWithOverrides(configWith(s.name, p.name, value));
                     ADD_FAILURE() << "accepted";
                 } catch (const InputError& e) {
                     EXPECT_EQ(e.file(), "exp.yaml");
@@ -135,7 +135,7 @@ TEST(StrategyRegistry, ConfigAcceptsDefaultsAndRejectsOutOfRangeAtTheValue) {
                 }
                 // --set goes through the same schema.
                 const std::string set = fmt::format("renders.0.{}={}", p.name, value);
-                EXPECT_THROW(parse(configWith(s.name, p.name, fallback), {set}), InputError);
+                EXPECT_THROW(parseWithOverrides(configWith(s.name, p.name, fallback), {set}), InputError);
                 // And so does the tracer's own check.
                 EXPECT_THROW(resolveParams(s, StrategyParams{{p.name, p.type == ParamType::Choice
                                                                           ? ParamValue(value)

@@ -27,12 +27,12 @@ struct SpacedStrategy {
     ~SpacedStrategy() { unregisterStrategy("spaced"); }
 };
 
-ExperimentConfig parse(const std::string& renders, const std::vector<std::string>& overrides = {}) {
+ExperimentConfig parseRenders(const std::string& renders, const std::vector<std::string>& overrides = {}) {
     return parseConfig("scene: builtin:cornell\nrenders:\n" + renders, "exp.yaml", overrides);
 }
 
 TEST(Sweep, ListOfRppExpandsInOrderWithDefaultNames) {
-    const ExperimentConfig c = parse("  - {strategy: aamap, rpp: [1, 4, 16, 36]}\n");
+    const ExperimentConfig c = parseRenders("  - {strategy: aamap, rpp: [1, 4, 16, 36]}\n");
     ASSERT_EQ(c.renders.size(), 4u);
     EXPECT_EQ(c.renders[0].name, "aamap1");
     EXPECT_EQ(c.renders[3].name, "aamap36");
@@ -43,7 +43,7 @@ TEST(Sweep, ListOfRppExpandsInOrderWithDefaultNames) {
 TEST(Sweep, CartesianProductOfRppAndParameters) {
     const SpacedStrategy spaced;
     const ExperimentConfig c =
-        parse("  - {strategy: spaced, rpp: [1, 4, 16], spacing: [8, 16], threshold: 0, series: 'Space {spacing}'}\n");
+        parseRenders("  - {strategy: spaced, rpp: [1, 4, 16], spacing: [8, 16], threshold: 0, series: 'Space {spacing}'}\n");
     ASSERT_EQ(c.renders.size(), 6u);
     std::set<std::string> names, keys;
     for (const RenderConfig& r : c.renders) {
@@ -63,17 +63,17 @@ TEST(Sweep, CartesianProductOfRppAndParameters) {
 
 TEST(Sweep, NameTemplatesAndUnmentionedSweptKeys) {
     const SpacedStrategy spaced;
-    const ExperimentConfig c = parse("  - {name: 'sel{rpp}', strategy: spaced, rpp: [4, 16], spacing: [8, 16]}\n");
+    const ExperimentConfig c = parseRenders("  - {name: 'sel{rpp}', strategy: spaced, rpp: [4, 16], spacing: [8, 16]}\n");
     ASSERT_EQ(c.renders.size(), 4u);
     EXPECT_EQ(c.renders[0].name, "sel4_spacing8");  // spacing appended: names must stay unique
     EXPECT_EQ(c.renders[0].params.real("threshold"), 0.0);  // default filled in
-    const ExperimentConfig d = parse("  - {name: 'u{n}x{n}', strategy: uniform, rpp: [4, 9]}\n");
+    const ExperimentConfig d = parseRenders("  - {name: 'u{n}x{n}', strategy: uniform, rpp: [4, 9]}\n");
     EXPECT_EQ(d.renders[1].name, "u3x3");
 }
 
 TEST(Sweep, FractionalValuesMakeSafeDefaultNames) {
     const SpacedStrategy spaced;
-    const ExperimentConfig c = parse("  - {strategy: spaced, rpp: 4, threshold: [0.5, 2.5e-7, 1.25e8, 1234567.5]}\n");
+    const ExperimentConfig c = parseRenders("  - {strategy: spaced, rpp: 4, threshold: [0.5, 2.5e-7, 1.25e8, 1234567.5]}\n");
     ASSERT_EQ(c.renders.size(), 4u);
     EXPECT_EQ(c.renders[0].name, "spaced4_threshold0p5");
     EXPECT_EQ(c.renders[1].name, "spaced4_threshold2p5e-07");
@@ -84,28 +84,28 @@ TEST(Sweep, FractionalValuesMakeSafeDefaultNames) {
 
 TEST(Sweep, DefaultsAreFilledAndKeysIgnoreNames) {
     const SpacedStrategy spaced;
-    const ExperimentConfig a = parse("  - {name: x, strategy: spaced, rpp: 4}\n");
-    const ExperimentConfig b = parse("  - {name: y, series: z, strategy: spaced, rpp: 4, spacing: 8}\n");
+    const ExperimentConfig a = parseRenders("  - {name: x, strategy: spaced, rpp: 4}\n");
+    const ExperimentConfig b = parseRenders("  - {name: y, series: z, strategy: spaced, rpp: 4, spacing: 8}\n");
     EXPECT_EQ(renderKey(a, a.renders[0]), renderKey(b, b.renders[0]));
-    const ExperimentConfig c = parse("  - {name: y, strategy: spaced, rpp: 4, spacing: 16}\n");
+    const ExperimentConfig c = parseRenders("  - {name: y, strategy: spaced, rpp: 4, spacing: 16}\n");
     EXPECT_NE(renderKey(a, a.renders[0]), renderKey(c, c.renders[0]));
     // Snapshot settings matter to aamap-driven strategies only.
     const std::string u = "  - {strategy: uniform, rpp: 4}\n";
-    const ExperimentConfig u1 = parse(u), u2 = parse(u, {"snapshot.gain=3"});
+    const ExperimentConfig u1 = parseRenders(u), u2 = parseRenders(u, {"snapshot.gain=3"});
     EXPECT_EQ(renderKey(u1, u1.renders[0]), renderKey(u2, u2.renders[0]));
-    const ExperimentConfig s2 = parse("  - {name: x, strategy: spaced, rpp: 4}\n", {"snapshot.gain=3"});
+    const ExperimentConfig s2 = parseRenders("  - {name: x, strategy: spaced, rpp: 4}\n", {"snapshot.gain=3"});
     EXPECT_NE(renderKey(a, a.renders[0]), renderKey(s2, s2.renders[0]));
 }
 
 TEST(Sweep, OverridesSetListsAndParameters) {
     const SpacedStrategy spaced;
     const ExperimentConfig c =
-        parse("  - {strategy: spaced, rpp: 4}\n", {"renders.0.rpp=[1,4]", "renders.0.spacing=[8,16,32]"});
+        parseRenders("  - {strategy: spaced, rpp: 4}\n", {"renders.0.rpp=[1,4]", "renders.0.spacing=[8,16,32]"});
     EXPECT_EQ(c.renders.size(), 6u);
 }
 
 TEST(Sweep, ShippedStrategiesAndChoices) {
-    const ExperimentConfig c = parse(
+    const ExperimentConfig c = parseRenders(
         "  - {strategy: aamap-subsample, rpp: [4, 16], spacing: [8, 16], series: 'Space {spacing}'}\n"
         "  - {strategy: supersample, rpp: 4, filter: [box, gaussian]}\n"
         "  - {strategy: aamap, rpp: 4, mapping: linear-rays}\n");
@@ -118,14 +118,14 @@ TEST(Sweep, ShippedStrategiesAndChoices) {
     EXPECT_EQ(c.renders[6].name, "aamap4_mappinglinear-rays");
     EXPECT_NE(renderKeyJson(c, c.renders[6]).find("\"mapping\":\"linear-rays\""), std::string::npos);
     EXPECT_TRUE(c.usesAamap());
-    EXPECT_THROW(parse("  - {strategy: supersample, rpp: 4, filter: lanczos}\n"), InputError);
+    EXPECT_THROW(parseRenders("  - {strategy: supersample, rpp: 4, filter: lanczos}\n"), InputError);
 }
 
 TEST(Sweep, ErrorsPointAtTheValue) {
     const SpacedStrategy spaced;
     const auto error = [](const std::string& renders) {
         try {
-            parse(renders);
+            parseRenders(renders);
         } catch (const InputError& e) {
             return std::string(e.what());
         }
@@ -145,14 +145,14 @@ TEST(Sweep, ErrorsPointAtTheValue) {
 }
 
 TEST(Sweep, ReferenceMetricsAndReportSections) {
-    const ExperimentConfig c = parse("  - {strategy: aamap, rpp: [4, 16]}\n");
+    const ExperimentConfig c = parseRenders("  - {strategy: aamap, rpp: [4, 16]}\n");
     EXPECT_EQ(c.reference.type, ReferenceType::Uniform);
     EXPECT_EQ(c.reference.rpp, 16);  // the largest rpp of the renders
     EXPECT_TRUE(c.metrics.flip);
     EXPECT_FALSE(c.metrics.flipHdr);
     EXPECT_FLOAT_EQ(static_cast<float>(c.metrics.flipThreshold), 0.1f);
     EXPECT_TRUE(c.metrics.mapQuality);
-    const ExperimentConfig d = parse("  - {strategy: aamap, rpp: 4}\n",
+    const ExperimentConfig d = parseRenders("  - {strategy: aamap, rpp: 4}\n",
                                      {"reference.rpp=64", "reference.mode=path", "metrics.flip_hdr=true",
                                       "shading.mode=cache", "report.plots=false"});
     EXPECT_EQ(d.reference.rpp, 64);
@@ -160,12 +160,12 @@ TEST(Sweep, ReferenceMetricsAndReportSections) {
     EXPECT_TRUE(d.metrics.flipHdr);
     EXPECT_EQ(d.shading.mode, ShadingMode::Cache);
     EXPECT_FALSE(d.report.plots);
-    EXPECT_THROW(parse("  - {strategy: aamap, rpp: 4}\n", {"reference.rpp=5"}), InputError);
-    EXPECT_THROW(parse("  - {strategy: aamap, rpp: 4}\n", {"metrics.flip_threshold=0"}), InputError);
-    EXPECT_THROW(parse("  - {strategy: aamap, rpp: 4}\n", {"metrics.flip=maybe"}), InputError);
-    EXPECT_THROW(parse("  - {strategy: aamap, rpp: 4}\n", {"shading.mode=photon"}), InputError);
-    EXPECT_THROW(parse("  - {strategy: aamap, rpp: 4}\n", {"reference.type=file"}), InputError);  // needs a path
-    const ExperimentConfig f = parse("  - {strategy: aamap, rpp: 4}\n", {"reference.type=file", "reference.path=ref.exr"});
+    EXPECT_THROW(parseRenders("  - {strategy: aamap, rpp: 4}\n", {"reference.rpp=5"}), InputError);
+    EXPECT_THROW(parseRenders("  - {strategy: aamap, rpp: 4}\n", {"metrics.flip_threshold=0"}), InputError);
+    EXPECT_THROW(parseRenders("  - {strategy: aamap, rpp: 4}\n", {"metrics.flip=maybe"}), InputError);
+    EXPECT_THROW(parseRenders("  - {strategy: aamap, rpp: 4}\n", {"shading.mode=photon"}), InputError);
+    EXPECT_THROW(parseRenders("  - {strategy: aamap, rpp: 4}\n", {"reference.type=file"}), InputError);  // needs a path
+    const ExperimentConfig f = parseRenders("  - {strategy: aamap, rpp: 4}\n", {"reference.type=file", "reference.path=ref.exr"});
     EXPECT_EQ(f.reference.resolvedPath("/a/exp.yaml"), std::filesystem::path("/a/ref.exr"));
 }
 

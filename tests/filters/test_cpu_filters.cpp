@@ -8,18 +8,18 @@
 #include <gtest/gtest.h>
 
 #include "passes/cpu_aamap.h"
+#include "tests/filters/filter_images.h"
 
 namespace aamap::cpu {
 namespace {
 
+using test_images::bitIdentical;
+using test_images::randomGrey;
+using test_images::randomRgb;
+
 constexpr Mode kModes[] = {Mode::Scalar, Mode::Parallel};
 
 const char* name(Mode m) { return m == Mode::Scalar ? "Scalar" : "Parallel"; }
-
-bool bitIdentical(const ImageGrey& a, const ImageGrey& b) {
-    return a.width() == b.width() && a.height() == b.height() &&
-           std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
 
 ImageGrey fromRows(const std::vector<std::vector<float>>& rows) {
     ImageGrey img(static_cast<int>(rows[0].size()), static_cast<int>(rows.size()));
@@ -28,21 +28,6 @@ ImageGrey fromRows(const std::vector<std::vector<float>>& rows) {
     return img;
 }
 
-ImageRGB randomRgb(int w, int h, std::uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.2f);  // some values above 1 exercise the clamp
-    ImageRGB img(w, h);
-    for (auto& p : img.pixels()) p = glm::vec3(u(rng), u(rng), u(rng));
-    return img;
-}
-
-ImageGrey randomGrey(int w, int h, std::uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    ImageGrey img(w, h);
-    for (float& v : img.pixels()) v = u(rng);
-    return img;
-}
 
 TEST(Filters, ConstantImageIsExactlyZeroAtEveryStage) {
     const ImageRGB rgb(37, 29, glm::vec3(0.3f, 0.55f, 0.71f));

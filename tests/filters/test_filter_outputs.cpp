@@ -11,24 +11,13 @@
 #include <gtest/gtest.h>
 
 #include "passes/cpu_aamap.h"
+#include "tests/filters/filter_images.h"
 
 namespace aamap::cpu {
 namespace {
 
-ImageGrey randomGrey(int w, int h, std::uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    ImageGrey img(w, h);
-    for (float& v : img.pixels()) v = u(rng);
-    return img;
-}
-
-bool sameBits(const ImageGrey& a, const ImageGrey& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i)
-        if (std::signbit(a.data()[i]) != std::signbit(b.data()[i]) || !(a.data()[i] == b.data()[i])) return false;
-    return true;
-}
+using test_images::bitIdentical;
+using test_images::randomGrey;
 
 // |sum over the 24 off-centre taps of (g(p+o) - g(p))|, clamped to the edge, in long double: exact
 // while the window's values span at most 64 bits of significance, as for every image below.
@@ -101,16 +90,16 @@ TEST(FilterOutputs, IntoVariantsMatchAndReuseTheImage) {
         for (Mode mode : {Mode::Scalar, Mode::Parallel}) {
             ImageGrey out(3, 2, 7.0f);  // wrong size: reallocated
             laplacianMagnitudeInto(g, out, mode);
-            ASSERT_TRUE(sameBits(out, scalar));
+            ASSERT_TRUE(bitIdentical(out, scalar));
             const float* kept = out.data();
             out.pixels().assign(out.size(), -1.0f);  // stale contents must be overwritten
             laplacianMagnitudeInto(g, out, mode);
             EXPECT_EQ(out.data(), kept);  // right size: reused, no allocation
-            ASSERT_TRUE(sameBits(out, scalar));
+            ASSERT_TRUE(bitIdentical(out, scalar));
 
             ImageGrey blurred(w, h, -1.0f);
             boxBlurInto(scalar, 1, blurred, mode);
-            ASSERT_TRUE(sameBits(blurred, boxBlur(scalar, 1, Mode::Scalar)));
+            ASSERT_TRUE(bitIdentical(blurred, boxBlur(scalar, 1, Mode::Scalar)));
         }
     }
 }

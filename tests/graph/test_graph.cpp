@@ -6,32 +6,14 @@
 #include <gtest/gtest.h>
 
 #include "engine/graph/render_graph.h"
+#include "tests/graph/mock_graph.h"
 
 namespace aamap::graph {
 namespace {
 
-// Mock resources and passes: only names, usages and sizes matter to the compiler.
-ResourceDesc image(std::string name, Size size = Size::absolute(64, 64), bool imported = false) {
-    ResourceDesc d;
-    d.name = std::move(name);
-    d.format = Format::RGBA16Float;
-    d.size = std::move(size);
-    d.imported = imported;
-    return d;
-}
-
-ResourceDesc buffer(std::string name, bool imported) {
-    ResourceDesc d;
-    d.name = std::move(name);
-    d.kind = ResourceKind::Buffer;
-    d.bytes = 1024;
-    d.imported = imported;
-    return d;
-}
-
-PassDesc pass(std::string name, std::vector<Access> accesses) {
-    return PassDesc{std::move(name), QueueKind::Compute, std::move(accesses), "test"};
-}
+using mock::buffer;
+using mock::image;
+using mock::pass;
 
 CompiledGraph compileFor(const RenderGraph& g, std::vector<std::string> outputs) {
     return g.compile(outputs);

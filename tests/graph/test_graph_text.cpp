@@ -11,20 +11,13 @@
 #include <gtest/gtest.h>
 
 #include "engine/graph/render_graph.h"
+#include "tests/graph/mock_graph.h"
 
 namespace aamap::graph {
 namespace {
 
-ResourceDesc image(std::string name) {
-    ResourceDesc d;
-    d.name = std::move(name);
-    d.size = Size::absolute(64, 64);
-    return d;
-}
-
-PassDesc pass(std::string name, std::vector<Access> accesses) {
-    return PassDesc{std::move(name), QueueKind::Compute, std::move(accesses), "test"};
-}
+using mock::image;
+using mock::pass;
 
 // A shadowed raster and the aamap chain, plus two passes nobody asked for: one reading the colour
 // (a debug view) and one updating a resource in place after producing it (a block-sum pair).

@@ -19,7 +19,6 @@
 namespace aamap {
 namespace {
 
-constexpr float kPi = std::numbers::pi_v<float>;
 const glm::vec3 kUp(0.0f, 0.0f, 1.0f);
 
 // A fixed-seed generator (splitmix64): the same numbers on every platform.
@@ -44,7 +43,7 @@ glm::vec3 fromAngles(float cosTheta, float phi) {
 }
 
 // Viewer direction at polar angle theta (degrees) and azimuth phi.
-glm::vec3 viewAt(float thetaDeg, float phi = 0.3f) { return fromAngles(std::cos(thetaDeg * kPi / 180.0f), phi); }
+glm::vec3 viewAt(float thetaDeg, float phi = 0.3f) { return fromAngles(std::cos(thetaDeg * std::numbers::pi_v<float> / 180.0f), phi); }
 
 // Integral of g over the sphere by the midpoint rule in (cos theta, phi).
 template <class G>
@@ -53,7 +52,7 @@ double integrateSphere(G&& g, int nCos = 400, int nPhi = 400) {
     for (int i = 0; i < nCos; ++i) {
         const float c = -1.0f + 2.0f * (static_cast<float>(i) + 0.5f) / static_cast<float>(nCos);
         for (int j = 0; j < nPhi; ++j) {
-            const float phi = 2.0f * kPi * (static_cast<float>(j) + 0.5f) / static_cast<float>(nPhi);
+            const float phi = 2.0f * std::numbers::pi_v<float> * (static_cast<float>(j) + 0.5f) / static_cast<float>(nPhi);
             sum += static_cast<double>(g(fromAngles(c, phi)));
         }
     }
@@ -78,10 +77,10 @@ void expectChiSquareFits(Sample&& sample, Pdf&& pdf, const std::string& what, in
     std::vector<double> observed(nTheta * nPhi, 0.0), expected(nTheta * nPhi, 0.0);
     const auto cell = [&](const glm::vec3& d) {
         const float theta = std::acos(std::clamp(d.z, -1.0f, 1.0f));
-        const int i = std::clamp(static_cast<int>(theta / kPi * nTheta), 0, nTheta - 1);
+        const int i = std::clamp(static_cast<int>(theta / std::numbers::pi_v<float> * nTheta), 0, nTheta - 1);
         float phi = std::atan2(d.y, d.x);
-        if (phi < 0.0f) phi += 2.0f * kPi;
-        const int j = std::clamp(static_cast<int>(phi / (2.0f * kPi) * nPhi), 0, nPhi - 1);
+        if (phi < 0.0f) phi += 2.0f * std::numbers::pi_v<float>;
+        const int j = std::clamp(static_cast<int>(phi / (2.0f * std::numbers::pi_v<float>) * nPhi), 0, nPhi - 1);
         return i * nPhi + j;
     };
     Rng rng(0x5eed1234u);
@@ -283,7 +282,7 @@ glm::vec3 albedo(const ShadingMaterial& m, const glm::vec3& wo, int n = 400) {
     for (int i = 0; i < n; ++i) {
         const float c = (static_cast<float>(i) + 0.5f) / static_cast<float>(n);
         for (int j = 0; j < 2 * n; ++j) {
-            const glm::vec3 wi = fromAngles(c, 2.0f * kPi * (static_cast<float>(j) + 0.5f) / static_cast<float>(2 * n));
+            const glm::vec3 wi = fromAngles(c, 2.0f * std::numbers::pi_v<float> * (static_cast<float>(j) + 0.5f) / static_cast<float>(2 * n));
             sum += glm::dvec3(evalAsPath(m, wo, wi).f * wi.z);
         }
     }
@@ -446,8 +445,8 @@ TEST(Bsdf, ReflectionIsReciprocal) {
     Rng rng(99);
     for (const ShadingMaterial& m : materials)
         for (int i = 0; i < 2000; ++i) {
-            const glm::vec3 a = fromAngles(rng.next(), 2.0f * kPi * rng.next());
-            const glm::vec3 b = fromAngles(rng.next(), 2.0f * kPi * rng.next());
+            const glm::vec3 a = fromAngles(rng.next(), 2.0f * std::numbers::pi_v<float> * rng.next());
+            const glm::vec3 b = fromAngles(rng.next(), 2.0f * std::numbers::pi_v<float> * rng.next());
             if (a.z < 0.02f || b.z < 0.02f) continue;
             const glm::vec3 fab = evalAsPath(m, a, b).f;
             const glm::vec3 fba = evalAsPath(m, b, a).f;
@@ -551,7 +550,7 @@ TEST(Bsdf, RoughDielectricEvalMatchesItsSampler) {
     int checked = 0;
     for (float eta : {1.5f, 1.0f / 1.5f})
         for (int i = 0; i < 4000; ++i) {
-            const glm::vec3 wo = fromAngles(0.05f + 0.95f * rng.next(), 2.0f * kPi * rng.next());
+            const glm::vec3 wo = fromAngles(0.05f + 0.95f * rng.next(), 2.0f * std::numbers::pi_v<float> * rng.next());
             glm::vec3 wi, weight;
             bool refracted = false;
             const float lobe = rng.next();
@@ -602,7 +601,7 @@ TEST(Bsdf, RoughConductorKnownAnswerAtNormalIncidence) {
         const float alpha = 0.25f;
         const ShadingMaterial m = conductor(t, alpha, alpha, eta, k);
         const glm::vec3 f = bsdf::evalSmooth(m, glm::vec3(0.0f), kUp, kUp, kUp, 1.0f, 0.0f).f;
-        const float d = 1.0f / (kPi * alpha * alpha);  // both distributions peak at 1 / (pi alpha^2)
+        const float d = 1.0f / (std::numbers::pi_v<float> * alpha * alpha);  // both distributions peak at 1 / (pi alpha^2)
         const glm::vec3 f0 = microfacet::fresnelConductor(1.0f, eta, k);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], f0[c] * d / 4.0f, 1e-4f * f[c]) << name(t);
     }

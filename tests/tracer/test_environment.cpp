@@ -19,7 +19,6 @@
 namespace aamap {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 // A W x H map with varied, strictly positive radiance and one bright cell.
 EnvironmentLight variedMap(int w, int h) {
@@ -38,7 +37,7 @@ EnvironmentLight variedMap(int w, int h) {
 
 // The map direction of cell centre (column, row) by scene/scene.h's convention, in the map frame.
 glm::vec3 cellCentre(int column, int row, int w, int h) {
-    const double theta = (row + 0.5) / h * kPi, phi = (column + 0.5) / w * 2.0 * kPi;
+    const double theta = (row + 0.5) / h * std::numbers::pi, phi = (column + 0.5) / w * 2.0 * std::numbers::pi;
     return glm::vec3(glm::dvec3(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)));
 }
 
@@ -49,7 +48,7 @@ TEST(EnvironmentSampling, MapConventionIsMitsubas) {
         for (int column = 0; column < 16; ++column) {
             const glm::vec3 d = cellCentre(column, row, 16, 8);
             // u = atan2(x, -z) / (2 pi), v = acos(y) / pi (Mitsuba's envmap.cpp, direction_to_uv).
-            const double u = std::atan2(d.x, -d.z) / (2 * kPi), v = std::acos(d.y) / kPi;
+            const double u = std::atan2(d.x, -d.z) / (2 * std::numbers::pi), v = std::acos(d.y) / std::numbers::pi;
             EXPECT_NEAR(s.toMap(d).x, u - std::floor(u), 1e-5);
             EXPECT_NEAR(s.toMap(d).y, v, 1e-5);
             EXPECT_EQ(s.radiance(d), env.map[static_cast<std::size_t>(row) * 16 + column]);
@@ -72,11 +71,11 @@ TEST(EnvironmentSampling, PdfIntegratesToOneOverTheSphere) {
     const int nt = 1024, np = 2048;
     double integral = 0.0;
     for (int i = 0; i < nt; ++i) {
-        const double theta = (i + 0.5) / nt * kPi;
+        const double theta = (i + 0.5) / nt * std::numbers::pi;
         for (int j = 0; j < np; ++j) {
-            const double phi = (j + 0.5) / np * 2.0 * kPi;
+            const double phi = (j + 0.5) / np * 2.0 * std::numbers::pi;
             const glm::vec3 d(glm::dvec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
-            integral += s.pdf(d) * std::sin(theta) * (kPi / nt) * (2.0 * kPi / np);
+            integral += s.pdf(d) * std::sin(theta) * (std::numbers::pi / nt) * (2.0 * std::numbers::pi / np);
         }
     }
     EXPECT_NEAR(integral, 1.0, 2e-3);
@@ -114,7 +113,7 @@ TEST(EnvironmentSampling, DirectionsFollowLuminanceTimesSolidAngle) {
     std::vector<double> expected(static_cast<std::size_t>(w) * h);
     double total = 0.0;
     for (int row = 0; row < h; ++row) {
-        const double solidAngle = (2 * kPi / w) * (std::cos(row * kPi / h) - std::cos((row + 1) * kPi / h));
+        const double solidAngle = (2 * std::numbers::pi / w) * (std::cos(row * std::numbers::pi / h) - std::cos((row + 1) * std::numbers::pi / h));
         for (int column = 0; column < w; ++column) {
             const glm::vec3 c = env.map[static_cast<std::size_t>(row) * w + column];
             const double lum = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
@@ -130,9 +129,9 @@ TEST(EnvironmentSampling, DirectionsFollowLuminanceTimesSolidAngle) {
         const EnvironmentSampler::Sample x = s.sample(rng.get2D(2 * static_cast<std::uint64_t>(i)));
         // The cell from the direction by the convention itself, not by the sampler's cell.
         const glm::vec3 d = toLocal * x.direction;
-        double u = std::atan2(d.x, -d.z) / (2 * kPi);
+        double u = std::atan2(d.x, -d.z) / (2 * std::numbers::pi);
         u -= std::floor(u);
-        const double v = std::acos(std::clamp(static_cast<double>(d.y), -1.0, 1.0)) / kPi;
+        const double v = std::acos(std::clamp(static_cast<double>(d.y), -1.0, 1.0)) / std::numbers::pi;
         const int column = std::min(static_cast<int>(u * w), w - 1), row = std::min(static_cast<int>(v * h), h - 1);
         counts[static_cast<std::size_t>(row) * w + column] += 1.0;
     }

@@ -19,17 +19,16 @@ namespace {
 using testing::lookAt;
 using testing::renderScene;
 
-constexpr double kPi = std::numbers::pi;
 constexpr int kMapW = 512, kMapH = 256, kSunColumn = 44, kSunRow = 60;
 const glm::vec3 kSunRadiance(20000.0f, 15000.0f, 10000.0f);
 
 // The cell centre's direction by scene/scene.h's convention (identity frame).
 glm::vec3 sunDirection() {
-    const double theta = (kSunRow + 0.5) / kMapH * kPi, phi = (kSunColumn + 0.5) / kMapW * 2.0 * kPi;
+    const double theta = (kSunRow + 0.5) / kMapH * std::numbers::pi, phi = (kSunColumn + 0.5) / kMapW * 2.0 * std::numbers::pi;
     return glm::vec3(glm::dvec3(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)));
 }
 double sunSolidAngle() {
-    return (2 * kPi / kMapW) * (std::cos(kSunRow * kPi / kMapH) - std::cos((kSunRow + 1) * kPi / kMapH));
+    return (2 * std::numbers::pi / kMapW) * (std::cos(kSunRow * std::numbers::pi / kMapH) - std::cos((kSunRow + 1) * std::numbers::pi / kMapH));
 }
 
 // A floor with a box floating over it.

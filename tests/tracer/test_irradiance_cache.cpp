@@ -1,6 +1,7 @@
 // The irradiance cache against synthetic radiance fields with known answers, its determinism, and
 // a Cornell-box pre-pass driven by a small Embree harness (tests/tracer/irradiance_harness.h).
 #include <cmath>
+#include <numbers>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -21,7 +22,6 @@
 namespace aamap {
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
 
 Bounds box(glm::vec3 lo, glm::vec3 hi) { return Bounds{lo, hi}; }
 
@@ -64,7 +64,7 @@ TEST(IrradianceCache, ErrorAndWeightOnHandCases) {
     EXPECT_FLOAT_EQ(recordError(r, {1, 0, 0}, {0, 0, 1}), 0.5f);     // distance / R
     EXPECT_FLOAT_EQ(recordError(r, {0, 0.6f, 0.8f}, {0, 0, 1}), 0.5f);  // any direction
     // 60 degrees: sqrt(1 - cos) = sqrt(0.5).
-    const glm::vec3 n60(std::sin(kPi / 3), 0.0f, std::cos(kPi / 3));
+    const glm::vec3 n60(std::sin(std::numbers::pi_v<float> / 3), 0.0f, std::cos(std::numbers::pi_v<float> / 3));
     EXPECT_NEAR(recordError(r, {0, 0, 0}, n60), std::sqrt(0.5f), 1e-6f);
     EXPECT_NEAR(recordError(r, {1, 0, 0}, n60), 0.5f + std::sqrt(0.5f), 1e-6f);
 
@@ -143,7 +143,7 @@ TEST(IrradianceCache, ConstantEnvironmentGivesPiL) {
     ASSERT_GT(cache.records().size(), 4u);
     for (const IrradianceRecord& r : cache.records()) {
         for (int c = 0; c < 3; ++c) {
-            EXPECT_NEAR(r.irradiance[c], kPi * L[c], 1e-5f * kPi * L[c]);
+            EXPECT_NEAR(r.irradiance[c], std::numbers::pi_v<float> * L[c], 1e-5f * std::numbers::pi_v<float> * L[c]);
             EXPECT_NEAR(glm::length(r.gradT[c]), 0.0f, 1e-5f);
             EXPECT_NEAR(glm::length(r.gradR[c]), 0.0f, 1e-4f);
         }
@@ -160,9 +160,9 @@ TEST(IrradianceCache, EstimatedGradientsMatchAnalyticFields) {
     const float a = 1.0f, b = 0.2f;
     const RadianceFn field = ceilingField(a, b);
     const HemisphereEstimate est = sampleHemisphere({1, 1, 0}, {0, 0, 1}, 1e-4f, 1024, 256, 1, 7, field);
-    EXPECT_NEAR(est.irradiance.x, kPi * (a + b), 0.01f * kPi * (a + b));
-    EXPECT_NEAR(est.gradT[0].x, kPi * b, 0.1f * kPi * b);
-    EXPECT_NEAR(est.gradT[0].y, 0.0f, 0.05f * kPi * b);
+    EXPECT_NEAR(est.irradiance.x, std::numbers::pi_v<float> * (a + b), 0.01f * std::numbers::pi_v<float> * (a + b));
+    EXPECT_NEAR(est.gradT[0].x, std::numbers::pi_v<float> * b, 0.1f * std::numbers::pi_v<float> * b);
+    EXPECT_NEAR(est.gradT[0].y, 0.0f, 0.05f * std::numbers::pi_v<float> * b);
     EXPECT_NEAR(est.gradT[2].x, 0.0f, 1e-4f);  // the blue channel is constant
     EXPECT_NEAR(est.harmonicDistance, 1.0f / (2.0f / 3.0f), 0.05f);  // 1 / E[cos] over cosine weighting
     // Rotational: L(w) = 1 + c.w gives E(n) = pi + (2 pi / 3) c.n, so gradR = (2 pi / 3) n x c.
@@ -172,7 +172,7 @@ TEST(IrradianceCache, EstimatedGradientsMatchAnalyticFields) {
     };
     const glm::vec3 n(0, 0, 1);
     const HemisphereEstimate rot = sampleHemisphere({0, 0, 0}, n, 1e-4f, 1024, 0, 1, 9, directional);
-    const glm::vec3 expected = (2.0f * kPi / 3.0f) * glm::cross(n, cdir);
+    const glm::vec3 expected = (2.0f * std::numbers::pi_v<float> / 3.0f) * glm::cross(n, cdir);
     EXPECT_NEAR(rot.gradR[1].x, expected.x, 0.05f * glm::length(expected));
     EXPECT_NEAR(rot.gradR[1].y, expected.y, 0.05f * glm::length(expected));
     EXPECT_NEAR(rot.gradR[1].z, 0.0f, 1e-5f);
@@ -193,7 +193,7 @@ TEST(IrradianceCache, InterpolatesAPlaneUnderALinearField) {
     for (float x = 0.3f; x < 1.7f; x += 0.0713f)
         for (float y = 0.3f; y < 1.7f; y += 0.0917f) {
             const glm::vec3 e = cache.irradiance({x, y, 0}, {0, 0, 1}, 0);
-            const float t = kPi * (a + b * x);
+            const float t = std::numbers::pi_v<float> * (a + b * x);
             worst = std::max(worst, std::abs(static_cast<double>(e.x - t)) / t);
             EXPECT_NEAR(e.y, 2.0f * e.x, 1e-3f * e.y);
         }
@@ -232,7 +232,7 @@ std::vector<IrradianceRecord> buildTwoBounce(int threads, IrradianceCacheStats* 
         else r.radiance += glm::vec3(0.2f);  // so that the ceiling's records are not black
         // The seed is the callback's to use: a deterministic dither proves it is passed through.
         r.radiance *= 1.0f + 0.01f * static_cast<float>(seed >> 60);
-        r.radiance += 0.5f / kPi * self->irradiance({q.x, q.y, up ? 1.0f : 0.0f}, nq, depth);
+        r.radiance += 0.5f / std::numbers::pi_v<float> * self->irradiance({q.x, q.y, up ? 1.0f : 0.0f}, nq, depth);
         return r;
     };
     IrradianceCache cache(s, box({0, 0, 0}, {2, 2, 1}), fn);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/camera.h"
+#include "tests/tracer/material_scenes.h"
 #include "tests/tracer/scene_builder.h"
 #include "tracer/sampler.h"
 #include "tracer/tracer.h"
@@ -18,13 +19,7 @@ constexpr int kSize = 16;
 constexpr float kRho = 0.5f;
 constexpr std::uint64_t kSeed = 3;
 
-View lookAt(glm::vec3 from, glm::vec3 to, float fovDeg) {
-    View v;
-    v.position = from;
-    v.direction = glm::normalize(to - from);
-    v.horizontalFovDeg = v.verticalFovDeg = fovDeg;
-    return v;
-}
+using testing::lookAt;
 
 // A large plane y = 0 facing up, in a frame scaled by `scale` and moved by `shift`.
 testing::SceneBuilder planeScene(float scale = 1.0f, glm::vec3 shift = glm::vec3(0.0f)) {

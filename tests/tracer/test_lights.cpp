@@ -1,4 +1,5 @@
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -59,7 +60,6 @@ TEST(AreaLightSampler, UniformByAreaManyTriangles) { checkAreaSampling(12); }
 
 // ---- Spot lights: known answers on a plane ----------------------------------------------------
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr float kAlbedo = 0.5f;
 constexpr double kInnerDeg = 20.0, kOuterDeg = 40.0;
 
@@ -115,7 +115,7 @@ double roundingBound(const Spot& spot, const glm::dvec3& x) {
     const double c = glm::dot(w / d, glm::normalize(spot.axis));
     const double t = std::clamp((c - co) / (ci - co), 0.0, 1.0);
     const double unattenuated = glm::length(spot.intensity) * std::max(-w.y / d, 0.0) / (d * d);
-    return double(kAlbedo) / kPi * unattenuated * (2.0 * t / (ci - co) + 1.0) * 1e-5;
+    return double(kAlbedo) / std::numbers::pi * unattenuated * (2.0 * t / (ci - co) + 1.0) * 1e-5;
 }
 
 // Radiance the integrator returns for a ray straight down onto x.
@@ -147,7 +147,7 @@ void expectSpotKnownAnswers(ShadingMode mode, const Spot& spot) {
     for (double angle : {0.0, 12.0, 21.0, 25.0, 30.0, 35.0, 39.0, 41.0, 55.0}) {
         const glm::dvec3 x = pointAtAngle(spot, angle);
         ASSERT_NEAR(x.y, 0.0, 1e-9);
-        const glm::dvec3 want = double(kAlbedo) / kPi * spotIrradiance(spot, x);
+        const glm::dvec3 want = double(kAlbedo) / std::numbers::pi * spotIrradiance(spot, x);
         const glm::vec3 got = radianceAt(integrator, x);
         for (int c = 0; c < 3; ++c) {
             if (angle > kOuterDeg) {
@@ -189,7 +189,7 @@ TEST(SpotLight, FalloffIsGltfsAndItsSolidAngleIsItsIntegral) {
     const int n = 200000;
     double sum = 0.0;
     for (int i = 0; i < n; ++i) sum += spotFalloff(static_cast<float>(-1.0 + (i + 0.5) * 2.0 / n), ci, co);
-    EXPECT_NEAR(emittingSolidAngle(p), 2.0 * kPi * sum * 2.0 / n, 1e-4);
+    EXPECT_NEAR(emittingSolidAngle(p), 2.0 * std::numbers::pi * sum * 2.0 / n, 1e-4);
 }
 
 TEST(SpotLight, ContributionBoundIsExactInsideAndZeroOutside) {
@@ -217,7 +217,7 @@ TEST(SpotLight, ContributionBoundIsExactInsideAndZeroOutside) {
     }();
     const EmbreeScene g2(two);
     const LightSet l2 = buildLights(two, g2);
-    EXPECT_NEAR(l2.selectPdf[0] / l2.selectPdf[1], emittingSolidAngle(two.pointLights[0]) / (4.0 * kPi), 1e-5);
+    EXPECT_NEAR(l2.selectPdf[0] / l2.selectPdf[1], emittingSolidAngle(two.pointLights[0]) / (4.0 * std::numbers::pi), 1e-5);
 }
 
 TEST(SpotLight, PerHitSelectionOverManyGreySpotsIsExact) {
@@ -225,7 +225,7 @@ TEST(SpotLight, PerHitSelectionOverManyGreySpotsIsExact) {
     // sample of a delta light worth the total, so the many-light estimate equals the analytic sum.
     std::vector<Spot> spots;
     for (int i = 0; i < 10; ++i) {
-        const double a = 2.0 * kPi * i / 10.0;
+        const double a = 2.0 * std::numbers::pi * i / 10.0;
         spots.push_back({{1.5 * std::cos(a), 2.0 + 0.1 * i, 1.5 * std::sin(a)},
                          {-0.4 * std::cos(a), -1.0, -0.4 * std::sin(a)}, glm::dvec3(3.0 + i)});
     }
@@ -249,7 +249,7 @@ TEST(SpotLight, PerHitSelectionOverManyGreySpotsIsExact) {
                 e += spotIrradiance(s, p);
                 bound += roundingBound(s, p);
             }
-            const glm::dvec3 want = double(kAlbedo) / kPi * e;
+            const glm::dvec3 want = double(kAlbedo) / std::numbers::pi * e;
             const glm::vec3 got = radianceAt(integrator, p);
             lit += want.x > 0.0;
             EXPECT_NEAR(got.x, want.x, 1e-5 * want.x + bound) << x << "," << z;

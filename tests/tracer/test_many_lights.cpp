@@ -49,15 +49,15 @@ Scene dominantNearLightScene(int only) {
 }
 
 const View kView = lookAt({0, 2.0f, 2.2f}, {0, 0, 0}, 50);
-constexpr int kSize = 24;
+constexpr int kImageSize = 24;
 
 // The exact answer's estimate: the sum of one-light renders (each the few-lights estimator).
 std::vector<glm::dvec3> sumOfSingleLights(int samples) {
     ShadingSettings sh;
     sh.areaLightSamples = samples;
-    std::vector<glm::dvec3> sum(static_cast<std::size_t>(kSize * kSize), glm::dvec3(0.0));
+    std::vector<glm::dvec3> sum(static_cast<std::size_t>(kImageSize * kImageSize), glm::dvec3(0.0));
     for (int i = 0; i < kLights; ++i) {
-        const TraceResult one = renderScene(dominantNearLightScene(i), kView, sh, kSize, 1);
+        const TraceResult one = renderScene(dominantNearLightScene(i), kView, sh, kImageSize, 1);
         for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += glm::dvec3(one.image.pixels()[k]);
     }
     return sum;
@@ -67,7 +67,7 @@ TraceResult renderAll(LightSelection selection, int samples, std::uint64_t seed 
     ShadingSettings sh;
     sh.areaLightSamples = samples;
     sh.lightSelection = selection;
-    return renderScene(dominantNearLightScene(-1), kView, sh, kSize, 1, 0, seed);
+    return renderScene(dominantNearLightScene(-1), kView, sh, kImageSize, 1, 0, seed);
 }
 
 double rmsError(const TraceResult& r, const std::vector<glm::dvec3>& ref) {

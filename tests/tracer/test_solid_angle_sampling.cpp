@@ -17,15 +17,14 @@
 namespace aamap {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 TEST(SphericalTriangle, OctantIsAnEighthOfTheSphereAtAnyScale) {
     for (float scale : {1e-3f, 1.0f, 1e4f}) {
         const glm::vec3 a(scale, 0, 0), b(0, scale, 0), c(0, 0, scale);
-        EXPECT_NEAR(triangleSolidAngle(a, b, c), kPi / 2, 1e-6) << scale;
+        EXPECT_NEAR(triangleSolidAngle(a, b, c), std::numbers::pi / 2, 1e-6) << scale;
         SphericalTriangle s;
         ASSERT_TRUE(s.setup(a, b, c));
-        EXPECT_NEAR(s.area(), kPi / 2, 1e-5) << scale;
+        EXPECT_NEAR(s.area(), std::numbers::pi / 2, 1e-5) << scale;
     }
 }
 
@@ -98,8 +97,8 @@ struct SquareLight {
 // E = pi F, with the form factor of a parallel rectangle by superposition of corner rectangles.
 double squareIrradiance(double h) {
     const double X = 0.5 / h, a = std::sqrt(1 + X * X);
-    const double corner = (2 * X / a * std::atan(X / a)) / (2 * kPi);
-    return kPi * 4 * corner;
+    const double corner = (2 * X / a * std::atan(X / a)) / (2 * std::numbers::pi);
+    return std::numbers::pi * 4 * corner;
 }
 
 // The stratified m x m estimate of irradiance at the origin, under `sampling`, for one seed.
