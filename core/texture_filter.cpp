@@ -6,6 +6,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/srgb.h"
+
 namespace aamap {
 namespace {
 
@@ -42,11 +44,6 @@ MipLevel halve(const MipLevel& src) {
     return dst;
 }
 
-int wrap(long i, int n) {
-    const long k = i % n;
-    return static_cast<int>(k < 0 ? k + n : k);
-}
-
 }  // namespace
 
 std::vector<MipLevel> buildMipChain(int width, int height, std::vector<glm::vec3> rgb) {
@@ -77,56 +74,147 @@ FootprintProbes footprintProbes(glm::vec2 axisA, glm::vec2 axisB, int levels) {
 
 namespace {
 
-// The four texels around st (wrapped) and the weights between them; false for a non-finite st.
-struct BilinearTaps {
-    std::size_t i00, i10, i01, i11;  // indices into MipLevel::rgb: (x0, y0), (x1, y0), (x0, y1), (x1, y1)
-    float ax, ay;
-};
-bool bilinearTaps(const MipLevel& level, glm::vec2 st, BilinearTaps& t) {
-    const float x = st.x * static_cast<float>(level.width) - 0.5f, y = st.y * static_cast<float>(level.height) - 0.5f;
+// Texel index i (a whole number) wrapped into [0, n). Most lookups land inside the texture, where
+// this costs a compare instead of a division; far outside (uv of 1e30 included) it stays in range.
+std::size_t wrapTexel(float i, int n) {
+    const float side = static_cast<float>(n);
+    if (i >= 0.0f && i < side) return static_cast<std::size_t>(i);
+    const double r = static_cast<double>(i) - n * std::floor(static_cast<double>(i) / n);
+    const std::size_t k = r >= 0.0 ? static_cast<std::size_t>(r) : 0;
+    return k < static_cast<std::size_t>(n) ? k : 0;
+}
+
+}  // namespace
+
+bool bilinearTaps(glm::vec2 st, int width, int height, BilinearTaps& t) {
+    const float x = st.x * static_cast<float>(width) - 0.5f, y = st.y * static_cast<float>(height) - 0.5f;
     if (!std::isfinite(x) || !std::isfinite(y)) return false;
     const float fx = std::floor(x), fy = std::floor(y);
     t.ax = x - fx;
     t.ay = y - fy;
-    const long ix = static_cast<long>(fx), iy = static_cast<long>(fy);
-    const std::size_t w = static_cast<std::size_t>(level.width);
-    const std::size_t x0 = wrap(ix, level.width), x1 = wrap(ix + 1, level.width);
-    const std::size_t y0 = wrap(iy, level.height), y1 = wrap(iy + 1, level.height);
-    t.i00 = y0 * w + x0;
-    t.i10 = y0 * w + x1;
-    t.i01 = y1 * w + x0;
-    t.i11 = y1 * w + x1;
+    const std::size_t w = static_cast<std::size_t>(width), h = static_cast<std::size_t>(height);
+    t.x0 = wrapTexel(fx, width);
+    t.y0 = wrapTexel(fy, height);
+    t.x1 = t.x0 + 1 < w ? t.x0 + 1 : 0;
+    t.y1 = t.y0 + 1 < h ? t.y0 + 1 : 0;
+    t.i00 = t.y0 * w + t.x0;
+    t.i10 = t.y0 * w + t.x1;
+    t.i01 = t.y1 * w + t.x0;
+    t.i11 = t.y1 * w + t.x1;
+    return true;
+}
+
+namespace {
+
+// Decoding tables of the two 8-bit encodings, built with the loaders' own conversions.
+struct ByteTables {
+    float srgb[256], unorm[256];
+    ByteTables() {
+        for (int i = 0; i < 256; ++i) {
+            unorm[i] = static_cast<float>(i) / 255.0f;
+            srgb[i] = srgbToLinear(unorm[i]);
+        }
+    }
+};
+const ByteTables& byteTables() {
+    static const ByteTables tables;
+    return tables;
+}
+
+std::uint8_t encodeChannel(float v, TexelEncoding e) { return toUnorm8(e == TexelEncoding::Srgb8 ? linearToSrgb(v) : v); }
+
+bool exactIn(const MipLevel& level, TexelEncoding e) {
+    const float* table = e == TexelEncoding::Srgb8 ? byteTables().srgb : byteTables().unorm;
+    for (const glm::vec3& c : level.rgb)
+        for (int k = 0; k < 3; ++k)
+            if (!(table[encodeChannel(c[k], e)] == c[k])) return false;
     return true;
 }
 
 }  // namespace
 
-glm::vec3 bilinear(const MipLevel& level, glm::vec2 st) {
-    BilinearTaps t;
-    if (!bilinearTaps(level, st, t)) return glm::vec3(1.0f);
-    const glm::vec3 top = (1.0f - t.ax) * level.rgb[t.i00] + t.ax * level.rgb[t.i10];
-    const glm::vec3 bottom = (1.0f - t.ax) * level.rgb[t.i01] + t.ax * level.rgb[t.i11];
-    return (1.0f - t.ay) * top + t.ay * bottom;
+TexelEncoding exactEncoding(const MipLevel& level) {
+    if (exactIn(level, TexelEncoding::Srgb8)) return TexelEncoding::Srgb8;
+    if (exactIn(level, TexelEncoding::Unorm8)) return TexelEncoding::Unorm8;
+    return TexelEncoding::Float;
 }
 
-glm::vec2 bilinearLuminanceGradient(const MipLevel& level, glm::vec2 st) {
+PackedLevel::PackedLevel(const MipLevel& level, TexelEncoding encoding)
+    : width_(level.width), height_(level.height), tilesX_((static_cast<std::size_t>(level.width) + 3) / 4),
+      encoding_(encoding) {
+    const std::size_t tilesY = (static_cast<std::size_t>(level.height) + 3) / 4;
+    if (encoding == TexelEncoding::Float)
+        values_.assign(tilesX_ * tilesY * 16, glm::vec3(0.0f));
+    else
+        codes_.assign(tilesX_ * tilesY * 16, 0u);
+    for (std::size_t y = 0; y < static_cast<std::size_t>(height_); ++y)
+        for (std::size_t x = 0; x < static_cast<std::size_t>(width_); ++x) {
+            const glm::vec3& c = level.rgb[y * static_cast<std::size_t>(width_) + x];
+            if (encoding == TexelEncoding::Float) {
+                values_[slot(x, y)] = c;
+                continue;
+            }
+            std::uint32_t code = 0;
+            for (int k = 0; k < 3; ++k) code |= static_cast<std::uint32_t>(encodeChannel(c[k], encoding)) << (8 * k);
+            codes_[slot(x, y)] = code;
+        }
+}
+
+glm::vec3 PackedLevel::texel(std::size_t x, std::size_t y) const {
+    if (encoding_ == TexelEncoding::Float) return values_[slot(x, y)];
+    const float* table = encoding_ == TexelEncoding::Srgb8 ? byteTables().srgb : byteTables().unorm;
+    const std::uint32_t code = codes_[slot(x, y)];
+    return {table[code & 0xffu], table[(code >> 8) & 0xffu], table[(code >> 16) & 0xffu]};
+}
+
+std::vector<PackedLevel> packMipChain(const std::vector<MipLevel>& chain) {
+    std::vector<PackedLevel> packed;
+    if (chain.empty()) return packed;
+    const TexelEncoding encoding = exactEncoding(chain[0]);
+    packed.reserve(chain.size());
+    for (const MipLevel& level : chain) packed.emplace_back(level, encoding);
+    return packed;
+}
+
+glm::vec3 PackedLevel::blend(const BilinearTaps& t) const {
+    // The encoding is looked at once per lookup, not per texel.
+    const auto mix = [&t](const auto& at) {
+        const glm::vec3 top = (1.0f - t.ax) * at(t.x0, t.y0) + t.ax * at(t.x1, t.y0);
+        const glm::vec3 bottom = (1.0f - t.ax) * at(t.x0, t.y1) + t.ax * at(t.x1, t.y1);
+        return (1.0f - t.ay) * top + t.ay * bottom;
+    };
+    if (encoding_ == TexelEncoding::Float) return mix([this](std::size_t x, std::size_t y) { return values_[slot(x, y)]; });
+    const float* table = encoding_ == TexelEncoding::Srgb8 ? byteTables().srgb : byteTables().unorm;
+    return mix([this, table](std::size_t x, std::size_t y) {
+        const std::uint32_t code = codes_[slot(x, y)];
+        return glm::vec3(table[code & 0xffu], table[(code >> 8) & 0xffu], table[(code >> 16) & 0xffu]);
+    });
+}
+
+glm::vec3 bilinear(const PackedLevel& level, glm::vec2 st) {
     BilinearTaps t;
-    if (!bilinearTaps(level, st, t)) return glm::vec2(0.0f);
-    const auto lum = [&level](std::size_t i) {
-        const glm::vec3& c = level.rgb[i];
+    if (!bilinearTaps(st, level.width(), level.height(), t)) return glm::vec3(1.0f);
+    return level.blend(t);
+}
+
+glm::vec2 bilinearLuminanceGradient(const PackedLevel& level, glm::vec2 st) {
+    BilinearTaps t;
+    if (!bilinearTaps(st, level.width(), level.height(), t)) return glm::vec2(0.0f);
+    const auto lum = [&level](std::size_t x, std::size_t y) {
+        const glm::vec3 c = level.texel(x, y);
         return 0.212671f * c.x + 0.715160f * c.y + 0.072169f * c.z;
     };
-    const float f00 = lum(t.i00), f10 = lum(t.i10), f01 = lum(t.i01), f11 = lum(t.i11);
+    const float f00 = lum(t.x0, t.y0), f10 = lum(t.x1, t.y0), f01 = lum(t.x0, t.y1), f11 = lum(t.x1, t.y1);
     const float ax = t.ax, ay = t.ay;
     // Per texel, then per unit of u and v (a texel is 1 / side of the texture).
     const float dx = (1.0f - ay) * (f10 - f00) + ay * (f11 - f01);
     const float dy = (1.0f - ax) * (f01 - f00) + ax * (f11 - f10);
-    return {dx * static_cast<float>(level.width), dy * static_cast<float>(level.height)};
+    return {dx * static_cast<float>(level.width()), dy * static_cast<float>(level.height())};
 }
 
-glm::vec3 filteredLookup(const std::vector<MipLevel>& chain, glm::vec2 st, glm::vec2 duvA, glm::vec2 duvB) {
+glm::vec3 filteredLookup(const std::vector<PackedLevel>& chain, glm::vec2 st, glm::vec2 duvA, glm::vec2 duvB) {
     if (chain.empty()) return glm::vec3(1.0f);
-    const glm::vec2 size(static_cast<float>(chain[0].width), static_cast<float>(chain[0].height));
+    const glm::vec2 size(static_cast<float>(chain[0].width()), static_cast<float>(chain[0].height()));
     const int levels = static_cast<int>(chain.size());
     const FootprintProbes p = footprintProbes(duvA * size, duvB * size, levels);
     const int l0 = static_cast<int>(p.level);

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "glsl/shared/snapshot_interface.h"
+#include "core/srgb.h"
 #include "core/texture_filter.h"
 
 namespace aamap::passes {
@@ -17,30 +18,17 @@ bool usable(const Scene& scene, int texture) {
     return texels > 0 && t.rgba.size() >= 4 * texels;
 }
 
-// Bilinear with repeat, texel centres at (i + 0.5) / width: the tracer's rule.
+// Bilinear with repeat, texel centres at (i + 0.5) / width: the tracer's rule (core/texture_filter.h).
 float sample(const Texture& t, float s, float u, int channel) {
-    const float x = s * static_cast<float>(t.width) - 0.5f, y = u * static_cast<float>(t.height) - 0.5f;
-    const float fx = std::floor(x), fy = std::floor(y);
-    const float ax = x - fx, ay = y - fy;
-    const auto wrap = [](float i, int n) {
-        const long k = static_cast<long>(i) % n;
-        return static_cast<std::size_t>(k < 0 ? k + n : k);
-    };
-    const std::size_t x0 = wrap(fx, t.width), x1 = wrap(fx + 1.0f, t.width);
-    const std::size_t y0 = wrap(fy, t.height), y1 = wrap(fy + 1.0f, t.height);
-    const std::size_t w = static_cast<std::size_t>(t.width);
-    const auto at = [&](std::size_t xi, std::size_t yi) { return t.rgba[4 * (yi * w + xi) + channel]; };
-    const float top = (1.0f - ax) * at(x0, y0) + ax * at(x1, y0);
-    const float bottom = (1.0f - ax) * at(x0, y1) + ax * at(x1, y1);
-    return (1.0f - ay) * top + ay * bottom;
+    BilinearTaps taps;
+    if (!bilinearTaps({s, u}, t.width, t.height, taps)) return 1.0f;
+    const auto at = [&](std::size_t i) { return t.rgba[4 * i + static_cast<std::size_t>(channel)]; };
+    const float top = (1.0f - taps.ax) * at(taps.i00) + taps.ax * at(taps.i10);
+    const float bottom = (1.0f - taps.ax) * at(taps.i01) + taps.ax * at(taps.i11);
+    return (1.0f - taps.ay) * top + taps.ay * bottom;
 }
 
-std::uint32_t toByte(float v) { return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); }
-
-float linearToSrgb(float c) {
-    c = std::clamp(c, 0.0f, 1.0f);
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
+std::uint32_t toByte(float v) { return toUnorm8(v); }  // widened for packing into RGBA words
 
 std::uint32_t nextPowerOfTwo(std::uint32_t v) {
     std::uint32_t p = 1;

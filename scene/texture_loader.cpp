@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 #include <stb_image.h>  // the implementation is in libstb
 
+#include "core/srgb.h"
 #include "scene/text_util.h"
 
 namespace aamap {
@@ -55,10 +56,6 @@ std::optional<fs::path> resolveCaseInsensitive(const fs::path& baseDir, std::str
 }
 
 namespace {
-
-float srgbToLinear(float c) {
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
 
 // Decoded textures are float RGBA (16 bytes a texel): 8192 x 8192 is 1 GiB. A header declaring
 // more is refused before stb_image allocates for it (a hostile or corrupt file, or a mistake).

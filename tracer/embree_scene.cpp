@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
+#include "core/texture_filter.h"
 #include "tracer/bsdf.h"
 
 namespace aamap {
@@ -25,33 +26,6 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
         if (scene->cutOut(prim, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)))
             args->valid[i] = 0;
     }
-}
-
-// Bilinear taps with repeat; texel centres at (i + 0.5) / width, v = 0 is row 0 (the top).
-struct BilinearTaps {
-    std::size_t i00, i01, i10, i11;  // row-major indices: (x0,y0) (x1,y0) (x0,y1) (x1,y1)
-    float ax, ay;
-};
-bool bilinearTaps(glm::vec2 st, int width, int height, BilinearTaps& taps) {
-    const float x = st.x * static_cast<float>(width) - 0.5f, y = st.y * static_cast<float>(height) - 0.5f;
-    if (!std::isfinite(x) || !std::isfinite(y)) return false;
-    const float fx = std::floor(x), fy = std::floor(y);
-    const auto wrap = [](float i, int n) {
-        const long k = static_cast<long>(i) % n;
-        return static_cast<std::size_t>(k < 0 ? k + n : k);
-    };
-    const std::size_t x0 = wrap(fx, width), x1 = wrap(fx + 1.0f, width);
-    const std::size_t y0 = wrap(fy, height), y1 = wrap(fy + 1.0f, height);
-    const std::size_t w = static_cast<std::size_t>(width);
-    taps = {y0 * w + x0, y0 * w + x1, y1 * w + x0, y1 * w + x1, x - fx, y - fy};
-    return true;
-}
-
-template <class T>
-T blend(const std::vector<T>& texels, const BilinearTaps& t) {
-    const T top = (1.0f - t.ax) * texels[t.i00] + t.ax * texels[t.i01];
-    const T bottom = (1.0f - t.ax) * texels[t.i10] + t.ax * texels[t.i11];
-    return (1.0f - t.ay) * top + t.ay * bottom;
 }
 
 void onEmbreeError(void*, RTCError code, const char* message) {
@@ -288,7 +262,9 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
             d.height = t.height;
             std::vector<glm::vec3> rgb(texels);
             for (std::size_t k = 0; k < texels; ++k) rgb[k] = {t.rgba[4 * k], t.rgba[4 * k + 1], t.rgba[4 * k + 2]};
-            d.rgb = buildMipChain(t.width, t.height, std::move(rgb));
+            const std::vector<MipLevel> chain = buildMipChain(t.width, t.height, std::move(rgb));
+            d.mean = chain.back().rgb.front();
+            d.rgb = packMipChain(chain);
         }
         // A textured plastic steers its samples by the base's mean albedo, as Mitsuba does: kd
         // times the texture's mean (the 1 x 1 top of its mip chain).
@@ -297,7 +273,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) {
                 continue;
             const TextureData& d = textures_[static_cast<std::size_t>(sm.texture)];
             if (d.rgb.empty()) continue;
-            const glm::vec3 mean = sm.kd * d.rgb.back().rgb.front();
+            const glm::vec3 mean = sm.kd * d.mean;
             const float sm3 = (sm.specularTint.x + sm.specularTint.y + sm.specularTint.z) / 3.0f;
             const float dm = (mean.x + mean.y + mean.z) / 3.0f;
             sm.specularWeight = sm3 + dm > 0.0f ? sm3 / (sm3 + dm) : 0.5f;
@@ -426,12 +402,14 @@ void EmbreeScene::buildRoughnessLevels(const std::vector<char>& used) {
     roughnessLevels_.reserve(textured.size() * ShadingMaterial::kRoughnessLevels);
     for (std::size_t i : textured) {
         ShadingMaterial& m = materials_[i];
-        const MipLevel& level = textures_[static_cast<std::size_t>(m.roughnessTexture)].rgb[0];
+        const PackedLevel& level = textures_[static_cast<std::size_t>(m.roughnessTexture)].rgb[0];
         float lo = std::numeric_limits<float>::infinity(), hi = 0.0f;
-        for (const glm::vec3& c : level.rgb) {
-            lo = std::min(lo, alphaOf(c));
-            hi = std::max(hi, alphaOf(c));
-        }
+        for (int y = 0; y < level.height(); ++y)
+            for (int x = 0; x < level.width(); ++x) {
+                const float a = alphaOf(level.texel(static_cast<std::size_t>(x), static_cast<std::size_t>(y)));
+                lo = std::min(lo, a);
+                hi = std::max(hi, a);
+            }
         // Mitsuba clamps alpha to 1e-4: the levels stay rough.
         lo = std::max(lo, 1e-4f);
         hi = std::max(hi, lo);
@@ -520,7 +498,10 @@ float EmbreeScene::coverage(int texture, std::uint32_t id, float u, float v) con
     if (t.alpha.empty()) return 1.0f;
     BilinearTaps taps;
     if (!bilinearTaps(textureCoordinates(id, u, v), t.width, t.height, taps)) return 1.0f;
-    return blend(t.alpha, taps);
+    const std::vector<float>& a = t.alpha;
+    const float top = (1.0f - taps.ax) * a[taps.i00] + taps.ax * a[taps.i10];
+    const float bottom = (1.0f - taps.ax) * a[taps.i01] + taps.ax * a[taps.i11];
+    return (1.0f - taps.ay) * top + taps.ay * bottom;
 }
 
 bool EmbreeScene::cutOut(std::uint32_t id, float u, float v) const {

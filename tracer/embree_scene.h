@@ -99,7 +99,8 @@ struct SceneFeatures {
 
 struct TextureData {
     int width = 0, height = 0;
-    std::vector<MipLevel> rgb;  // linear colour's mip chain (core/texture_filter.h); empty: unusable
+    std::vector<PackedLevel> rgb;  // linear colour's mip chain (core/texture_filter.h); empty: unusable
+    glm::vec3 mean{1.0f};          // the texture's mean colour (the 1 x 1 top of the chain, unrounded)
     std::vector<float> alpha;   // coverage at level 0, only for textures an alpha-tested material uses
 };
 

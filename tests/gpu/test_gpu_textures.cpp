@@ -434,6 +434,8 @@ TEST_F(SnapshotTextures, FilteredColourIsTheTracersRule) {
         }
     }
     const std::vector<MipLevel> chain = buildMipChain(kSide, kSide, rgb);
+    const std::vector<PackedLevel> packed = packMipChain(chain);  // the tracer's texels
+    ASSERT_EQ(packed[0].encoding(), TexelEncoding::Srgb8);
     const Scene scene = floorScene(noise, kHalfWidth, kNear, kFar, kRepeat);
 
     const View view = lookAt({0, 1, 0}, {0, 0, -6}, 60.0f);
@@ -472,7 +474,7 @@ TEST_F(SnapshotTextures, FilteredColourIsTheTracersRule) {
                 }
             }
             if (!stable) continue;
-            const glm::vec3 expected = filteredLookup(chain, uv, q[y - y0][1] - q[y - y0][0], q[1][x - x0] - q[0][x - x0]);
+            const glm::vec3 expected = filteredLookup(packed, uv, q[y - y0][1] - q[y - y0][0], q[1][x - x0] - q[0][x - x0]);
             const glm::vec3 c = r.snapshot.at(x, y);
             // 8-bit sRGB levels: within 0.006 (0.5 / 255 in sRGB near white).
             for (int k = 0; k < 3; ++k)

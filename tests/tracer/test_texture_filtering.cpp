@@ -3,6 +3,7 @@
 // cone's footprint. So one ray per pixel on a minified texture already shows what many rays
 // average, while a magnified texture is looked up exactly as without filtering.
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -173,6 +174,37 @@ TEST(TextureFiltering, FootprintProbesFollowTheMajorAxis) {
     // Wider than the texture: its average, the last level.
     p = footprintProbes({5000, 0}, {0, 5000}, 11);
     EXPECT_EQ(p.level, 10.0f);
+}
+
+TEST(TextureFiltering, BilinearTapsRepeatTheTextureAndStayInsideItAtAnyCoordinate) {
+    // Texel (i, j) of a 5 x 3 grid sits at st = ((i + 0.5) / 5, (j + 0.5) / 3): a lookup there is
+    // that texel (up to the rounding of st), and shifting st by whole periods, either way, finds
+    // the same one. Each texel holds its own index.
+    constexpr int kW = 5, kH = 3;
+    MipLevel level{kW, kH, {}};
+    for (int k = 0; k < kW * kH; ++k) level.rgb.emplace_back(static_cast<float>(k));
+    const PackedLevel packed(level, TexelEncoding::Float);
+    for (int period : {-1000, -3, -1, 0, 1, 2, 77})
+        for (int j = 0; j < kH; ++j)
+            for (int i = 0; i < kW; ++i) {
+                const glm::vec2 st((i + 0.5f) / kW + static_cast<float>(period), (j + 0.5f) / kH - static_cast<float>(period));
+                EXPECT_NEAR(bilinear(packed, st).x, static_cast<float>(j * kW + i), 0.01f) << period << " " << i << " " << j;
+            }
+    // Between the last column and the first: the right neighbour of column 4 is column 0.
+    BilinearTaps t;
+    ASSERT_TRUE(bilinearTaps({1.0f, 0.5f / kH}, kW, kH, t));
+    EXPECT_EQ(t.i00, 4u);
+    EXPECT_EQ(t.i10, 0u);
+    EXPECT_FLOAT_EQ(t.ax, 0.5f);
+    // Far outside (coordinates a texture never has, but a file can hold): in range, never a crash.
+    for (float far : {1e7f + 0.3f, -1e7f, 3e30f, -3e30f}) {
+        ASSERT_TRUE(bilinearTaps({far, -far}, kW, kH, t));
+        for (std::size_t k : {t.i00, t.i10, t.i01, t.i11}) EXPECT_LT(k, static_cast<std::size_t>(kW * kH)) << far;
+    }
+    // Where st times the side overflows, or st is not finite, there is no lookup.
+    EXPECT_FALSE(bilinearTaps({std::numeric_limits<float>::max(), 0.5f}, kW, kH, t));
+    EXPECT_FALSE(bilinearTaps({std::numeric_limits<float>::infinity(), 0.5f}, kW, kH, t));
+    EXPECT_FALSE(bilinearTaps({0.5f, std::nanf("")}, kW, kH, t));
 }
 
 }  // namespace
