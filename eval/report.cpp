@@ -21,6 +21,10 @@ namespace aamap {
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
 
+double numberOr(const Json& j, const char* key, double fallback) {
+    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
+}
+
 double renderSeconds(const Json& r) {
     if (!r.contains("times_s") || !r["times_s"].is_object()) return 0.0;
     const Json& t = r["times_s"];
@@ -29,10 +33,6 @@ double renderSeconds(const Json& r) {
 }
 
 namespace {
-
-double num(const Json& j, const char* key, double fallback = NAN) {
-    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
-}
 
 
 // The render time's median and the range its timed runs spanned (timing.repeats): the trace runs
@@ -43,7 +43,7 @@ struct TimeRange {
 };
 
 TimeRange renderTimeRange(const Json& r) {
-    const double snapshot = num(r["times_s"], "snapshot_total", 0);
+    const double snapshot = numberOr(r["times_s"], "snapshot_total", 0);
     TimeRange t{renderSeconds(r), renderSeconds(r), renderSeconds(r), 1};
     const Json& times = r["times_s"];
     if (times.contains("trace_runs") && times["trace_runs"].is_array() && !times["trace_runs"].empty()) {
@@ -123,7 +123,7 @@ void addCauseTables(const Json& results, std::vector<Table>& tables) {
         if (r.contains("metrics") && r["metrics"].contains("causes"))
             rows.emplace_back(r["name"].get<std::string>(), &r["metrics"]["causes"]);
     if (rows.empty()) return;
-    const double t = num(results["config"]["metrics"], "flip_threshold", 0.1);
+    const double t = numberOr(results["config"]["metrics"], "flip_threshold", 0.1);
     for (const char* kind : {"missed", "wasted"}) {
         const bool missed = std::string(kind) == "missed";
         std::vector<int> used;
@@ -177,9 +177,9 @@ void addGroundTruthTable(const Json& results, std::vector<Table>& tables) {
         const Json aa = m.contains("antialiasing") ? m["antialiasing"] : Json::object();
         t.rows.push_back({r["name"].get<std::string>() + (isFloor ? " (shading bias)" : ""), r.value("series", std::string()),
                           std::to_string(r["max_rays_per_pixel"].get<int>()), rangeCell(renderTimeRange(r), "{:.3f}"),
-                          cell(num(m, "flip_mean"), "{:.4f}"), cell(num(m, "pct_error_flip")),
-                          isFloor ? "0" : cell(num(aa, "flip_mean"), "{:.4f}"), isFloor ? "0" : cell(num(aa, "pct_error_flip")),
-                          isFloor ? "0" : cell(num(aa, "pct_error_mse"))});
+                          cell(numberOr(m, "flip_mean"), "{:.4f}"), cell(numberOr(m, "pct_error_flip")),
+                          isFloor ? "0" : cell(numberOr(aa, "flip_mean"), "{:.4f}"), isFloor ? "0" : cell(numberOr(aa, "pct_error_flip")),
+                          isFloor ? "0" : cell(numberOr(aa, "pct_error_mse"))});
     }
     tables.push_back(t);
 }
@@ -190,15 +190,15 @@ void addOracleTable(const Json& results, std::vector<Table>& tables) {
     if (!results.contains("oracle")) return;
     const Json& renders = results["renders"];
     const std::string base = baselineSeries(renders);
-    const double flipT = num(results["config"]["metrics"], "flip_threshold", 0.1);
+    const double flipT = numberOr(results["config"]["metrics"], "flip_threshold", 0.1);
     Table t{"oracle", "The map against the oracle map",
             fmt::format("oracle map: true aliasing (1-ray FLIP against the reference above {}), grown until the image "
                         "taking the reference on it and the 1-ray image elsewhere has no new error pixel ({} round(s), "
                         "{}% of the image, {}% error left); given the full budget; its time is the trace alone. "
                         "Speedups over {} at the same rpp; efficiency: the map's speedup as a fraction of the oracle's",
-                        readableNumber(flipT), static_cast<int>(num(results["oracle"], "rounds", 0)),
-                        cell(100 * num(results["oracle"], "flagged_fraction"), "{:.1f}"),
-                        cell(num(results["oracle"], "residual_pct_error_flip"), "{:.2f}"),
+                        readableNumber(flipT), static_cast<int>(numberOr(results["oracle"], "rounds", 0)),
+                        cell(100 * numberOr(results["oracle"], "flagged_fraction"), "{:.1f}"),
+                        cell(numberOr(results["oracle"], "residual_pct_error_flip"), "{:.2f}"),
                         base.empty() ? std::string("uniform (none in the experiment)") : base),
             {"render", "rpp", "time (s)", "oracle time (s)", "speedup", "oracle speedup", "efficiency", "% FLIP",
              "oracle % FLIP", "mean rpp", "oracle mean rpp"},
@@ -217,8 +217,8 @@ void addOracleTable(const Json& results, std::vector<Table>& tables) {
         t.rows.push_back({name, std::to_string(rpp), rangeCell(renderTimeRange(*map), "{:.3f}"),
                           rangeCell(renderTimeRange(o), "{:.3f}"), rangeCell(mapSpeedup, "{:.2f}"),
                           rangeCell(oracleSpeedup, "{:.2f}"), cell(mapSpeedup.median / oracleSpeedup.median),
-                          cell(num(mm, "pct_error_flip")), cell(num(om, "pct_error_flip")),
-                          cell(num(*map, "mean_primary_rpp")), cell(num(o, "mean_primary_rpp"))});
+                          cell(numberOr(mm, "pct_error_flip")), cell(numberOr(om, "pct_error_flip")),
+                          cell(numberOr(*map, "mean_primary_rpp")), cell(numberOr(o, "mean_primary_rpp"))});
     }
     tables.push_back(t);
 }
@@ -247,7 +247,7 @@ void addReferenceTable(const Json& results, std::vector<Table>& tables) {
     } else {
         const Json& n = ref["noise"];
         const Json& suggested = n["suggested_rpp"];
-        t.rows.push_back({what, cell(num(n, "pct_error_flip")), cell(num(n, "pct_error_mse")),
+        t.rows.push_back({what, cell(numberOr(n, "pct_error_flip")), cell(numberOr(n, "pct_error_mse")),
                           n.value("converged", false) ? "yes" : "no",
                           suggested.is_number() ? std::to_string(suggested.get<int>()) : "over " + std::to_string(kMaxSuggestedRpp)});
         t.note = fmt::format("noise floor: the pixels its own noise puts in error (the reference against itself plus half "
@@ -301,10 +301,10 @@ std::vector<Table> reportTables(const Json& results) {
     }
     tables.push_back(speed);
 
-    const double flipT = num(results["config"]["metrics"], "flip_threshold", 0.1);
+    const double flipT = numberOr(results["config"]["metrics"], "flip_threshold", 0.1);
     Table error{"error", "Table 3: % error pixels against the reference",
                 fmt::format("FLIP: pixels with LDR-FLIP > {}; MSE: pixels whose display-space squared error >= {:.3g}",
-                            flipT, num(results["config"]["metrics"], "mse_threshold", 0)),
+                            flipT, numberOr(results["config"]["metrics"], "mse_threshold", 0)),
                 {"rpp"}, {}};
     for (const std::string& s : series) {
         error.header.push_back(s + " FLIP");
@@ -314,14 +314,14 @@ std::vector<Table> reportTables(const Json& results) {
     if (noisy)
         error.note = fmt::format("not reported: the reference is noisy (its own noise puts {}% of pixels in error; see "
                                  "The reference)",
-                                 readableNumber(num(results["reference"]["noise"], "floor_pct")));
+                                 readableNumber(numberOr(results["reference"]["noise"], "floor_pct")));
     for (int rpp : rpps) {
         std::vector<std::string> row{std::to_string(rpp)};
         for (const std::string& s : series) {
             const Json* r = find(renders, rpp, s);
             const Json m = r && r->contains("metrics") ? (*r)["metrics"] : Json::object();
-            row.push_back(!r ? "" : noisy ? "—" : cell(num(m, "pct_error_flip")));
-            row.push_back(!r ? "" : noisy ? "—" : cell(num(m, "pct_error_mse")));
+            row.push_back(!r ? "" : noisy ? "—" : cell(numberOr(m, "pct_error_flip")));
+            row.push_back(!r ? "" : noisy ? "—" : cell(numberOr(m, "pct_error_mse")));
         }
         error.rows.push_back(row);
     }
@@ -337,10 +337,10 @@ std::vector<Table> reportTables(const Json& results) {
         const Json m = r.contains("metrics") ? r["metrics"] : Json::object();
         all.rows.push_back({r["name"].get<std::string>(), r.value("series", std::string()),
                             std::to_string(r["max_rays_per_pixel"].get<int>()), rangeCell(renderTimeRange(r), "{:.3f}"),
-                            std::to_string(renderTimeRange(r).runs), cell(num(r, "mean_primary_rpp")), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
-                            m.contains("psnr") && m["psnr"].is_null() ? "inf" : cell(num(m, "psnr")),
-                            cell(num(m, "flip_mean"), "{:.4f}"), noisy ? "—" : cell(num(m, "pct_error_flip")),
-                            noisy ? "—" : cell(num(m, "pct_error_mse")), r.value("cached", false) ? "yes" : "no"});
+                            std::to_string(renderTimeRange(r).runs), cell(numberOr(r, "mean_primary_rpp")), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
+                            m.contains("psnr") && m["psnr"].is_null() ? "inf" : cell(numberOr(m, "psnr")),
+                            cell(numberOr(m, "flip_mean"), "{:.4f}"), noisy ? "—" : cell(numberOr(m, "pct_error_flip")),
+                            noisy ? "—" : cell(numberOr(m, "pct_error_mse")), r.value("cached", false) ? "yes" : "no"});
     }
     tables.push_back(all);
 
@@ -354,13 +354,13 @@ std::vector<Table> reportTables(const Json& results) {
                           fmt::format("true aliasing: pixels where FLIP(1-ray, reference) > {}; own: those whose own "
                                       "8-bit display value differs too (FLIP also rises beside a high-contrast "
                                       "error, where the images agree); flagged: aamap > 0",
-                                      readableNumber(num(q, "threshold"))),
+                                      readableNumber(numberOr(q, "threshold"))),
                           {"recall", "own recall", "precision", "flagged %", "true aliasing %", "true pixels",
                            "own true pixels", "flagged pixels"},
-                          {{cell(num(q, "recall"), "{:.3f}"),
-                            q.contains("own_recall") ? cell(num(q, "own_recall"), "{:.3f}") : std::string(),
-                            cell(num(q, "precision"), "{:.3f}"), cell(100 * num(q, "flagged_fraction")),
-                            cell(100 * num(q, "true_fraction")), count("true_pixels"), count("own_true_pixels"),
+                          {{cell(numberOr(q, "recall"), "{:.3f}"),
+                            q.contains("own_recall") ? cell(numberOr(q, "own_recall"), "{:.3f}") : std::string(),
+                            cell(numberOr(q, "precision"), "{:.3f}"), cell(100 * numberOr(q, "flagged_fraction")),
+                            cell(100 * numberOr(q, "true_fraction")), count("true_pixels"), count("own_true_pixels"),
                             count("flagged_pixels")}}});
     }
     addOracleTable(results, tables);
@@ -392,14 +392,14 @@ std::string resultsCsv(const Json& results) {
             csvField(r["name"].get<std::string>()), csvField(r.value("series", std::string())),
             r["strategy"].get<std::string>(), std::to_string(rpp), csvField(paramsText(r)),
             std::to_string(r["width"].get<int>()), std::to_string(r["height"].get<int>()), value(renderSeconds(r)),
-            value(num(r["times_s"], "trace")), value(num(r["times_s"], "snapshot_total")),
-            value(num(r["times_s"], "total")), value(time.min), value(time.max), std::to_string(time.runs),
-            value(speedup.median), value(speedup.min), value(speedup.max), value(num(r, "mean_primary_rpp")),
+            value(numberOr(r["times_s"], "trace")), value(numberOr(r["times_s"], "snapshot_total")),
+            value(numberOr(r["times_s"], "total")), value(time.min), value(time.max), std::to_string(time.runs),
+            value(speedup.median), value(speedup.min), value(speedup.max), value(numberOr(r, "mean_primary_rpp")),
             std::to_string(r["rays"]["primary"].get<std::uint64_t>()), std::to_string(r["rays"]["total"].get<std::uint64_t>()),
-            value(num(m, "mse")), value(num(m, "rmse")),
-            m.contains("psnr") && m["psnr"].is_null() ? "inf" : value(num(m, "psnr")), value(num(m, "pct_error_mse")),
-            value(num(m, "flip_mean")), value(num(m, "pct_error_flip")), value(num(m, "flip_hdr_mean")),
-            value(num(m, "pct_error_flip_hdr")), r.value("cached", false) ? "1" : "0", r.value("key", std::string()),
+            value(numberOr(m, "mse")), value(numberOr(m, "rmse")),
+            m.contains("psnr") && m["psnr"].is_null() ? "inf" : value(numberOr(m, "psnr")), value(numberOr(m, "pct_error_mse")),
+            value(numberOr(m, "flip_mean")), value(numberOr(m, "pct_error_flip")), value(numberOr(m, "flip_hdr_mean")),
+            value(numberOr(m, "pct_error_flip_hdr")), r.value("cached", false) ? "1" : "0", r.value("key", std::string()),
             csvField(r["git_revision"].get<std::string>())};
         out += fmt::format("{}\n", fmt::join(f, ","));
     }
@@ -412,9 +412,9 @@ std::optional<Table> snapshotCostTable(const Json& results) {
     Table t{"snapshot_cost", "Snapshot cost", "", {"", "value"}, {}};
     if (s.contains("width") && s.contains("height"))
         t.rows.push_back({"resolution", fmt::format("{} × {}", s["width"].get<int>(), s["height"].get<int>())});
-    t.rows.push_back({"per frame (ms)", readableNumber(1000 * num(s, "total_s"))});
-    if (s.contains("readback_s")) t.rows.push_back({"of which readback (ms)", readableNumber(1000 * num(s, "readback_s"))});
-    if (s.contains("setup_s")) t.rows.push_back({"setup, once (ms)", readableNumber(1000 * num(s, "setup_s"))});
+    t.rows.push_back({"per frame (ms)", readableNumber(1000 * numberOr(s, "total_s"))});
+    if (s.contains("readback_s")) t.rows.push_back({"of which readback (ms)", readableNumber(1000 * numberOr(s, "readback_s"))});
+    if (s.contains("setup_s")) t.rows.push_back({"setup, once (ms)", readableNumber(1000 * numberOr(s, "setup_s"))});
     const Json passes = s.value("passes_gpu_ms", Json::object());  // items() must not outlive it
     std::vector<std::string> perPass;
     for (const auto& [pass, ms] : passes.items())

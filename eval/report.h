@@ -3,6 +3,7 @@
 // `aamap report OUTDIR` can rebuild it: results.csv, report.md (the paper's tables in Markdown),
 // report.html (tables, a comparison viewer, plots; relative links, opens from disk, offline), and the
 // plots of tools/report_plots.py (run from the Python venv; skipped with a warning without one).
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -29,6 +30,10 @@ std::vector<Table> reportTables(const nlohmann::ordered_json& results);
 // Cost of a render's image (a results.json render record): the trace plus, for aamap-driven
 // strategies, the Snapshot's per-frame time; 0 for a record without times.
 double renderSeconds(const nlohmann::ordered_json& render);
+
+// results.json's number at `key` of `j`; `fallback` when absent or not a number (a field a run
+// left out).
+double numberOr(const nlohmann::ordered_json& j, const char* key, double fallback = NAN);
 
 // A number as people write it: the shortest text that reads back as the same float when the value
 // is one (0.1, not 0.10000000149011612), else 3 significant digits ("1.23e+04" only past 1e6);

@@ -55,7 +55,6 @@ std::string tableHtml(const Table& t, const char* heading = "h2") {
     return h + fmt::format("</table>\n<p class=\"note\">{}</p>\n", escape(t.note));
 }
 
-double number(const Json& j, const char* key) { return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN; }
 
 // What the Snapshot cost, as a card beside the summary.
 std::string snapshotCard(const Json& results) {
@@ -100,7 +99,7 @@ std::string mapsSection(const Json& results, const fs::path& outDir) {
     h += figure(outDir, "snapshot.png", "snapshot",
                 fmt::format("The Snapshot: the Vulkan raster the aamap is built from ({} &times; the render's resolution, "
                             "{} point lights per area light).",
-                            readableNumber(number(snap, "scale")), readableNumber(number(snap, "area_light_samples"))));
+                            readableNumber(numberOr(snap, "scale")), readableNumber(numberOr(snap, "area_light_samples"))));
     h += figure(outDir, "laplacian.png", "|Laplacian|",
                 "|Laplacian| of the Snapshot (5&times;5): the edges it finds; brighter is a stronger edge.");
     h += figure(outDir, "aamap.png", "aamap",
@@ -119,7 +118,7 @@ std::string mapsSection(const Json& results, const fs::path& outDir) {
                         "display value equals the reference's: FLIP rose there only beside a neighbour's error, and no "
                         "sampling of this pixel can change it<br>{}flagged, not aliased (rays spent for nothing)<br>"
                         "dimmed 1-ray render: neither.",
-                        readableNumber(number(q, "threshold")), swatch("#fff"), swatch("#f00"), swatch("#ffa000"),
+                        readableNumber(numberOr(q, "threshold")), swatch("#fff"), swatch("#f00"), swatch("#ffa000"),
                         swatch("#285aff")));
         if (q.contains("causes")) {
             std::string legend;

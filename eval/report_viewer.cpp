@@ -44,10 +44,6 @@ Json viridisStops() {
     return stops;
 }
 
-double number(const Json& j, const char* key) {
-    return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
-}
-
 Json numberOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 std::string referenceText(const Json& results) {
@@ -96,7 +92,7 @@ Json viewerData(const Json& results, const fs::path& outDir) {
         Json regions = Json::array();
         for (const Json& g : m.value("worst_regions", Json::array()))
             regions.push_back({{"x", g["x"]}, {"y", g["y"]}, {"size", g["size"]}, {"flip_mean", g["flip_mean"]}});
-        const double pct = number(m, "pct_error_flip");
+        const double pct = numberOr(m, "pct_error_flip");
         // Open on the selective render with most error, where there is most to see (or on the
         // render with most error when no selective one has any).
         if (std::isfinite(pct) && pct > worstAnyPct) worstAnyPct = pct, worstAny = list.size();
@@ -107,9 +103,9 @@ Json viewerData(const Json& results, const fs::path& outDir) {
                         {"strategy", r["strategy"]},
                         {"rpp", rpp},
                         {"uniform", r["strategy"] == baselineStrategyName()},
-                        {"mean_rpp", numberOrNull(number(r, "mean_primary_rpp"))},
+                        {"mean_rpp", numberOrNull(numberOr(r, "mean_primary_rpp"))},
                         {"pct_flip", numberOrNull(pct)},
-                        {"flip_mean", numberOrNull(number(m, "flip_mean"))},
+                        {"flip_mean", numberOrNull(numberOr(m, "flip_mean"))},
                         {"layers",
                          {{"render", present(name + ".png")},
                           {"flip", present(name + ".flip.png")},

@@ -18,7 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string at(const Element& e) { return fmt::format("{}:{}", e.file.string(), e.line); }
 
 glm::vec3 axisOf(const glm::mat4& m, int column) { return glm::vec3(m[column]); }
 
@@ -86,7 +85,7 @@ void addEmitter(const Element& emitter, Scene& scene, Warnings& warnings) {
         p.cosInner = std::cos(glm::radians(beam));
         p.cosOuter = std::cos(glm::radians(cutoff));
         warnings.once("spot", fmt::format("{}: spot falloff between beam_width and cutoff_angle uses aamap's smooth "
-                                          "(glTF) curve instead of Mitsuba's linear one", at(emitter)));
+                                          "(glTF) curve instead of Mitsuba's linear one", emitter.location()));
         scene.pointLights.push_back(std::move(p));
     } else if (type == "directional") {
         DirectionalLight d;
@@ -123,7 +122,7 @@ void addEmitter(const Element& emitter, Scene& scene, Warnings& warnings) {
 void addSensor(const Element& sensor, Scene& scene, Warnings& warnings) {
     const std::string type = sensor.type();
     if (type == "thinlens") {
-        warnings.once("thinlens", fmt::format("{}: the thin-lens sensor is a pinhole here (no depth of field)", at(sensor)));
+        warnings.once("thinlens", fmt::format("{}: the thin-lens sensor is a pinhole here (no depth of field)", sensor.location()));
     } else if (type != "perspective") {
         fail(sensor, fmt::format("sensor type '{}' is not supported (only perspective and thinlens)", type));
     }
@@ -175,7 +174,7 @@ void addSensor(const Element& sensor, Scene& scene, Warnings& warnings) {
     // mirrors the image, which a View cannot.
     if (glm::dot(-axisOf(m, 0), glm::cross(v.direction, v.up)) < 0.0f)
         warnings.once("mirrored-sensor", fmt::format("{}: the sensor's to_world mirrors the image; it is rendered unmirrored",
-                                                     at(sensor)));
+                                                     sensor.location()));
     v.horizontalFovDeg = static_cast<float>(glm::degrees(2.0 * std::atan(tx)));
     v.verticalFovDeg = static_cast<float>(glm::degrees(2.0 * std::atan(ty)));
     scene.views.push_back(v);

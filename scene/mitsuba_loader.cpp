@@ -55,7 +55,7 @@ private:
             if (c.tag == "integrator" && depth < kMaxInstanceDepth) readIntegrator(c, depth + 1);
         if (!r.integrator.empty()) return;  // a nested one rendered
         r.integrator = type;
-        r.at = fmt::format("{}:{}", e.file.string(), e.line);
+        r.at = e.location();
         r.hideEmitters = booleanProperty(e, "hide_emitters", false);
         if (type == "direct") {
             r.maxDepth = 2;  // emitted and direct light: a path of two segments

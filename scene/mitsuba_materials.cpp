@@ -15,7 +15,6 @@ namespace {
 
 constexpr int kMaxBsdfDepth = 16;  // nested twosided/mask/bumpmap wrappers
 
-std::string at(const Element& e) { return fmt::format("{}:{}", e.file.string(), e.line); }
 
 // Mitsuba's named indices of refraction (a common subset).
 float namedIor(const Element& e, const std::string& name) {
@@ -134,7 +133,7 @@ void MaterialBuilder::warnUnknownParameters(const Element& bsdf, const std::stri
         const std::string name = c.name();
         if (name.empty() || c.tag == "bsdf" || known.count(name) != 0) continue;
         warnings_.once(type + "-parameter-" + name,
-                       fmt::format("{}: {} has no parameter '{}'; it is ignored", at(c), type, name));
+                       fmt::format("{}: {} has no parameter '{}'; it is ignored", c.location(), type, name));
     }
 }
 
@@ -161,7 +160,7 @@ void MaterialBuilder::microfacetParameters(const Element& bsdf, Material& m, boo
             // Anisotropic textured roughness: each axis at its texture's mean.
             const float mean = texturedRoughness(*p, m);
             m.roughnessTexture = -1;
-            warnings_.once("textured-alpha-uv", fmt::format("{}: a textured {} is replaced by its mean, {}", at(*p),
+            warnings_.once("textured-alpha-uv", fmt::format("{}: a textured {} is replaced by its mean, {}", p->location(),
                                                             name, mean));
             return mean;
         };
@@ -181,7 +180,7 @@ void MaterialBuilder::microfacetParameters(const Element& bsdf, Material& m, boo
     }
     if (!booleanProperty(bsdf, "sample_visible", true))
         warnings_.once("sample_visible", fmt::format("{}: sample_visible=false is ignored: visible normals are always "
-                                                     "sampled (the image is the same, the noise differs)", at(bsdf)));
+                                                     "sampled (the image is the same, the noise differs)", bsdf.location()));
 }
 
 // A roughness texture (a bitmap; its texel's luminance is alpha, as Mitsuba's eval_1): sets
@@ -192,7 +191,7 @@ float MaterialBuilder::texturedRoughness(const Element& property, Material& m) {
     if (t.tag != "texture" || t.type() != "bitmap") {
         warnings_.once("textured-alpha-type", fmt::format("{}: only a bitmap texture can give the roughness; alpha "
                                                           "0.1 is used",
-                                                          at(t)));
+                                                          t.location()));
         return 0.1f;
     }
     const int index = bitmap(t, false);
@@ -241,7 +240,7 @@ Material MaterialBuilder::blend(const Element& bsdf, int depth) {
     const Element* weight = bsdf.property("weight");
     if (weight == nullptr) fail(bsdf, "blendbsdf needs a weight");
     if (weight->tag == "texture" || weight->tag == "ref") {
-        warnings_.once("blend-texture", fmt::format("{}: a textured blendbsdf weight is replaced by 0.5", at(*weight)));
+        warnings_.once("blend-texture", fmt::format("{}: a textured blendbsdf weight is replaced by 0.5", weight->location()));
     } else {
         w = floatProperty(bsdf, "weight", 0.5f);
         if (!(w >= 0.0f && w <= 1.0f)) fail(*weight, fmt::format("blendbsdf weight {} is not in [0, 1]", w));
@@ -250,7 +249,7 @@ Material MaterialBuilder::blend(const Element& bsdf, int depth) {
     if (!blendable(a) || !blendable(b)) {
         warnings_.once("blendbsdf", fmt::format("{}: a blendbsdf of a smooth, textured, masked or blended BSDF is "
                                                 "approximated by the component of larger weight",
-                                                at(bsdf)));
+                                                bsdf.location()));
         return w > 0.5f ? b : a;
     }
     Material m;
@@ -280,7 +279,7 @@ Material MaterialBuilder::perturbation(const Element& bsdf, int depth) {
         if (r.tag != "bsdf" && r.tag != "texture") continue;
         if (slot != nullptr) {
             warnings_.once(type + "-extra-" + r.tag, fmt::format("{}: {} takes one nested <{}>; this one is ignored",
-                                                                 at(c), type, r.tag));
+                                                                 c.location(), type, r.tag));
             continue;
         }
         slot = &c;
@@ -291,7 +290,7 @@ Material MaterialBuilder::perturbation(const Element& bsdf, int depth) {
     } else {
         warnings_.once(type + "-no-bsdf", fmt::format("{}: {} has no nested <bsdf>; Mitsuba's default (a one-sided "
                                                       "diffuse of reflectance 0.5) is used",
-                                                      at(bsdf), type));
+                                                      bsdf.location(), type));
         m.name = "default";
         m.kd = glm::vec3(0.5f);
         m.oneSided = true;
@@ -299,7 +298,7 @@ Material MaterialBuilder::perturbation(const Element& bsdf, int depth) {
     if (m.normalMap >= 0 || m.bumpMap >= 0) {
         warnings_.once("nested-maps", fmt::format("{}: a normal or bump map inside another one is ignored; the outer "
                                                   "{} is used alone",
-                                                  at(bsdf), type));
+                                                  bsdf.location(), type));
         m.normalMap = m.bumpMap = -1;
         m.mapMirroredOnBack = false;
     }
@@ -309,24 +308,24 @@ Material MaterialBuilder::perturbation(const Element& bsdf, int depth) {
     if (texture == nullptr) {
         warnings_.once(type + "-no-texture", fmt::format("{}: {} has no nested <texture>; the nested BSDF is used "
                                                          "without it",
-                                                         at(bsdf), type));
+                                                         bsdf.location(), type));
         return m;
     }
     const Element& t = resolve(*texture);
     if (t.type() != "bitmap") {
         warnings_.once(type + "-texture-type", fmt::format("{}: a {} texture for {} is not supported (only bitmap); "
                                                            "the nested BSDF is used without the map",
-                                                           at(t), t.type(), type));
+                                                           t.location(), t.type(), type));
         return m;
     }
     if (!bump && texture->name() != "normalmap" && t.name() != "normalmap")
         warnings_.once("normalmap-name", fmt::format("{}: Mitsuba names a normal map's texture 'normalmap'; this "
                                                      "one is used as the map",
-                                                     at(*texture)));
+                                                     texture->location()));
     if (!bump && !booleanProperty(t, "raw", false))
         warnings_.once("normalmap-srgb", fmt::format("{}: the normal map is decoded from sRGB (raw is false, as Mitsuba "
                                                      "does by default); normal maps usually want raw=true",
-                                                     at(t)));
+                                                     t.location()));
     const int index = bitmap(t, false);
     if (index < 0) return m;  // unreadable: the loader has warned; no map
     (bump ? m.bumpMap : m.normalMap) = index;
@@ -370,7 +369,7 @@ int MaterialBuilder::bitmap(const Element& texture, bool coverage) {
     if (file.empty()) fail(t, "bitmap texture has no filename");
     if (t.property("to_uv") != nullptr || t.property("uscale") != nullptr || t.property("vscale") != nullptr ||
         t.property("uoffset") != nullptr) {
-        warnings_.once("texture-transform", fmt::format("{}: texture coordinate transforms are ignored", at(t)));
+        warnings_.once("texture-transform", fmt::format("{}: texture coordinate transforms are ignored", t.location()));
     }
     // raw=true: 8-bit texels as they are (Mitsuba's default decodes sRGB); coverage is never decoded.
     const int index = coverage ? textures_.getCoverage(t.file.parent_path(), file, t.file)
@@ -383,12 +382,12 @@ glm::vec3 MaterialBuilder::colourOrTexture(const Element& bsdf, const char* name
     if (p != nullptr && (p->tag == "texture" || p->tag == "ref")) {
         const Element& t = resolve(*p);
         if (t.tag == "texture" && t.type() == "checkerboard") {
-            warnings_.once("checkerboard", fmt::format("{}: checkerboard textures are replaced by their mean colour", at(t)));
+            warnings_.once("checkerboard", fmt::format("{}: checkerboard textures are replaced by their mean colour", t.location()));
             return 0.5f * (colourProperty(t, "color0", glm::vec3(0.4f), warnings_) + colourProperty(t, "color1", glm::vec3(0.2f), warnings_));
         }
         if (texture == nullptr) {
             warnings_.once(std::string("texture-") + name,
-                           fmt::format("{}: a texture on '{}' is not supported; using white", at(t), name));
+                           fmt::format("{}: a texture on '{}' is not supported; using white", t.location(), name));
             return glm::vec3(1.0f);
         }
         *texture = bitmap(t, false);
@@ -410,7 +409,7 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
         if (required) fail(bsdf, fmt::format("'{}' needs a nested <bsdf>", type));
         return nullptr;
     };
-    const auto approximated = [&](const std::string& message) { warnings_.once(type, fmt::format("{}: {}", at(bsdf), message)); };
+    const auto approximated = [&](const std::string& message) { warnings_.once(type, fmt::format("{}: {}", bsdf.location(), message)); };
 
     Material m;
     m.name = bsdf.id().empty() ? type : bsdf.id();
@@ -459,7 +458,7 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
             warnings_.once("textured-alpha-plastic",
                            fmt::format("{}: Mitsuba 3 takes no texture for roughplastic's alpha; aamap shades it per "
                                        "texel",
-                                       at(*bsdf.property("alpha"))));
+                                       bsdf.property("alpha")->location()));
         m.kd = colourOrTexture(bsdf, "diffuse_reflectance", glm::vec3(0.5f), &m.diffuseTexture);
         m.specularReflectance = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
         m.ks = m.specularReflectance * fresnelF0(eta);
@@ -512,7 +511,7 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
                 m.roughnessTexture = -1;
                 warnings_.once("textured-alpha-dielectric",
                                fmt::format("{}: a textured roughdielectric alpha is replaced by its mean, {}",
-                                           at(*bsdf.property("alpha")), m.alphaU));
+                                           bsdf.property("alpha")->location(), m.alphaU));
             }
             m.specularReflectance = colourProperty(bsdf, "specular_reflectance", glm::vec3(1.0f), warnings_);
         } else {

@@ -163,6 +163,8 @@ std::string Element::attribute(std::string_view key) const {
     return it == attributes.end() ? std::string() : it->second;
 }
 
+std::string Element::location() const { return fmt::format("{}:{}", file.string(), line); }
+
 const Element* Element::property(std::string_view propertyName) const {
     for (const Element& c : children)
         if (c.name() == propertyName) return &c;

@@ -31,6 +31,8 @@ struct Element {
 
     // "" when absent.
     std::string attribute(std::string_view key) const;
+    // "file:line", the prefix of every message about this element.
+    std::string location() const;
     bool has(std::string_view key) const { return attributes.count(std::string(key)) != 0; }
     std::string type() const { return attribute("type"); }
     std::string name() const { return attribute("name"); }
