@@ -269,7 +269,7 @@ void PathIntegrator::finishSimdLane(PathState& s, const Sampler& sampler, const 
     const SurfaceHit& hit = s.hit;
     const ShadingMaterial& m = *hit.material;
     const int depth = s.depth;
-    const bool lambert = lanes.lambert[k] != 0;
+    const bool lambert = lanes.model[k] != pathsimd::kOther;  // the lanes shaded its BSDF too
     const float diffusePick = m.glossy ? m.diffuseWeight : 1.0f;
     const auto vec = [&](const float (&a)[3][pathsimd::kLanes]) { return glm::vec3(a[0][k], a[1][k], a[2][k]); };
     out.nextEvent = true;
@@ -376,7 +376,7 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
     // Every path scatters, then their shadow segments go out as one packet and their next rays as
     // another: each lane does exactly what tracePath does, in the same order.
     PathVertex v[W];
-    pathsimd::Lanes simd;
+    pathsimd::Lanes simd{};  // zeroed once: lanes read fields their model does not set
     while (active > 0) {
         // The common vertices go to the SIMD lanes (after their emission, which is rare), the
         // others scatter one by one.
@@ -397,29 +397,59 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
             const int k = simdCount++;
             simdLane[k] = i;
             simd.key[k] = samplers[i].key();
-            simd.lambert[k] = hit.material->model == BsdfModel::Classic && !hit.material->glossy ? -1 : 0;
+            const ShadingMaterial& m = *hit.material;
+            simd.model[k] = m.model == BsdfModel::Classic && !m.glossy ? pathsimd::kLambert
+                            : m.model == BsdfModel::Plastic && m.rough && m.distribution == MicrofacetType::GGX
+                                ? pathsimd::kRoughPlastic
+                                : pathsimd::kOther;
+            simd.material[k] = &m;
             for (int c = 0; c < 3; ++c) {
                 simd.p[c][k] = hit.position[c];
                 simd.g[c][k] = hit.geometric[c];
                 simd.n[c][k] = hit.shading[c];
+                simd.wo[c][k] = hit.wo[c];
                 simd.albedo[c][k] = hit.albedo[c];
                 simd.beta[c][k] = s[i].beta[c];
             }
             simd.offset[k] = hit.offset;
             simd.etaScale[k] = s[i].etaScale;
+            if (simd.model[k] == pathsimd::kRoughPlastic) {
+                // What depends on wo alone, from the scalar code's own functions.
+                const float cosO = glm::dot(hit.shading, hit.wo);
+                const microfacet::Distribution dist = bsdf::distributionOf(m);
+                simd.alpha[0][k] = dist.alphaU;
+                simd.alpha[1][k] = dist.alphaV;
+                simd.ior[k] = m.ior;
+                const glm::vec3 base = bsdf::plasticBase(m, hit.albedo);
+                for (int c = 0; c < 3; ++c) {
+                    simd.base[c][k] = base[c];
+                    simd.tint[c][k] = m.specularTint[c];
+                }
+                simd.tO[k] = bsdf::coatingTransmittance(m, cosO);
+                simd.pickSpecular[k] = bsdf::plasticSpecularPick(m, cosO);
+            }
         }
         if (simdCount > 0) {
             // The vector loop runs over whole vectors: the spare lanes repeat lane 0.
             for (int k = simdCount; k < pathsimd::kLanes; ++k) {
                 simd.key[k] = simd.key[0];
-                simd.lambert[k] = simd.lambert[0];
+                simd.model[k] = simd.model[0];
+                simd.material[k] = simd.material[0];
                 for (int c = 0; c < 3; ++c) {
                     simd.p[c][k] = simd.p[c][0];
                     simd.g[c][k] = simd.g[c][0];
                     simd.n[c][k] = simd.n[c][0];
+                    simd.wo[c][k] = simd.wo[c][0];
                     simd.albedo[c][k] = simd.albedo[c][0];
                     simd.beta[c][k] = simd.beta[c][0];
+                    simd.base[c][k] = simd.base[c][0];
+                    simd.tint[c][k] = simd.tint[c][0];
                 }
+                simd.alpha[0][k] = simd.alpha[0][0];
+                simd.alpha[1][k] = simd.alpha[1][0];
+                simd.ior[k] = simd.ior[0];
+                simd.tO[k] = simd.tO[0];
+                simd.pickSpecular[k] = simd.pickSpecular[0];
                 simd.offset[k] = simd.offset[0];
                 simd.etaScale[k] = simd.etaScale[0];
             }

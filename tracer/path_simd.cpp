@@ -9,6 +9,7 @@
 #include <hwy/contrib/math/math-inl.h>
 #include <hwy/highway.h>
 
+#include "tracer/bsdf.h"
 #include "tracer/path_simd.h"
 #include "tracer/sampler.h"
 
@@ -202,23 +203,8 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         store(pick, L.pick);
         storeMask(ok, L.lightOk + i);
 
-        // Lambert lanes: the BSDF (albedo / pi, pdf cos / pi) and the power heuristic's weight
-        // over the light's pdf in one division, as prepareNextEventFinite.
-        const auto lambert = hn::RebindMask(df, hn::LoadU(di, L.lambert + i) != zeroI);
-        VF f[3];
-        for (int c = 0; c < 3; ++c) f[c] = hn::Mul(load(L.albedo[c]), invPi);
-        const VF bsdfInv = hn::Mul(hn::Mul(cs, invPi), inv);
-        const VF denominator = hn::Add(hn::Mul(pick, pick), hn::Mul(bsdfInv, bsdfInv));
-        const auto shadow = hn::And(lambert, hn::And(ok, denominator > zero));
-        storeMask(shadow, L.shadow + i);
-        const VF weight = hn::Mul(cs, hn::Div(hn::Mul(pick, inv), denominator));
-        for (int c = 0; c < 3; ++c) store(hn::Mul(hn::Mul(f[c], radiance[c]), weight), L.contribution[c]);
-
-        // The bounce: bsdf::sampleCosine in bsdf::basis's frame, then the checks and weights of
-        // scatterPathVertex's non-delta branch.
-        const VF r = hn::Sqrt(b0);
-        const VF phi = hn::Mul(hn::Set(df, 2.0f * std::numbers::pi_v<float>), b1);
-        const VF rc = hn::Mul(r, hn::Cos(df, phi)), rs = hn::Mul(r, hn::Sin(df, phi));
+        // bsdf::basis around the shading normal: the frame of the cosine bounce and of the
+        // microfacet lobes.
         const VF sign = hn::CopySign(one, n[2]);
         const VF a = hn::Div(hn::Set(df, -1.0f), hn::Add(sign, n[2]));
         const VF cc = hn::Mul(hn::Mul(n[0], n[1]), a);
@@ -228,18 +214,156 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         const VF bx = cc;
         const VF by = hn::Add(sign, hn::Mul(hn::Mul(n[1], n[1]), a));
         const VF bz = hn::Neg(n[1]);
+        const VI model = hn::LoadU(di, L.model + i);
+        const auto lambert = hn::RebindMask(df, model == hn::Set(di, kLambert));
+        const auto plastic = hn::RebindMask(df, model == hn::Set(di, kRoughPlastic));
+        const auto shaded = hn::Or(lambert, plastic);
+        const bool anyPlastic = !hn::AllFalse(df, plastic);
+
+        // Rough plastic (bsdf::evalModel with GGX): the coating's microfacet lobe and the base
+        // under it, their pdf mixed by the coating's pick. Zero where wo or wi is below.
+        VF wo[3], lo[3], alphaU = zero, alphaV = zero, ior = one, pickSpecular = zero;
+        for (int c = 0; c < 3; ++c) wo[c] = load(L.wo[c]);
+        lo[0] = Dot(wo[0], wo[1], wo[2], tx, ty, tz);
+        lo[1] = Dot(wo[0], wo[1], wo[2], bx, by, bz);
+        lo[2] = Dot(wo[0], wo[1], wo[2], n[0], n[1], n[2]);
+        if (anyPlastic) {
+            alphaU = load(L.alpha[0]);
+            alphaV = load(L.alpha[1]);
+            ior = load(L.ior);
+            pickSpecular = load(L.pickSpecular);
+        }
+        const auto lambdaGgx = [&](const VF (&v)[3]) {
+            const VF xu = hn::Mul(alphaU, v[0]), yv = hn::Mul(alphaV, v[1]);
+            const VF xy2 = hn::Add(hn::Mul(xu, xu), hn::Mul(yv, yv));
+            const VF tan2 = hn::Div(xy2, hn::Mul(v[2], v[2]));
+            const VF lambda = hn::Mul(hn::Set(df, 0.5f), hn::Sub(hn::Sqrt(hn::Add(one, tan2)), one));
+            return hn::IfThenElse(xy2 <= zero, zero, lambda);
+        };
+        const auto g1 = [&](const VF (&v)[3], const VF (&h)[3]) {
+            const VF g = hn::Div(one, hn::Add(one, lambdaGgx(v)));
+            return hn::IfThenElseZero(hn::Mul(Dot(v[0], v[1], v[2], h[0], h[1], h[2]), v[2]) > zero, g);
+        };
+        const auto evalPlastic = [&](const VF (&w)[3], VF (&f)[3], VF& pdf) {
+            VF li[3], h[3];
+            li[0] = Dot(w[0], w[1], w[2], tx, ty, tz);
+            li[1] = Dot(w[0], w[1], w[2], bx, by, bz);
+            li[2] = Dot(w[0], w[1], w[2], n[0], n[1], n[2]);
+            const auto valid = hn::And(lo[2] > zero, li[2] > zero);
+            for (int c = 0; c < 3; ++c) h[c] = hn::Add(lo[c], li[c]);
+            const VF hScale = hn::Div(one, hn::Sqrt(Dot(h[0], h[1], h[2], h[0], h[1], h[2])));
+            for (int c = 0; c < 3; ++c) h[c] = hn::Mul(h[c], hScale);
+            // microfacet::Distribution::D, GGX.
+            const VF x = hn::Div(h[0], alphaU), y = hn::Div(h[1], alphaV);
+            const VF s = hn::Add(hn::Add(hn::Mul(x, x), hn::Mul(y, y)), hn::Mul(h[2], h[2]));
+            VF D = hn::Div(one, hn::Mul(hn::Mul(hn::Mul(hn::Mul(hn::Set(df, std::numbers::pi_v<float>), alphaU), alphaV), s), s));
+            D = hn::IfThenElseZero(hn::And(h[2] > zero, hn::Mul(D, h[2]) > hn::Set(df, 1e-20f)), D);
+            const VF g1o = g1(lo, h);
+            const VF G = hn::Mul(g1o, g1(li, h));
+            // microfacet::fresnelDielectricSigned(dot(lo, h), ior).
+            const VF cosH = Dot(lo[0], lo[1], lo[2], h[0], h[1], h[2]);
+            const VF e = hn::IfThenElse(cosH >= zero, ior, hn::Div(one, ior));
+            const VF ci = hn::Min(hn::Abs(cosH), one);
+            const VF sin2T = hn::Div(hn::Sub(one, hn::Mul(ci, ci)), hn::Mul(e, e));
+            const VF ct = hn::Sqrt(hn::Max(hn::Sub(one, sin2T), zero));
+            const VF rs = hn::Div(hn::Sub(ci, hn::Mul(e, ct)), hn::Add(ci, hn::Mul(e, ct)));
+            const VF rp = hn::Div(hn::Sub(hn::Mul(e, ci), ct), hn::Add(hn::Mul(e, ci), ct));
+            const VF F = hn::IfThenElse(sin2T >= one, one, hn::Mul(hn::Set(df, 0.5f), hn::Add(hn::Mul(rs, rs), hn::Mul(rp, rp))));
+            const VF glossy = hn::Div(hn::Mul(D, G), hn::Mul(hn::Mul(hn::Set(df, 4.0f), lo[2]), li[2]));
+            const VF glossyPdf = hn::Div(hn::Mul(D, g1o), hn::Mul(hn::Set(df, 4.0f), lo[2]));
+            // The base through the coating: its transmittance towards wi, from the material's table.
+            alignas(64) float cosines[kLanes], tI[kLanes] = {};
+            hn::Store(li[2], df, cosines);
+            for (int j = 0; j < step; ++j)
+                if (L.model[i + j] == kRoughPlastic) tI[j] = bsdf::coatingTransmittance(*L.material[i + j], cosines[j]);
+            const VF diffuse = hn::Div(hn::Mul(hn::Mul(invPi, load(L.tO)), hn::Load(df, tI)), hn::Mul(ior, ior));
+            for (int c = 0; c < 3; ++c)
+                f[c] = hn::IfThenElseZero(valid, hn::Add(hn::Mul(hn::Mul(load(L.tint[c]), F), glossy),
+                                                         hn::Mul(load(L.base[c]), diffuse)));
+            pdf = hn::IfThenElseZero(valid, hn::Add(hn::Mul(pickSpecular, glossyPdf),
+                                                    hn::Mul(hn::Mul(hn::Sub(one, pickSpecular), li[2]), invPi)));
+        };
+
+        // The BSDF towards the light and the power heuristic's weight over the light's pdf in one
+        // division, as prepareNextEventFinite. Lambert: albedo / pi, pdf cos / pi.
+        VF albedoPi[3], f[3];
+        for (int c = 0; c < 3; ++c) f[c] = albedoPi[c] = hn::Mul(load(L.albedo[c]), invPi);
+        VF pdfLight = hn::Mul(cs, invPi);
+        if (anyPlastic) {
+            VF fp[3], pdfPlastic;
+            evalPlastic(wi, fp, pdfPlastic);
+            for (int c = 0; c < 3; ++c) f[c] = hn::IfThenElse(plastic, fp[c], f[c]);
+            pdfLight = hn::IfThenElse(plastic, pdfPlastic, pdfLight);
+        }
+        const VF bsdfInv = hn::Mul(pdfLight, inv);
+        const VF denominator = hn::Add(hn::Mul(pick, pick), hn::Mul(bsdfInv, bsdfInv));
+        const auto shadow = hn::And(shaded, hn::And(ok, denominator > zero));
+        storeMask(shadow, L.shadow + i);
+        const VF weight = hn::Mul(cs, hn::Div(hn::Mul(pick, inv), denominator));
+        for (int c = 0; c < 3; ++c) store(hn::Mul(hn::Mul(f[c], radiance[c]), weight), L.contribution[c]);
+
+        // The bounce: bsdf::sampleCosine, or for the coating's share of rough plastic lanes a
+        // visible GGX normal (Heitz 2018, as microfacet::Distribution::sampleVisibleGgx), then the
+        // checks and weights of scatterPathVertex's non-delta branch. Both take the same r, phi.
+        const VF r = hn::Sqrt(b0);
+        const VF phi = hn::Mul(hn::Set(df, 2.0f * std::numbers::pi_v<float>), b1);
+        const VF rc = hn::Mul(r, hn::Cos(df, phi)), rs = hn::Mul(r, hn::Sin(df, phi));
         const VF z = hn::Sqrt(hn::Max(zero, hn::Sub(one, b0)));
         VF dir[3];
         dir[0] = hn::Add(hn::Add(hn::Mul(rc, tx), hn::Mul(rs, bx)), hn::Mul(z, n[0]));
         dir[1] = hn::Add(hn::Add(hn::Mul(rc, ty), hn::Mul(rs, by)), hn::Mul(z, n[1]));
         dir[2] = hn::Add(hn::Add(hn::Mul(rc, tz), hn::Mul(rs, bz)), hn::Mul(z, n[2]));
+        auto sampled = lambert;
+        if (anyPlastic) {
+            const auto specular = hn::And(plastic, load(L.uLobe) < pickSpecular);
+            sampled = hn::Or(sampled, hn::And(plastic, lo[2] > zero));
+            if (!hn::AllFalse(df, specular)) {
+                VF vh[3] = {hn::Mul(alphaU, lo[0]), hn::Mul(alphaV, lo[1]), lo[2]};
+                const VF vScale = hn::Div(one, hn::Sqrt(Dot(vh[0], vh[1], vh[2], vh[0], vh[1], vh[2])));
+                for (int c = 0; c < 3; ++c) vh[c] = hn::Mul(vh[c], vScale);
+                const VF len2 = hn::Add(hn::Mul(vh[0], vh[0]), hn::Mul(vh[1], vh[1]));
+                const VF len = hn::Sqrt(len2);
+                const auto tilted = len2 > zero;
+                const VF t1[3] = {hn::IfThenElse(tilted, hn::Div(hn::Neg(vh[1]), len), one),
+                                  hn::IfThenElseZero(tilted, hn::Div(vh[0], len)), zero};
+                const VF t2[3] = {hn::Sub(hn::Mul(vh[1], t1[2]), hn::Mul(t1[1], vh[2])),
+                                  hn::Sub(hn::Mul(vh[2], t1[0]), hn::Mul(t1[2], vh[0])),
+                                  hn::Sub(hn::Mul(vh[0], t1[1]), hn::Mul(t1[0], vh[1]))};
+                const VF s = hn::Mul(hn::Set(df, 0.5f), hn::Add(one, vh[2]));
+                const VF rest = hn::Sub(one, hn::Mul(rc, rc));
+                const VF p2 = hn::Add(hn::Mul(hn::Sub(one, s), hn::Sqrt(hn::Max(zero, rest))), hn::Mul(s, rs));
+                const VF up = hn::Sqrt(hn::Max(zero, hn::Sub(rest, hn::Mul(p2, p2))));
+                VF h[3];
+                for (int c = 0; c < 3; ++c) h[c] = hn::Add(hn::Add(hn::Mul(rc, t1[c]), hn::Mul(p2, t2[c])), hn::Mul(up, vh[c]));
+                h[0] = hn::Mul(alphaU, h[0]);
+                h[1] = hn::Mul(alphaV, h[1]);
+                h[2] = StdMax(hn::Set(df, 1e-6f), h[2]);
+                const VF hScale = hn::Div(one, hn::Sqrt(Dot(h[0], h[1], h[2], h[0], h[1], h[2])));
+                for (int c = 0; c < 3; ++c) h[c] = hn::Mul(h[c], hScale);
+                const VF twice = hn::Mul(hn::Set(df, 2.0f), Dot(lo[0], lo[1], lo[2], h[0], h[1], h[2]));
+                VF li[3];
+                for (int c = 0; c < 3; ++c) li[c] = hn::Sub(hn::Mul(twice, h[c]), lo[c]);
+                sampled = hn::AndNot(hn::And(specular, li[2] <= zero), sampled);
+                const VF world[3] = {hn::Add(hn::Add(hn::Mul(li[0], tx), hn::Mul(li[1], bx)), hn::Mul(li[2], n[0])),
+                                     hn::Add(hn::Add(hn::Mul(li[0], ty), hn::Mul(li[1], by)), hn::Mul(li[2], n[1])),
+                                     hn::Add(hn::Add(hn::Mul(li[0], tz), hn::Mul(li[1], bz)), hn::Mul(li[2], n[2]))};
+                for (int c = 0; c < 3; ++c) dir[c] = hn::IfThenElse(specular, world[c], dir[c]);
+            }
+        }
         const VF cosI = Dot(n[0], n[1], n[2], dir[0], dir[1], dir[2]);
-        const VF pdf = hn::Mul(cosI, invPi);
-        auto next = hn::And(lambert, hn::And(cosI > zero, Dot(g[0], g[1], g[2], dir[0], dir[1], dir[2]) > zero));
+        VF pdf = hn::Mul(cosI, invPi);
+        VF fBounce[3] = {albedoPi[0], albedoPi[1], albedoPi[2]};
+        if (anyPlastic) {
+            VF fp[3], pdfPlastic;
+            evalPlastic(dir, fp, pdfPlastic);
+            for (int c = 0; c < 3; ++c) fBounce[c] = hn::IfThenElse(plastic, fp[c], fBounce[c]);
+            pdf = hn::IfThenElse(plastic, pdfPlastic, pdf);
+        }
+        auto next = hn::And(sampled, hn::And(cosI > zero, Dot(g[0], g[1], g[2], dir[0], dir[1], dir[2]) > zero));
         next = hn::And(next, pdf > zero);
         const VF ratio = hn::Div(cosI, pdf);
         VF beta[3];
-        for (int c = 0; c < 3; ++c) beta[c] = hn::Mul(load(L.beta[c]), hn::Mul(f[c], ratio));
+        for (int c = 0; c < 3; ++c) beta[c] = hn::Mul(load(L.beta[c]), hn::Mul(fBounce[c], ratio));
         if (roulette) {
             // As Mitsuba: the throughput without the eta^2 factors.
             const VF survive = StdMin(hn::Mul(StdMax(beta[0], StdMax(beta[1], beta[2])), load(L.etaScale)), hn::Set(df, 0.95f));
