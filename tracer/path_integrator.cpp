@@ -269,18 +269,19 @@ void PathIntegrator::finishSimdLane(PathState& s, const Sampler& sampler, const 
     const SurfaceHit& hit = s.hit;
     const ShadingMaterial& m = *hit.material;
     const int depth = s.depth;
-    const bool lambert = lanes.model[k] != pathsimd::kOther;  // the lanes shaded its BSDF too
+    const bool onLanes = lanes.model[k] != pathsimd::kOther;  // the lanes shaded its BSDF too
     const float diffusePick = m.glossy ? m.diffuseWeight : 1.0f;
     const auto vec = [&](const float (&a)[3][pathsimd::kLanes]) { return glm::vec3(a[0][k], a[1][k], a[2][k]); };
     out.nextEvent = true;
     out.neeBeta = s.beta;
-    if (lambert) {
+    if (onLanes) {
         out.shadow = lanes.shadow[k] != 0;
         out.finite = vec(lanes.contribution);
     } else if (lanes.lightOk[k] != 0) {
         // prepareNextEventFinite's BSDF and MIS weight on the lanes' light sample.
         const float cosSurface = lanes.cosSurface[k], inv = lanes.inv[k], pick = lanes.pick[k];
-        const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, vec(lanes.wi), cosSurface, diffusePick);
+        const bsdf::Eval e =
+            bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, vec(lanes.wi), cosSurface, diffusePick);
         const float bsdfInv = e.pdf * inv;
         const float denominator = pick * pick + bsdfInv * bsdfInv;
         out.shadow = denominator > 0.0f;
@@ -291,7 +292,7 @@ void PathIntegrator::finishSimdLane(PathState& s, const Sampler& sampler, const 
     if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays);
 
     glm::vec3 dir;
-    if (lambert) {
+    if (onLanes) {
         if (lanes.next[k] == 0) return;
         dir = vec(lanes.dir);
         s.beta = vec(lanes.beta);
@@ -374,7 +375,8 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
         next.setIdle(i);
     }
     // Every path scatters, then their shadow segments go out as one packet and their next rays as
-    // another: each lane does exactly what tracePath does, in the same order.
+    // another: each lane does what tracePath does, in the same order (on the SIMD lanes only the
+    // bounce's sine and cosine round differently).
     PathVertex v[W];
     pathsimd::Lanes simd{};  // zeroed once: lanes read fields their model does not set
     while (active > 0) {
@@ -392,8 +394,8 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
                 continue;
             }
             addEmission(s[i]);
-            if (depth + 1 >= shading_.maxDepth) continue;            // one more segment would exceed maxDepth
-            if (hit.material->oneSided && !hit.front) continue;      // black, the path ends
+            if (depth + 1 >= shading_.maxDepth) continue;        // one more segment would exceed maxDepth
+            if (hit.material->oneSided && !hit.front) continue;  // black, the path ends
             const int k = simdCount++;
             simdLane[k] = i;
             simd.key[k] = samplers[i].key();

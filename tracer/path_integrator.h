@@ -7,8 +7,9 @@
 //
 // A path advances vertex by vertex: scatterPathVertex shades one vertex and says which shadow
 // segment and which next ray it needs; the caller traces them. tracePath traces them one at a
-// time; primaryPacket advances up to 8 paths in lockstep and traces their shadow segments and
-// their next rays as 8-wide Embree packets (docs/tracer.md, "Path mode").
+// time; primaryPacket advances up to 8 paths in lockstep, shades their common vertices on SIMD
+// lanes (tracer/path_simd.h) and traces their shadow segments and their next rays as 8-wide
+// Embree packets (docs/tracer.md, "Path mode in lockstep").
 #include "tracer/integrator.h"
 #include "tracer/path_simd.h"
 
@@ -22,7 +23,8 @@ public:
     // not wasted on its primary rays alone.
     int packetWidth(int samples) const override { return samples == 1 ? 1 : kMaxPacket; }
     // The lanes' paths advanced together, their shadow and bounce rays traced as packets too; each
-    // lane's radiance (and ray count) is the one primaryFromHit gives it.
+    // lane's radiance (and ray count) is the one primaryFromHit gives it, up to the rounding of the
+    // SIMD lanes' sine and cosine.
     void primaryPacket(const RayPacket<kMaxPacket>& primaries, int count, const Sampler* samplers,
                        const float* spreads, glm::vec3* out, RayCounts& rays) const override;
     using Integrator::primaryPacket;  // 4 wide: lane by lane (the tracer never asks for it)

@@ -119,7 +119,9 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
     const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f), invPi = hn::Set(df, std::numbers::inv_pi_v<float>);
     const VI zeroI = hn::Zero(di), oneI = hn::Set(di, 1);
     const VI lights = hn::Set(di, static_cast<std::int32_t>(t.selectCdf.size()));
-    const auto storeMask = [&](auto m, std::int32_t* out) { hn::StoreU(hn::VecFromMask(di, hn::RebindMask(di, m)), di, out); };
+    const auto storeMask = [&](auto m, std::int32_t* out) {
+        hn::StoreU(hn::VecFromMask(di, hn::RebindMask(di, m)), di, out);
+    };
     for (int i = 0; i < count; i += step) {
         const auto load = [&](const float* a) { return hn::LoadU(df, a + i); };
         const auto store = [&](VF v, float* a) { hn::StoreU(v, df, a + i); };
@@ -142,8 +144,8 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         const VF lowCdf = hn::IfThenElse(hn::RebindMask(df, l == zeroI), zero,
                                          hn::GatherIndex(df, cdf, hn::Max(hn::Sub(l, oneI), zeroI)));
         const VF width = hn::Sub(hn::GatherIndex(df, cdf, l), lowCdf);
-        u0 = hn::IfThenElse(width > zero,
-                            hn::Min(hn::Max(hn::Div(hn::Sub(u0, lowCdf), width), zero), hn::Set(df, kOneMinusUlp)), zero);
+        const VF rescaled = hn::Min(hn::Max(hn::Div(hn::Sub(u0, lowCdf), width), zero), hn::Set(df, kOneMinusUlp));
+        u0 = hn::IfThenElse(width > zero, rescaled, zero);
         const VF pick = hn::GatherIndex(df, t.selectPdf.data(), l);
 
         // AreaLightSampler::sample(u): the triangle, then a point uniform on it.
@@ -158,8 +160,9 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         const VF s1 = hn::Mul(su, hn::Sub(one, u1)), s2 = hn::Mul(su, u1);
         VF q[3], ln[3], p[3], w[3];
         for (int c = 0; c < 3; ++c) {
-            q[c] = hn::Add(hn::Add(hn::GatherIndex(df, t.v0[c].data(), tri), hn::Mul(s1, hn::GatherIndex(df, t.e1[c].data(), tri))),
-                           hn::Mul(s2, hn::GatherIndex(df, t.e2[c].data(), tri)));
+            const VF v0 = hn::GatherIndex(df, t.v0[c].data(), tri);
+            const VF e1 = hn::GatherIndex(df, t.e1[c].data(), tri), e2 = hn::GatherIndex(df, t.e2[c].data(), tri);
+            q[c] = hn::Add(hn::Add(v0, hn::Mul(s1, e1)), hn::Mul(s2, e2));
             ln[c] = hn::GatherIndex(df, t.normal[c].data(), tri);
             p[c] = load(L.p[c]);
             w[c] = hn::Sub(q[c], p[c]);
@@ -256,7 +259,8 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
             // microfacet::Distribution::D, GGX.
             const VF x = hn::Div(h[0], alphaU), y = hn::Div(h[1], alphaV);
             const VF s = hn::Add(hn::Add(hn::Mul(x, x), hn::Mul(y, y)), hn::Mul(h[2], h[2]));
-            VF D = hn::Div(one, hn::Mul(hn::Mul(hn::Mul(hn::Mul(hn::Set(df, std::numbers::pi_v<float>), alphaU), alphaV), s), s));
+            const VF piAlpha = hn::Mul(hn::Mul(hn::Set(df, std::numbers::pi_v<float>), alphaU), alphaV);
+            VF D = hn::Div(one, hn::Mul(hn::Mul(piAlpha, s), s));
             D = hn::IfThenElseZero(hn::And(h[2] > zero, hn::Mul(D, h[2]) > hn::Set(df, 1e-20f)), D);
             const VF g1o = g1(lo, h);
             const VF G = hn::Mul(g1o, g1(li, h));
@@ -268,7 +272,8 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
             const VF ct = hn::Sqrt(hn::Max(hn::Sub(one, sin2T), zero));
             const VF rs = hn::Div(hn::Sub(ci, hn::Mul(e, ct)), hn::Add(ci, hn::Mul(e, ct)));
             const VF rp = hn::Div(hn::Sub(hn::Mul(e, ci), ct), hn::Add(hn::Mul(e, ci), ct));
-            const VF F = hn::IfThenElse(sin2T >= one, one, hn::Mul(hn::Set(df, 0.5f), hn::Add(hn::Mul(rs, rs), hn::Mul(rp, rp))));
+            const VF fresnel = hn::Mul(hn::Set(df, 0.5f), hn::Add(hn::Mul(rs, rs), hn::Mul(rp, rp)));
+            const VF F = hn::IfThenElse(sin2T >= one, one, fresnel);
             const VF glossy = hn::Div(hn::Mul(D, G), hn::Mul(hn::Mul(hn::Set(df, 4.0f), lo[2]), li[2]));
             const VF glossyPdf = hn::Div(hn::Mul(D, g1o), hn::Mul(hn::Set(df, 4.0f), lo[2]));
             // The base through the coating: its transmittance towards wi, from the material's table.
@@ -334,7 +339,8 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
                 const VF p2 = hn::Add(hn::Mul(hn::Sub(one, s), hn::Sqrt(hn::Max(zero, rest))), hn::Mul(s, rs));
                 const VF up = hn::Sqrt(hn::Max(zero, hn::Sub(rest, hn::Mul(p2, p2))));
                 VF h[3];
-                for (int c = 0; c < 3; ++c) h[c] = hn::Add(hn::Add(hn::Mul(rc, t1[c]), hn::Mul(p2, t2[c])), hn::Mul(up, vh[c]));
+                for (int c = 0; c < 3; ++c)
+                    h[c] = hn::Add(hn::Add(hn::Mul(rc, t1[c]), hn::Mul(p2, t2[c])), hn::Mul(up, vh[c]));
                 h[0] = hn::Mul(alphaU, h[0]);
                 h[1] = hn::Mul(alphaV, h[1]);
                 h[2] = StdMax(hn::Set(df, 1e-6f), h[2]);
@@ -366,7 +372,8 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         for (int c = 0; c < 3; ++c) beta[c] = hn::Mul(load(L.beta[c]), hn::Mul(fBounce[c], ratio));
         if (roulette) {
             // As Mitsuba: the throughput without the eta^2 factors.
-            const VF survive = StdMin(hn::Mul(StdMax(beta[0], StdMax(beta[1], beta[2])), load(L.etaScale)), hn::Set(df, 0.95f));
+            const VF largest = StdMax(beta[0], StdMax(beta[1], beta[2]));
+            const VF survive = StdMin(hn::Mul(largest, load(L.etaScale)), hn::Set(df, 0.95f));
             next = hn::And(next, ur < survive);
             const VF boost = hn::Div(one, survive);
             for (int c = 0; c < 3; ++c) beta[c] = hn::Mul(beta[c], boost);

@@ -86,7 +86,7 @@ void forEachTarget(F&& f) {
     hwy::SetSupportedTargetsForTest(0);
 }
 
-TEST(PathSimd, DrawsTheScalarSamplersNumbers) { forEachTarget([] {
+void expectScalarSamplersNumbers() {
     const Scene scene = simdRoom();
     const EmbreeScene geometry(scene);
     const LightSet lights = buildLights(scene, geometry);
@@ -119,14 +119,16 @@ TEST(PathSimd, DrawsTheScalarSamplersNumbers) { forEachTarget([] {
             }
         }
     }
-}); }
+}
+
+TEST(PathSimd, DrawsTheScalarSamplersNumbers) { forEachTarget(expectScalarSamplersNumbers); }
 
 // Each lane of a lockstep packet against the same sample's path traced one ray at a time by the
 // scalar code (tracePath). Highway's sine and cosine round differently from libm's, so a bounce
 // direction may differ in its last bits and, rarely, a path then takes another way (an edge, a
 // roulette draw at its threshold): the test bounds how many samples do, and how far the sums
 // drift, well below what any wrong weight, pdf or light pick would give.
-TEST(PathSimd, LanesAgreeWithSingleRayPaths) { forEachTarget([] {
+void expectLanesAgreeWithSingleRays() {
     const Scene scene = simdRoom();
     const EmbreeScene geometry(scene);
     const LightSet lights = buildLights(scene, geometry);
@@ -162,8 +164,8 @@ TEST(PathSimd, LanesAgreeWithSingleRayPaths) { forEachTarget([] {
             const glm::vec3 a = lockstep[i];
             EXPECT_TRUE(std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z));
             const float scale = std::max({single.x, single.y, single.z, 1e-2f});
-            if (std::max({std::abs(a.x - single.x), std::abs(a.y - single.y), std::abs(a.z - single.z)}) > 1e-4f * scale)
-                ++differ;
+            const float diff = std::max({std::abs(a.x - single.x), std::abs(a.y - single.y), std::abs(a.z - single.z)});
+            if (diff > 1e-4f * scale) ++differ;
             pixelLockstep += glm::dvec3(a);
             pixelSingle += glm::dvec3(single);
             ++compared;
@@ -179,7 +181,9 @@ TEST(PathSimd, LanesAgreeWithSingleRayPaths) { forEachTarget([] {
     EXPECT_LE(differ, compared / 500) << differ << " of " << compared << " samples differ";
     EXPECT_LE(pixelsDiffer, pixels / 100) << pixelsDiffer << " of " << pixels << " pixels differ";
     EXPECT_NEAR(sumLockstep, sumSingle, 2e-5 * sumSingle);
-}); }
+}
+
+TEST(PathSimd, LanesAgreeWithSingleRayPaths) { forEachTarget(expectLanesAgreeWithSingleRays); }
 
 TEST(PathSimd, BitIdenticalFor1And2Threads) {
     const Scene scene = simdRoom();
