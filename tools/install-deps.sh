@@ -12,7 +12,7 @@ run_packages=(
   # libraries
   libglm-dev libembree-dev libtbb-dev libopenexr-dev libtinygltf-dev libtinyobjloader-dev
   libglfw3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev libstb-dev
-  libpugixml-dev libassimp-dev zlib1g-dev
+  libpugixml-dev libassimp-dev zlib1g-dev libhwy-dev
   # the report's plots (the venv is made by tools/python-env.sh)
   python3 python3-venv
 )

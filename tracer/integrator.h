@@ -179,6 +179,7 @@ protected:
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar, RayCounts& rays) const;
     // How area light `a` is sampled from receiver point p under ShadingSettings::lightSampling.
     LightView viewOf(const AreaLightSampler& a, const glm::vec3& p) const { return a.view(p, bySolidAngle_); }
+    bool bySolidAngle() const { return bySolidAngle_; }
     // The hit of a ray along unit `dir` on triangle primID at barycentrics (u, v), distance tfar.
     void fillHit(std::uint32_t primID, float u, float v, float tfar, const glm::vec3& dir, RayCone cone,
                  SurfaceHit& hit) const;

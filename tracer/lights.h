@@ -115,13 +115,16 @@ public:
         return {t.v0 + (su * (1.0f - u.y)) * t.e1 + (su * u.y) * t.e2, t.normal};
     }
 
-private:
     struct Tri {
         glm::vec3 v0, e1, e2, normal;
         float cdfLow;       // CDF before this triangle
         float cdf;          // CDF up to and including it
         float invCdfWidth;  // 1 / (cdf - cdfLow), 0 for an empty interval
     };
+    // For path mode's SIMD light samples (tracer/path_simd.h), which place points as sample(u).
+    const std::vector<Tri>& triangles() const { return tris_; }
+
+private:
     glm::vec3 radiance_{0.0f};
     float area_ = 0.0f;
     float vertexScale_ = 0.0f;

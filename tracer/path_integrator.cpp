@@ -38,7 +38,10 @@ bool lightToward(const SurfaceHit& hit, const glm::vec3& wi, float diffusePick, 
 
 // One light sample per vertex: Auto samples area lights by area (docs/tracer.md, "Lights").
 PathIntegrator::PathIntegrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading)
-    : Integrator(geometry, lights, shading, "path", LightSampling::Area) {}
+    : Integrator(geometry, lights, shading, "path", LightSampling::Area) {
+    simd_ = lights_.points.empty() && !lights_.areas.empty() && !lights_.selectCdf.empty() && !bySolidAngle();
+    if (simd_) simdLights_ = pathsimd::makeLightTable(lights_);
+}
 
 glm::vec3 PathIntegrator::nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
                                             RayCounts& rays) const {
@@ -139,11 +142,10 @@ struct PathIntegrator::PathVertex {
     void reset() { nextEvent = shadow = infiniteLights = next = false; }
 };
 
-void PathIntegrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVertex& out, RayCounts& rays) const {
+void PathIntegrator::addEmission(PathState& s) const {
     const SurfaceHit& hit = s.hit;
     const ShadingMaterial& m = *hit.material;
-    const int depth = s.depth;
-    if (m.emissive && hit.front && !(depth == 0 && shading_.hideEmitters)) {
+    if (m.emissive && hit.front && !(s.depth == 0 && shading_.hideEmitters)) {
         float w = 1.0f;
         const std::int32_t area = lights_.areaOfTriangle.empty() ? -1 : lights_.areaOfTriangle[hit.primitive];
         if (!s.specularBefore && area >= 0) {
@@ -157,6 +159,13 @@ void PathIntegrator::scatterPathVertex(PathState& s, const Sampler& sampler, Pat
         }
         s.L += s.beta * m.ke * w;
     }
+}
+
+void PathIntegrator::scatterPathVertex(PathState& s, const Sampler& sampler, PathVertex& out, RayCounts& rays) const {
+    const SurfaceHit& hit = s.hit;
+    const ShadingMaterial& m = *hit.material;
+    const int depth = s.depth;
+    addEmission(s);
     if (depth + 1 >= shading_.maxDepth) return;  // one more segment would exceed maxDepth
     if (m.oneSided && !hit.front) return;         // a one-sided BSDF's back: black, the path ends
 
@@ -255,6 +264,63 @@ void PathIntegrator::scatterPathVertex(PathState& s, const Sampler& sampler, Pat
     s.before = hit.position;
 }
 
+void PathIntegrator::finishSimdLane(PathState& s, const Sampler& sampler, const pathsimd::Lanes& lanes, int k,
+                                    PathVertex& out, RayCounts& rays) const {
+    const SurfaceHit& hit = s.hit;
+    const ShadingMaterial& m = *hit.material;
+    const int depth = s.depth;
+    const bool onLanes = lanes.model[k] != pathsimd::kOther;  // the lanes shaded its BSDF too
+    const float diffusePick = m.glossy ? m.diffuseWeight : 1.0f;
+    const auto vec = [&](const float (&a)[3][pathsimd::kLanes]) { return glm::vec3(a[0][k], a[1][k], a[2][k]); };
+    out.nextEvent = true;
+    out.neeBeta = s.beta;
+    if (onLanes) {
+        out.shadow = lanes.shadow[k] != 0;
+        out.finite = vec(lanes.contribution);
+    } else if (lanes.lightOk[k] != 0) {
+        // prepareNextEventFinite's BSDF and MIS weight on the lanes' light sample.
+        const float cosSurface = lanes.cosSurface[k], inv = lanes.inv[k], pick = lanes.pick[k];
+        const bsdf::Eval e =
+            bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, vec(lanes.wi), cosSurface, diffusePick);
+        const float bsdfInv = e.pdf * inv;
+        const float denominator = pick * pick + bsdfInv * bsdfInv;
+        out.shadow = denominator > 0.0f;
+        out.finite = e.f * vec(lanes.radiance) * (cosSurface * (pick * inv / denominator));
+    }
+    if (out.shadow) out.segment = {vec(lanes.origin), vec(lanes.segment), lanes.tfar[k]};
+    out.infiniteLights = !lights_.directionals.empty() || lights_.environment.has_value();
+    if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays);
+
+    glm::vec3 dir;
+    if (onLanes) {
+        if (lanes.next[k] == 0) return;
+        dir = vec(lanes.dir);
+        s.beta = vec(lanes.beta);
+        s.pdfBefore = lanes.pdf[k];
+        s.specularBefore = false;
+    } else {
+        // scatterPathVertex's non-delta branch (no delta lobe here: m is not a Mirror).
+        const glm::vec2 u(lanes.uBsdf[0][k], lanes.uBsdf[1][k]);
+        if (!bsdf::sampleSmooth(m, hit.shading, hit.wo, lanes.uLobe[k], u, dir)) return;
+        const float cosI = glm::dot(hit.shading, dir);
+        if (cosI <= 0.0f || glm::dot(hit.geometric, dir) <= 0.0f) return;
+        const bsdf::Eval e = bsdf::evalSmooth(m, hit.albedo, hit.shading, hit.wo, dir, cosI, diffusePick);
+        if (!(e.pdf > 0.0f)) return;
+        s.beta *= e.f * (cosI / e.pdf);
+        s.pdfBefore = e.pdf;
+        s.specularBefore = false;
+        if (shading_.russianRoulette && depth + 1 >= shading_.rouletteDepth) {
+            const float survive = std::min(bsdf::maxComponent(s.beta) * s.etaScale, 0.95f);
+            if (!(lanes.uRoulette[k] < survive)) return;
+            s.beta *= 1.0f / survive;
+        }
+    }
+    out.next = true;
+    out.nextOrigin = hit.originFor(dir);
+    out.nextDir = dir;
+    s.before = hit.position;
+}
+
 void PathIntegrator::addNextEvent(PathState& s, const PathVertex& v, bool visible) const {
     glm::vec3 nee = visible ? v.finite : glm::vec3(0.0f);
     if (v.infiniteLights) nee += v.infinite;
@@ -309,15 +375,95 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
         next.setIdle(i);
     }
     // Every path scatters, then their shadow segments go out as one packet and their next rays as
-    // another: each lane does exactly what tracePath does, in the same order.
+    // another: each lane does what tracePath does, in the same order (on the SIMD lanes only the
+    // bounce's sine and cosine round differently).
     PathVertex v[W];
+    pathsimd::Lanes simd{};  // zeroed once: lanes read fields their model does not set
     while (active > 0) {
+        // The common vertices go to the SIMD lanes (after their emission, which is rare), the
+        // others scatter one by one.
+        int simdLane[W];
+        int simdCount = 0;
+        const int depth = s[lanes[0]].depth;  // lockstep: every live path is at the same depth
+        for (int a = 0; a < active; ++a) {
+            const int i = lanes[a];
+            v[i].reset();
+            const SurfaceHit& hit = s[i].hit;
+            if (!simdVertex(*hit.material)) {
+                scatterPathVertex(s[i], samplers[i], v[i], rays);
+                continue;
+            }
+            addEmission(s[i]);
+            if (depth + 1 >= shading_.maxDepth) continue;        // one more segment would exceed maxDepth
+            if (hit.material->oneSided && !hit.front) continue;  // black, the path ends
+            const int k = simdCount++;
+            simdLane[k] = i;
+            simd.key[k] = samplers[i].key();
+            const ShadingMaterial& m = *hit.material;
+            simd.model[k] = m.model == BsdfModel::Classic && !m.glossy ? pathsimd::kLambert
+                            : m.model == BsdfModel::Plastic && m.rough && m.distribution == MicrofacetType::GGX
+                                ? pathsimd::kRoughPlastic
+                                : pathsimd::kOther;
+            simd.material[k] = &m;
+            for (int c = 0; c < 3; ++c) {
+                simd.p[c][k] = hit.position[c];
+                simd.g[c][k] = hit.geometric[c];
+                simd.n[c][k] = hit.shading[c];
+                simd.wo[c][k] = hit.wo[c];
+                simd.albedo[c][k] = hit.albedo[c];
+                simd.beta[c][k] = s[i].beta[c];
+            }
+            simd.offset[k] = hit.offset;
+            simd.etaScale[k] = s[i].etaScale;
+            if (simd.model[k] == pathsimd::kRoughPlastic) {
+                // What depends on wo alone, from the scalar code's own functions.
+                const float cosO = glm::dot(hit.shading, hit.wo);
+                const microfacet::Distribution dist = bsdf::distributionOf(m);
+                simd.alpha[0][k] = dist.alphaU;
+                simd.alpha[1][k] = dist.alphaV;
+                simd.ior[k] = m.ior;
+                const glm::vec3 base = bsdf::plasticBase(m, hit.albedo);
+                for (int c = 0; c < 3; ++c) {
+                    simd.base[c][k] = base[c];
+                    simd.tint[c][k] = m.specularTint[c];
+                }
+                simd.tO[k] = bsdf::coatingTransmittance(m, cosO);
+                simd.pickSpecular[k] = bsdf::plasticSpecularPick(m, cosO);
+            }
+        }
+        if (simdCount > 0) {
+            // The vector loop runs over whole vectors: the spare lanes repeat lane 0.
+            for (int k = simdCount; k < pathsimd::kLanes; ++k) {
+                simd.key[k] = simd.key[0];
+                simd.model[k] = simd.model[0];
+                simd.material[k] = simd.material[0];
+                for (int c = 0; c < 3; ++c) {
+                    simd.p[c][k] = simd.p[c][0];
+                    simd.g[c][k] = simd.g[c][0];
+                    simd.n[c][k] = simd.n[c][0];
+                    simd.wo[c][k] = simd.wo[c][0];
+                    simd.albedo[c][k] = simd.albedo[c][0];
+                    simd.beta[c][k] = simd.beta[c][0];
+                    simd.base[c][k] = simd.base[c][0];
+                    simd.tint[c][k] = simd.tint[c][0];
+                }
+                simd.alpha[0][k] = simd.alpha[0][0];
+                simd.alpha[1][k] = simd.alpha[1][0];
+                simd.ior[k] = simd.ior[0];
+                simd.tO[k] = simd.tO[0];
+                simd.pickSpecular[k] = simd.pickSpecular[0];
+                simd.offset[k] = simd.offset[0];
+                simd.etaScale[k] = simd.etaScale[0];
+            }
+            pathsimd::shade(simdLights_, simd, simdCount, depth,
+                            shading_.russianRoulette && depth + 1 >= shading_.rouletteDepth);
+            for (int k = 0; k < simdCount; ++k)
+                finishSimdLane(s[simdLane[k]], samplers[simdLane[k]], simd, k, v[simdLane[k]], rays);
+        }
         alignas(32) int shadowValid[W] = {};
         int shadows = 0;
         for (int a = 0; a < active; ++a) {
             const int i = lanes[a];
-            v[i].reset();
-            scatterPathVertex(s[i], samplers[i], v[i], rays);
             if (!v[i].shadow) continue;
             shadowValid[i] = -1;
             ++shadows;

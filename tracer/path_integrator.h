@@ -7,9 +7,11 @@
 //
 // A path advances vertex by vertex: scatterPathVertex shades one vertex and says which shadow
 // segment and which next ray it needs; the caller traces them. tracePath traces them one at a
-// time; primaryPacket advances up to 8 paths in lockstep and traces their shadow segments and
-// their next rays as 8-wide Embree packets (docs/tracer.md, "Path mode").
+// time; primaryPacket advances up to 8 paths in lockstep, shades their common vertices on SIMD
+// lanes (tracer/path_simd.h) and traces their shadow segments and their next rays as 8-wide
+// Embree packets (docs/tracer.md, "Path mode in lockstep").
 #include "tracer/integrator.h"
+#include "tracer/path_simd.h"
 
 namespace aamap {
 
@@ -21,10 +23,14 @@ public:
     // not wasted on its primary rays alone.
     int packetWidth(int samples) const override { return samples == 1 ? 1 : kMaxPacket; }
     // The lanes' paths advanced together, their shadow and bounce rays traced as packets too; each
-    // lane's radiance (and ray count) is the one primaryFromHit gives it.
+    // lane's radiance (and ray count) is the one primaryFromHit gives it, up to the rounding of the
+    // SIMD lanes' sine and cosine.
     void primaryPacket(const RayPacket<kMaxPacket>& primaries, int count, const Sampler* samplers,
                        const float* spreads, glm::vec3* out, RayCounts& rays) const override;
     using Integrator::primaryPacket;  // 4 wide: lane by lane (the tracer never asks for it)
+    // Whether primaryPacket shades the common vertices on SIMD lanes (tracer/path_simd.h): every
+    // light an area light, sampled by area.
+    bool simdLanes() const { return simd_; }
 
 protected:
     glm::vec3 shadeCamera(const SurfaceHit& hit, const Sampler& sampler, RayCounts& rays) const override {
@@ -41,6 +47,17 @@ private:
     // Shades s.hit: adds its emission, prepares next-event estimation and samples the next
     // direction (out says which rays to trace). Rays for lights at infinity are traced here.
     void scatterPathVertex(PathState& s, const Sampler& sampler, PathVertex& out, RayCounts& rays) const;
+    // Adds what an emitter at s.hit sends back along the path, MIS-weighted.
+    void addEmission(PathState& s) const;
+    // Whether primaryPacket shades a vertex with this material with the SIMD lanes
+    // (tracer/path_simd.h): the non-delta lobes of a smooth material, lights sampled by area.
+    bool simdVertex(const ShadingMaterial& m) const {
+        return simd_ && m.kind == MaterialKind::Diffuse && m.model != BsdfModel::Blend && (m.diffuse || m.glossy);
+    }
+    // scatterPathVertex for lane k of the SIMD lanes: their light sample and, Lambert lanes, their
+    // bounce; the other materials' BSDF, bounce and roulette are scalar, on the lanes' numbers.
+    void finishSimdLane(PathState& s, const Sampler& sampler, const pathsimd::Lanes& lanes, int k, PathVertex& out,
+                        RayCounts& rays) const;
     // Adds the vertex's next-event estimate; visible: its shadow segment was clear.
     void addNextEvent(PathState& s, const PathVertex& v, bool visible) const;
     // Ends a path whose next ray left the scene: what the environment sends back along it.
@@ -57,6 +74,10 @@ private:
     // What a BSDF-sampled ray that left the scene brings back, MIS-weighted against the
     // environment's light samples (pdfBefore: the BSDF sample's solid-angle pdf).
     glm::vec3 escapedPath(const glm::vec3& dir, bool specularBefore, float pdfBefore) const;
+
+    // The SIMD lanes run where every light is an area light sampled by area.
+    bool simd_ = false;
+    pathsimd::LightTable simdLights_;
 };
 
 }  // namespace aamap

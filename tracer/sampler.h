@@ -48,7 +48,10 @@ public:
         return s;
     }
 
-    std::uint64_t bits(std::uint64_t dim) const { return mix64(key_ ^ (0xd1b54a32d192ed03ULL * (dim + 1))); }
+    std::uint64_t bits(std::uint64_t dim) const { return mix64(key_ ^ dimSalt(dim)); }
+    // What bits() mixes into the key for `dim`: SIMD draws (tracer/path_simd.cpp) hash the same.
+    static constexpr std::uint64_t dimSalt(std::uint64_t dim) { return 0xd1b54a32d192ed03ULL * (dim + 1); }
+    std::uint64_t key() const { return key_; }
 
     // Uniform in [0, 1): the top 24 bits, so the value is exact in a float and never rounds to 1.
     float get1D(std::uint64_t dim) const { return static_cast<float>(bits(dim) >> 40) * 0x1p-24f; }
