@@ -30,7 +30,7 @@ function(aamap_add_shaders)
       COMMENT "glslc ${src}"
       VERBATIM)
     file(CONFIGURE OUTPUT ${cpp} CONTENT
-         "#include <aamap/spirv.h>\nnamespace aamap::spirv {\nstatic const std::uint32_t data[] = {\n#include \"${name}.inc\"\n};\nconst std::span<const std::uint32_t> ${ident}{data};\n}\n")
+         "#include <aamap/spirv.h>\nnamespace aamap::spirv {\nstatic const std::uint32_t ${ident}_words[] = {\n#include \"${name}.inc\"\n};\nconst std::span<const std::uint32_t> ${ident}{${ident}_words};\n}\n")
     set_source_files_properties(${cpp} PROPERTIES OBJECT_DEPENDS ${words})
     list(APPEND cpp_files ${cpp})
     string(APPEND decls "extern const std::span<const std::uint32_t> ${ident};\n")

@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kConfig = R"(scene: builtin:cornell
+const char* const kWorkItemsConfig = R"(scene: builtin:cornell
 image: {width: 48, height: 32}
 threads: 2
 renders:
@@ -40,7 +40,7 @@ protected:
 };
 
 TEST_F(WorkItems, ListsTheSnapshotFirstThenEachMissingKeyOnce) {
-    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml");
+    const ExperimentConfig c = parseConfig(kWorkItemsConfig, "exp.yaml");
     const std::vector<WorkItem> items = missingWork(c, dir_ / "cache", -1);
     // 5 listed renders; the reference (uniform 16) and the 1-ray probe (uniform 1) share their keys.
     ASSERT_EQ(items.size(), 6u);
@@ -57,7 +57,7 @@ TEST_F(WorkItems, ListsTheSnapshotFirstThenEachMissingKeyOnce) {
 }
 
 TEST_F(WorkItems, ItemsComputedOneByOneLeaveNothingToTraceAndTheSameImages) {
-    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml");
+    const ExperimentConfig c = parseConfig(kWorkItemsConfig, "exp.yaml");
     const fs::path shared = dir_ / "distributed" / "cache";
     FakeBackend workers;
     for (const WorkItem& w : missingWork(c, shared, -1)) {
@@ -83,7 +83,7 @@ TEST_F(WorkItems, ItemsComputedOneByOneLeaveNothingToTraceAndTheSameImages) {
 }
 
 TEST_F(WorkItems, OnlyRefusesAnUnknownKeyAndAMapRenderWithoutItsSnapshot) {
-    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml");
+    const ExperimentConfig c = parseConfig(kWorkItemsConfig, "exp.yaml");
     const RunnerOptions options{"test-rev", false, dir_ / "cache"};
     FakeBackend backend;
     EXPECT_THROW(computeWorkItem(c, "0123456789abcdef", backend, options), InputError);
@@ -96,10 +96,10 @@ TEST_F(WorkItems, OnlyRefusesAnUnknownKeyAndAMapRenderWithoutItsSnapshot) {
 }
 
 TEST_F(WorkItems, SameMachineGroupsTheRendersOfOneRpp) {
-    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml", {"timing.same_machine=true"});
-    EXPECT_NE(c.hash(), parseConfig(kConfig, "exp.yaml").hash());
-    EXPECT_EQ(parseConfig(kConfig, "exp.yaml", {"timing.same_machine=false"}).hash(),
-              parseConfig(kConfig, "exp.yaml").hash());  // the default keeps old configs' hashes
+    const ExperimentConfig c = parseConfig(kWorkItemsConfig, "exp.yaml", {"timing.same_machine=true"});
+    EXPECT_NE(c.hash(), parseConfig(kWorkItemsConfig, "exp.yaml").hash());
+    EXPECT_EQ(parseConfig(kWorkItemsConfig, "exp.yaml", {"timing.same_machine=false"}).hash(),
+              parseConfig(kWorkItemsConfig, "exp.yaml").hash());  // the default keeps old configs' hashes
     std::map<std::string, std::vector<std::string>> groups;
     for (const WorkItem& w : missingWork(c, dir_ / "cache", -1))
         if (w.kind == "render") groups[w.group].push_back(w.name);
@@ -113,7 +113,7 @@ TEST_F(WorkItems, SameMachineGroupsTheRendersOfOneRpp) {
 // The records of a distributed run keep each worker's machine; the run's warnings say when a
 // speedup mixes two of them.
 TEST_F(WorkItems, ARunWhoseRendersCameFromTwoMachinesWarns) {
-    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml");
+    const ExperimentConfig c = parseConfig(kWorkItemsConfig, "exp.yaml");
     FakeBackend first;
     const Results one = runExperimentWith(c, dir_, first, RunnerOptions{"test-rev", false});
     for (const std::string& w : one.warnings) EXPECT_EQ(w.find("different machines"), std::string::npos) << w;
@@ -163,7 +163,7 @@ TEST(TimingMachines, WarnsOnlyWhenASpeedupDividesTimesFromTwoMachines) {
 // --plan's view of a run: nothing cached before it (and the cache folder not created by asking),
 // everything cached after it, with the rate of the cached renders estimating a new render's time.
 TEST_F(WorkItems, PlanReadsTheCacheOnly) {
-    const ExperimentConfig c = parseConfig(kConfig, "exp.yaml");
+    const ExperimentConfig c = parseConfig(kWorkItemsConfig, "exp.yaml");
     const RunPlan before = planRun(c, dir_ / "out" / "cache");
     EXPECT_FALSE(fs::exists(dir_ / "out"));
     ASSERT_EQ(before.renders.size(), 7u);  // 5 listed, the reference, the 1-ray probe
@@ -186,7 +186,7 @@ TEST_F(WorkItems, PlanReadsTheCacheOnly) {
     ASSERT_TRUE(after.secondsPerRayUnit.has_value());
     // The fake backend takes 1 ms per rpp: the rate is that over the pixels.
     EXPECT_NEAR(*after.secondsPerRayUnit * FakeBackend::kW * FakeBackend::kH, 0.001, 1e-9);
-    const RunPlan bigger = planRun(parseConfig(kConfig, "exp.yaml", {"renders.0.rpp=[1, 4, 36]"}), dir_ / "out" / "cache");
+    const RunPlan bigger = planRun(parseConfig(kWorkItemsConfig, "exp.yaml", {"renders.0.rpp=[1, 4, 36]"}), dir_ / "out" / "cache");
     ASSERT_EQ(bigger.renders[2].name, "uniform36");
     EXPECT_FALSE(bigger.renders[2].cached);
     ASSERT_TRUE(bigger.renders[2].seconds.has_value());

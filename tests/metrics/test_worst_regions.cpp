@@ -46,7 +46,9 @@ TEST(WorstRegions, WindowsStayInsideAndNeverOverlap) {
         EXPECT_GE(r[i].y, 0);
         EXPECT_LE(r[i].x + size, error.width());
         EXPECT_LE(r[i].y + size, error.height());
-        if (i > 0) EXPECT_GE(r[i - 1].meanError, r[i].meanError);
+        if (i > 0) {
+            EXPECT_GE(r[i - 1].meanError, r[i].meanError);
+        }
         for (std::size_t j = 0; j < i; ++j)
             EXPECT_TRUE(std::abs(r[i].x - r[j].x) >= size || std::abs(r[i].y - r[j].y) >= size) << i << " " << j;
     }

@@ -13,7 +13,7 @@ namespace {
 
 const std::filesystem::path kFile = "views/test.vf";
 
-void expectVec(glm::vec3 actual, glm::vec3 expected) {
+void expectSameVec(glm::vec3 actual, glm::vec3 expected) {
     EXPECT_NEAR(actual.x, expected.x, 1e-6f);
     EXPECT_NEAR(actual.y, expected.y, 1e-6f);
     EXPECT_NEAR(actual.z, expected.z, 1e-6f);
@@ -35,9 +35,9 @@ void expectViewError(std::string_view text, int column, const std::string& what)
 
 TEST(ViewOptions, RadianceDefaults) {
     const View v = parseViewOptions("-vtv", kFile, 1);
-    expectVec(v.position, {0, 0, 0});
-    expectVec(v.direction, {0, 1, 0});
-    expectVec(v.up, {0, 0, 1});
+    expectSameVec(v.position, {0, 0, 0});
+    expectSameVec(v.direction, {0, 1, 0});
+    expectSameVec(v.up, {0, 0, 1});
     EXPECT_FLOAT_EQ(v.horizontalFovDeg, 45.0f);
     EXPECT_FLOAT_EQ(v.verticalFovDeg, 45.0f);
     EXPECT_FLOAT_EQ(v.shiftX, 0.0f);
@@ -48,9 +48,9 @@ TEST(ViewOptions, RadianceDefaults) {
 TEST(ViewOptions, EveryOption) {
     const View v = parseViewOptions("-vtv -vp 1 2.5 -3 -vd 0 0 -2 -vu 0 1 0 -vh 60 -vv 40.5 -vs 0.25 -vl -0.125 -vo 1 -va 0",
                                     kFile, 1);
-    expectVec(v.position, {1, 2.5f, -3});
-    expectVec(v.direction, {0, 0, -1});  // normalised
-    expectVec(v.up, {0, 1, 0});
+    expectSameVec(v.position, {1, 2.5f, -3});
+    expectSameVec(v.direction, {0, 0, -1});  // normalised
+    expectSameVec(v.up, {0, 1, 0});
     EXPECT_FLOAT_EQ(v.horizontalFovDeg, 60.0f);
     EXPECT_FLOAT_EQ(v.verticalFovDeg, 40.5f);
     EXPECT_FLOAT_EQ(v.shiftX, 0.25f);
@@ -60,18 +60,18 @@ TEST(ViewOptions, EveryOption) {
 TEST(ViewOptions, LaterOptionsOverride) {
     const View v = parseViewOptions("-vh 10 -vh +20 -vp 1 1 1 -vp 2 2 2", kFile, 1);
     EXPECT_FLOAT_EQ(v.horizontalFovDeg, 20.0f);
-    expectVec(v.position, {2, 2, 2});
+    expectSameVec(v.position, {2, 2, 2});
 }
 
 TEST(ViewOptions, ProgramLinesAndHeaderForm) {
     const View a = parseViewOptions("rview -vtv -vp 0 1 3.9 -vd 0 0 -1 -vu 0 1 0 -vh 39.3 -vv 39.3", kFile, 1);
-    expectVec(a.position, {0, 1, 3.9f});
+    expectSameVec(a.position, {0, 1, 3.9f});
     EXPECT_FLOAT_EQ(a.verticalFovDeg, 39.3f);
     const View b = parseViewOptions("rpict -x 512 -y 512 -ab 2 -vp 1 2 3 -vu 0 1 0 -vd 0 0 1 -i scene.oct", kFile, 1);
-    expectVec(b.position, {1, 2, 3});
-    expectVec(b.direction, {0, 0, 1});
+    expectSameVec(b.position, {1, 2, 3});
+    expectSameVec(b.direction, {0, 0, 1});
     const View c = parseViewOptions("VIEW= -vtv -vp 4 5 6 -vd 1 0 0", kFile, 1);
-    expectVec(c.position, {4, 5, 6});
+    expectSameVec(c.position, {4, 5, 6});
     const View d = parseViewOptions("VIEW=-vtv -vh 30", kFile, 1);
     EXPECT_FLOAT_EQ(d.horizontalFovDeg, 30.0f);
 }
@@ -115,7 +115,7 @@ TEST(ViewFile, SeveralViewsNamedByStemAndIndex) {
     EXPECT_FLOAT_EQ(views[0].horizontalFovDeg, 50.0f);
     EXPECT_EQ(views[1].name, "named");
     EXPECT_EQ(views[2].name, "room:2");
-    expectVec(views[2].position, {2, 2, 2});
+    expectSameVec(views[2].position, {2, 2, 2});
 }
 
 TEST(ViewFile, ErrorLineNumbersCountCommentsAndBlankLines) {
@@ -133,7 +133,7 @@ TEST(ViewFile, LoadFromDiskAndViewFileReference) {
     const auto path = dir.write("cam.vf", "rview -vf base.vf -vh 60\n");
     const auto views = loadViewFile(path);
     ASSERT_EQ(views.size(), 1u);
-    expectVec(views[0].position, {1, 2, 3});
+    expectSameVec(views[0].position, {1, 2, 3});
     EXPECT_FLOAT_EQ(views[0].horizontalFovDeg, 60.0f);
     EXPECT_FLOAT_EQ(views[0].verticalFovDeg, 20.0f);
     EXPECT_EQ(views[0].name, "cam:0");

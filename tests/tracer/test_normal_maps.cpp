@@ -16,8 +16,8 @@
 namespace aamap {
 namespace {
 
-constexpr int kSize = 8;
-constexpr float kRho = 0.5f;
+constexpr int kMapSize = 8;
+constexpr float kMapRho = 0.5f;
 
 // A texture of w x h texels, all `rgb` (exact floats, no 8-bit rounding).
 Texture constantTexture(glm::vec3 rgb, int w = 2, int h = 2) {
@@ -33,12 +33,12 @@ Texture constantTexture(glm::vec3 rgb, int w = 2, int h = 2) {
 glm::vec3 encode(glm::vec3 n) { return 0.5f * (n + 1.0f); }
 
 // A plane y = 0 facing up, 100 x 100, u along +x and v along +z: dp/du = 100 x, dp/dv = 100 z, so
-// Mitsuba's tangent frame is s = +x, t = n x s = -z. The material is a Lambert kRho, with
+// Mitsuba's tangent frame is s = +x, t = n x s = -z. The material is a Lambert kMapRho, with
 // `setup` applied to it (a map, a twosided flag).
 template <class Setup>
-Scene planeScene(Setup&& setup, std::vector<Texture> textures) {
+Scene mapPlaneScene(Setup&& setup, std::vector<Texture> textures) {
     testing::SceneBuilder b;
-    const auto mat = b.material("plane", glm::vec3(kRho));
+    const auto mat = b.material("plane", glm::vec3(kMapRho));
     b.quad(glm::vec3(-50, 0, -50), glm::vec3(0, 0, 100), glm::vec3(100, 0, 0), mat);
     Scene s = std::move(b.scene());
     // Corners p0, p0 + a (+z), p0 + a + b, p0 + b (+x).
@@ -49,11 +49,11 @@ Scene planeScene(Setup&& setup, std::vector<Texture> textures) {
 }
 
 Scene plainPlane() {
-    return planeScene([](Material&) {}, {});
+    return mapPlaneScene([](Material&) {}, {});
 }
 
 Scene normalMapped(glm::vec3 tangentNormal) {
-    return planeScene([](Material& m) { m.normalMap = 0; }, {constantTexture(encode(tangentNormal))});
+    return mapPlaneScene([](Material& m) { m.normalMap = 0; }, {constantTexture(encode(tangentNormal))});
 }
 
 // A directional light arriving from unit direction `toLight`, irradiance E on a surface facing it.
@@ -66,7 +66,7 @@ void addSun(Scene& s, glm::vec3 toLight, float E) {
 }
 
 // An 8 x 8 view of the plane's middle from above (below: from under it, looking up).
-ImageRGB render(const Scene& scene, ShadingMode mode, bool below = false) {
+ImageRGB renderMapped(const Scene& scene, ShadingMode mode, bool below = false) {
     View v;
     v.position = {0.0f, below ? -4.0f : 4.0f, 0.5f};
     v.direction = glm::normalize(glm::vec3(0.0f, below ? 1.0f : -1.0f, -0.1f));
@@ -75,12 +75,12 @@ ImageRGB render(const Scene& scene, ShadingMode mode, bool below = false) {
     ShadingSettings shading;
     shading.mode = mode;
     shading.maxDepth = 3;
-    return testing::renderScene(scene, v, shading, kSize, 1, 1, 5).image;
+    return testing::renderScene(scene, v, shading, kMapSize, 1, 1, 5).image;
 }
 
 void expectEverywhere(const ImageRGB& img, float want, const char* what) {
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x)
+    for (int y = 0; y < kMapSize; ++y)
+        for (int x = 0; x < kMapSize; ++x)
             for (int ch = 0; ch < 3; ++ch)
                 ASSERT_NEAR(img.at(x, y)[ch], want, 1e-3f * want) << what << " pixel " << x << "," << y;
 }
@@ -92,9 +92,9 @@ TEST(NormalMap, FlatMapRendersBitIdenticallyToNoMap) {
         Scene plain = plainPlane(), mapped = normalMapped({0, 0, 1});
         addSun(plain, glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f)), 2.0f);
         addSun(mapped, glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f)), 2.0f);
-        const ImageRGB a = render(plain, mode), b = render(mapped, mode);
-        for (int y = 0; y < kSize; ++y)
-            for (int x = 0; x < kSize; ++x)
+        const ImageRGB a = renderMapped(plain, mode), b = renderMapped(mapped, mode);
+        for (int y = 0; y < kMapSize; ++y)
+            for (int x = 0; x < kMapSize; ++x)
                 for (int c = 0; c < 3; ++c)
                     ASSERT_EQ(a.at(x, y)[c], b.at(x, y)[c]) << toString(mode) << " pixel " << x << "," << y;
     }
@@ -113,7 +113,7 @@ TEST(NormalMap, ConstantTiltScalesRadianceByTheTiltedCosine) {
         for (const Case& c : cases) {
             Scene s = normalMapped(std::sin(theta) * c.tangent + std::cos(theta) * glm::vec3(0, 0, 1));
             addSun(s, std::sin(phi) * c.world + std::cos(phi) * glm::vec3(0, 1, 0), E);
-            expectEverywhere(render(s, mode), kRho / std::numbers::pi_v<float> * E * std::cos(phi - theta),
+            expectEverywhere(renderMapped(s, mode), kMapRho / std::numbers::pi_v<float> * E * std::cos(phi - theta),
                              toString(mode));
         }
     }
@@ -126,7 +126,7 @@ TEST(NormalMap, TwosidedMirrorsTheTiltOnTheBack) {
     const float theta = glm::radians(30.0f), phi = glm::radians(40.0f), E = 2.0f;
     const glm::vec3 tilt(std::sin(theta), 0.0f, std::cos(theta));
     for (bool mirrored : {true, false}) {
-        Scene s = planeScene(
+        Scene s = mapPlaneScene(
             [&](Material& m) {
                 m.normalMap = 0;
                 m.mapMirroredOnBack = mirrored;
@@ -134,7 +134,7 @@ TEST(NormalMap, TwosidedMirrorsTheTiltOnTheBack) {
             {constantTexture(encode(tilt))});
         addSun(s, glm::vec3(std::sin(phi), -std::cos(phi), 0.0f), E);
         const float cosine = std::cos(mirrored ? phi - theta : phi + theta);
-        expectEverywhere(render(s, ShadingMode::Direct, true), kRho / std::numbers::pi_v<float> * E * cosine,
+        expectEverywhere(renderMapped(s, ShadingMode::Direct, true), kMapRho / std::numbers::pi_v<float> * E * cosine,
                          mirrored ? "mirrored" : "turned");
     }
 }
@@ -149,7 +149,7 @@ TEST(NormalMap, ViewerBelowTheTiltedNormalSeesNoReflection) {
     for (ShadingMode mode : kModes) {
         for (bool oneSided : {true, false}) {
             for (float side : {1.0f, -1.0f}) {
-                Scene s = planeScene(
+                Scene s = mapPlaneScene(
                     [&](Material& m) {
                         m.normalMap = 0;
                         m.oneSided = oneSided;
@@ -157,9 +157,9 @@ TEST(NormalMap, ViewerBelowTheTiltedNormalSeesNoReflection) {
                     },
                     {constantTexture(encode(tilt))});
                 addSun(s, glm::vec3(side * std::sin(glm::radians(60.0f)), std::cos(glm::radians(60.0f)), 0.0f), E);
-                const ImageRGB img = render(s, mode);
-                for (int y = 0; y < kSize; ++y)
-                    for (int x = 0; x < kSize; ++x)
+                const ImageRGB img = renderMapped(s, mode);
+                for (int y = 0; y < kMapSize; ++y)
+                    for (int x = 0; x < kMapSize; ++x)
                         ASSERT_EQ(img.at(x, y), glm::vec3(0.25f)) << toString(mode) << " one-sided " << oneSided;
             }
         }
@@ -178,7 +178,7 @@ TEST(NormalMap, DegenerateUvsKeepTheUnperturbedNormal) {
 TEST(BumpMap, ConstantHeightEqualsNoMap) {
     for (ShadingMode mode : kModes) {
         Scene plain = plainPlane();
-        Scene bumped = planeScene(
+        Scene bumped = mapPlaneScene(
             [](Material& m) {
                 m.bumpMap = 0;
                 m.bumpScale = 5.0f;
@@ -186,9 +186,9 @@ TEST(BumpMap, ConstantHeightEqualsNoMap) {
             {constantTexture(glm::vec3(0.7f), 4, 4)});
         addSun(plain, glm::normalize(glm::vec3(-0.4f, 1.0f, 0.3f)), 1.5f);
         addSun(bumped, glm::normalize(glm::vec3(-0.4f, 1.0f, 0.3f)), 1.5f);
-        const ImageRGB a = render(plain, mode), b = render(bumped, mode);
-        for (int y = 0; y < kSize; ++y)
-            for (int x = 0; x < kSize; ++x)
+        const ImageRGB a = renderMapped(plain, mode), b = renderMapped(bumped, mode);
+        for (int y = 0; y < kMapSize; ++y)
+            for (int x = 0; x < kMapSize; ++x)
                 for (int c = 0; c < 3; ++c)
                     ASSERT_EQ(a.at(x, y)[c], b.at(x, y)[c]) << toString(mode) << " pixel " << x << "," << y;
     }
@@ -208,7 +208,7 @@ TEST(BumpMap, RampTiltsTheNormalAgainstTheHeightGradient) {
     rampV.height = 4;
     const float scale = 20.0f;
     for (int axis = 0; axis < 2; ++axis) {
-        Scene s = planeScene(
+        Scene s = mapPlaneScene(
             [&](Material& m) {
                 m.bumpMap = 0;
                 m.bumpScale = scale;

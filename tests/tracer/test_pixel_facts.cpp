@@ -14,7 +14,7 @@ namespace {
 
 using namespace pixel_fact;
 
-constexpr int kSize = 63;  // odd: no band edge falls on a pixel boundary
+constexpr int kFactsSize = 63;  // odd: no band edge falls on a pixel boundary
 constexpr float kDistance = 5.0f;   // camera on +z looking at the plane z = 0
 constexpr float kTanHalf = 0.8f;    // the view spans x, y in [-4, 4] on that plane
 
@@ -29,10 +29,10 @@ View topView() {
 
 // The point of the plane z = 0 at the centre of pixel (x, y), and one pixel's width there.
 glm::vec2 planePoint(int x, int y) {
-    const float u = (static_cast<float>(x) + 0.5f) / kSize, v = (static_cast<float>(y) + 0.5f) / kSize;
+    const float u = (static_cast<float>(x) + 0.5f) / kFactsSize, v = (static_cast<float>(y) + 0.5f) / kFactsSize;
     return {(2.0f * u - 1.0f) * kTanHalf * kDistance, (1.0f - 2.0f * v) * kTanHalf * kDistance};
 }
-constexpr float kPixel = 2.0f * kTanHalf * kDistance / kSize;
+constexpr float kPixel = 2.0f * kTanHalf * kDistance / kFactsSize;
 
 // Distance from p to the boundary of the axis-aligned square [lo, hi]^2 (positive either side).
 float boundaryDistance(glm::vec2 p, float lo, float hi) {
@@ -43,7 +43,7 @@ float boundaryDistance(glm::vec2 p, float lo, float hi) {
 
 PixelFacts factsOf(Scene& scene, int threads = 0) {
     const Tracer tracer(scene);
-    return tracer.pixelFacts(topView(), kSize, kSize, threads);
+    return tracer.pixelFacts(topView(), kFactsSize, kFactsSize, threads);
 }
 
 TEST(PixelFacts, MaterialsAndSilhouettes) {
@@ -63,8 +63,8 @@ TEST(PixelFacts, MaterialsAndSilhouettes) {
     const PixelFacts f = factsOf(b.scene());
 
     const auto at = [&](float wx, float wy) {
-        const int x = static_cast<int>((wx / (kTanHalf * kDistance) + 1.0f) * 0.5f * kSize);
-        const int y = static_cast<int>((1.0f - wy / (kTanHalf * kDistance)) * 0.5f * kSize);
+        const int x = static_cast<int>((wx / (kTanHalf * kDistance) + 1.0f) * 0.5f * kFactsSize);
+        const int y = static_cast<int>((1.0f - wy / (kTanHalf * kDistance)) * 0.5f * kFactsSize);
         return f.at(x, y);
     };
     EXPECT_EQ(at(-3.0f, 0.0f), 0) << "plain diffuse interior";
@@ -77,8 +77,8 @@ TEST(PixelFacts, MaterialsAndSilhouettes) {
     // Pixels whose footprint straddles y = 2, the top edge of every band, see two things; those
     // more than a pixel from any band edge see one.
     int silhouettes = 0;
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
+    for (int y = 0; y < kFactsSize; ++y)
+        for (int x = 0; x < kFactsSize; ++x) {
             const glm::vec2 p = planePoint(x, y);
             const bool straddles = std::abs(p.y - 2.0f) < 0.5f * kPixel;
             if (straddles) {
@@ -89,7 +89,7 @@ TEST(PixelFacts, MaterialsAndSilhouettes) {
                 EXPECT_EQ(f.at(x, y) & Silhouette, 0) << x << "," << y;
             }
         }
-    EXPECT_GE(silhouettes, kSize / 2);
+    EXPECT_GE(silhouettes, kFactsSize / 2);
 }
 
 // A floor, a square occluder at height 1.5 and a light at (2, 0, 3): the shadow is the square
@@ -108,8 +108,8 @@ TEST(PixelFacts, ShadowBoundaryFollowsTheShadowEdge) {
     Scene scene = shadowScene(false);
     const PixelFacts f = factsOf(scene);
     int boundary = 0;
-    for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
+    for (int y = 0; y < kFactsSize; ++y)
+        for (int x = 0; x < kFactsSize; ++x) {
             const glm::vec2 p = planePoint(x, y);
             if (std::abs(p.x) < 1.0f && std::abs(p.y) < 1.0f) continue;  // the occluder and its rim
             const float d = boundaryDistance({p.x + 2.0f, p.y}, -1.0f, 1.0f);
@@ -128,8 +128,8 @@ TEST(PixelFacts, PenumbraAroundAnAreaLightsShadow) {
     Scene scene = shadowScene(true);
     const PixelFacts f = factsOf(scene);
     const auto pixelOf = [](float wx, float wy) {
-        return glm::ivec2(static_cast<int>((wx / (kTanHalf * kDistance) + 1.0f) * 0.5f * kSize),
-                          static_cast<int>((1.0f - wy / (kTanHalf * kDistance)) * 0.5f * kSize));
+        return glm::ivec2(static_cast<int>((wx / (kTanHalf * kDistance) + 1.0f) * 0.5f * kFactsSize),
+                          static_cast<int>((1.0f - wy / (kTanHalf * kDistance)) * 0.5f * kFactsSize));
     };
     const glm::ivec2 umbra = pixelOf(-2.0f, 0.0f), lit = pixelOf(3.0f, 3.0f), edge = pixelOf(-1.0f, 0.0f);
     EXPECT_EQ(f.at(umbra.x, umbra.y) & Penumbra, 0);

@@ -13,7 +13,7 @@
 namespace aamap {
 namespace {
 
-constexpr int kSize = 16;
+constexpr int kRoughSize = 16;
 
 // A 2 x 2 quad at y = 0 facing up (u along +x, v along +z), under a directional light, seen from
 // above: the view spans about 2.1 units, so every u from 0 to 1 shows.
@@ -52,7 +52,7 @@ Texture halves(float left, float right) {
     return t;
 }
 
-ImageRGB render(const Scene& scene, ShadingMode mode) {
+ImageRGB renderRough(const Scene& scene, ShadingMode mode) {
     View v;
     v.position = {0.0f, 4.0f, 0.0f};
     v.direction = {0.0f, -1.0f, 0.0f};
@@ -61,20 +61,20 @@ ImageRGB render(const Scene& scene, ShadingMode mode) {
     ShadingSettings shading;
     shading.mode = mode;
     shading.maxDepth = 2;
-    return testing::renderScene(scene, v, shading, kSize, 1, 1, 9).image;
+    return testing::renderScene(scene, v, shading, kRoughSize, 1, 1, 9).image;
 }
 
-// The image column x shows u = (x + 0.5) / kSize * 2.14 / 2 + 0.5 - 1.07 / 2 (about): columns 3-5
+// The image column x shows u = (x + 0.5) / kRoughSize * 2.14 / 2 + 0.5 - 1.07 / 2 (about): columns 3-5
 // lie in the left half's constant run (u 0.06-0.44), columns 10-12 in the right half's (0.56-0.94).
 TEST(TexturedRoughness, ConstantRunsShadeAsTheUntexturedBsdf) {
     for (BsdfModel model : {BsdfModel::Conductor, BsdfModel::Plastic}) {
         for (ShadingMode mode : {ShadingMode::Direct, ShadingMode::Path}) {
             const float lo = 0.05f, hi = 0.5f;
-            const ImageRGB textured = render(quadScene(model, 0.3f, 0, {halves(lo, hi)}), mode);
-            const ImageRGB left = render(quadScene(model, lo, -1, {}), mode);
-            const ImageRGB right = render(quadScene(model, hi, -1, {}), mode);
+            const ImageRGB textured = renderRough(quadScene(model, 0.3f, 0, {halves(lo, hi)}), mode);
+            const ImageRGB left = renderRough(quadScene(model, lo, -1, {}), mode);
+            const ImageRGB right = renderRough(quadScene(model, hi, -1, {}), mode);
             double differs = 0.0;
-            for (int y = 2; y < kSize - 2; ++y) {
+            for (int y = 2; y < kRoughSize - 2; ++y) {
                 for (int x : {3, 4, 5, 10, 11, 12}) {
                     const glm::vec3 want = (x < 8 ? left : right).at(x, y);
                     for (int c = 0; c < 3; ++c)
@@ -91,10 +91,10 @@ TEST(TexturedRoughness, ConstantRunsShadeAsTheUntexturedBsdf) {
 
 TEST(TexturedRoughness, ConstantTextureEqualsItsAlpha) {
     for (BsdfModel model : {BsdfModel::Conductor, BsdfModel::Plastic}) {
-        const ImageRGB textured = render(quadScene(model, 0.1f, 0, {halves(0.25f, 0.25f)}), ShadingMode::Direct);
-        const ImageRGB plain = render(quadScene(model, 0.25f, -1, {}), ShadingMode::Direct);
-        for (int y = 0; y < kSize; ++y)
-            for (int x = 0; x < kSize; ++x)
+        const ImageRGB textured = renderRough(quadScene(model, 0.1f, 0, {halves(0.25f, 0.25f)}), ShadingMode::Direct);
+        const ImageRGB plain = renderRough(quadScene(model, 0.25f, -1, {}), ShadingMode::Direct);
+        for (int y = 0; y < kRoughSize; ++y)
+            for (int x = 0; x < kRoughSize; ++x)
                 for (int c = 0; c < 3; ++c)
                     ASSERT_NEAR(textured.at(x, y)[c], plain.at(x, y)[c], 2e-4f * std::max(plain.at(x, y)[c], 1e-3f))
                         << "pixel " << x << "," << y;
