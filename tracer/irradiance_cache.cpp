@@ -22,13 +22,12 @@
 namespace aamap {
 namespace {
 
-// Records decided per parallel batch: 1, 2, 4, ... up to kBatch. Constants, never the thread
+// Records decided per parallel batch: 1, 2, 4, ... up to 2^kBatchLog2. Constants, never the thread
 // count: batches decide which points get records, so they must not change with the machine. The
 // first batches are small because every task of a batch computes the deeper-level records its
 // hemisphere needs on its own (they are merged only after the batch): starting with one record
 // lets it fill the deeper levels once, which later tasks then find instead of each redoing them.
 constexpr int kBatchLog2 = 6;
-constexpr std::size_t kBatch = std::size_t{1} << kBatchLog2;
 // Deeper levels sample fewer cells; below this the gradients are meaningless.
 constexpr int kMinDivisions = 16;
 
