@@ -321,6 +321,20 @@ void PathIntegrator::finishSimdLane(PathState& s, const Sampler& sampler, const 
     s.before = hit.position;
 }
 
+// The cone the next ray carries: the hit's, spread to the bounce's share of its lobe after a
+// non-delta sample (ShadingSettings::bounceFootprint); a delta bounce keeps it, as a mirror keeps
+// the camera pixel's footprint.
+RayCone PathIntegrator::nextCone(const PathState& s) const {
+    RayCone cone = s.hit.cone;
+    if (s.specularBefore || shading_.textureFilter != TextureFilter::Anisotropic || !(shading_.bounceFootprint > 0.0f) ||
+        !(s.pdfBefore > 0.0f))
+        return cone;
+    constexpr float kInvPi = 1.0f / 3.14159265358979f;
+    const float lobe = std::min(2.0f * std::sqrt(kInvPi / s.pdfBefore), 3.14159265358979f);
+    cone.spread = std::max(cone.spread, shading_.bounceFootprint * lobe);
+    return cone;
+}
+
 void PathIntegrator::addNextEvent(PathState& s, const PathVertex& v, bool visible) const {
     glm::vec3 nee = visible ? v.finite : glm::vec3(0.0f);
     if (v.infiniteLights) nee += v.infinite;
@@ -341,9 +355,7 @@ glm::vec3 PathIntegrator::tracePath(const SurfaceHit& first, const Sampler& samp
         if (v.nextEvent)
             addNextEvent(s, v, v.shadow && !occluded(v.segment.origin, v.segment.dir, v.segment.tfar, rays));
         if (!v.next) break;
-        // The cone goes on with its angle after any bounce (pbrt-v4's camera-based approximation
-        // likewise ignores a diffuse bounce's widening): texture noise there is indirect light.
-        if (!intersect(v.nextOrigin, v.nextDir, s.hit, rays.other, s.hit.cone)) {
+        if (!intersect(v.nextOrigin, v.nextDir, s.hit, rays.other, nextCone(s))) {
             endPath(s, v);
             break;
         }
@@ -497,7 +509,7 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
                 endPath(s[i], v[i]);
                 continue;
             }
-            fillHit(next, i, s[i].hit.cone, s[i].hit);  // the cone carries on as in tracePath
+            fillHit(next, i, nextCone(s[i]), s[i].hit);  // as in tracePath
             ++s[i].depth;
             lanes[going++] = i;
         }

@@ -59,6 +59,7 @@ private:
     void finishSimdLane(PathState& s, const Sampler& sampler, const pathsimd::Lanes& lanes, int k, PathVertex& out,
                         RayCounts& rays) const;
     // Adds the vertex's next-event estimate; visible: its shadow segment was clear.
+    RayCone nextCone(const PathState& s) const;
     void addNextEvent(PathState& s, const PathVertex& v, bool visible) const;
     // Ends a path whose next ray left the scene: what the environment sends back along it.
     void endPath(PathState& s, const PathVertex& v) const;

@@ -89,7 +89,12 @@ const Schema<ShadingSettings>& shadingSchema() {
                     {{"anisotropic", TextureFilter::Anisotropic}, {"none", TextureFilter::None}},
                     "textured albedo filtered over each ray's footprint (ray cones, an anisotropic mip-map lookup: "
                     "one ray per pixel on a minified texture shows its pixel average), or the bilinear texel at the "
-                    "hit point (docs/tracer.md, \"Texture filtering\")");
+                    "hit point (docs/tracer.md, \"Texture filtering\")")
+            .field(&S::bounceFootprint, "bounce_footprint", in(0.0, 1.0), D.bounceFootprint,
+                   "`path`: after a non-delta bounce of pdf p, the ray cone spreads at least this fraction of "
+                   "the lobe's width 2 sqrt(1 / (pi p)) radians, so textures in indirect light are filtered over a "
+                   "share of what the bounce integrates (coarser mip levels, the same mean); 0 keeps the camera "
+                   "pixel's spread (docs/tracer.md, \"Texture filtering\")");
         return s;
     }();
     return schema;

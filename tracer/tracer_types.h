@@ -62,6 +62,11 @@ struct ShadingSettings {
     // Textured albedo: filtered over each ray's footprint (a ray cone, docs/tracer.md "Texture
     // filtering"), or the plain bilinear texel at the hit point (None).
     TextureFilter textureFilter = TextureFilter::Anisotropic;
+    // Path mode: after a non-delta BSDF sample of pdf p, the path's ray cone spreads at least this
+    // fraction of the sampled lobe's width, 2 sqrt(1 / (pi p)) radians (the full angle of a cone
+    // of solid angle 1 / p): textures seen in indirect light are filtered over a share of the
+    // lobe the bounce integrates over, not over a camera pixel. 0: the camera's spread throughout.
+    float bounceFootprint = 0.25f;
     bool operator==(const ShadingSettings&) const = default;
 };
 

@@ -207,5 +207,66 @@ TEST(TextureFiltering, BilinearTapsRepeatTheTextureAndStayInsideItAtAnyCoordinat
     EXPECT_FALSE(bilinearTaps({0.5f, std::nanf("")}, kW, kH, t));
 }
 
+TEST(TextureFiltering, BounceFootprintKeepsTheMeanOfIndirectLightFromATexture) {
+    // A white ceiling seen from below, lit by a point light and by what a checkerboard floor
+    // reflects up: path mode with the bounce footprint (the floor filtered over a share of each
+    // bounce's lobe, coarse mip levels) and without it (the floor's own texels) agree in mean,
+    // since every mip level keeps the texture's mean.
+    Scene scene = texturedFloor(64, 2.0f, 4.0f, 8.0f);
+    scene.directionalLights.clear();
+    // Checks of 8 x 8 texels (0.5 m on the floor): a camera pixel's footprint there sees one or two,
+    // a bounce's several.
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            float* p = &scene.textures[0].rgba[4 * (static_cast<std::size_t>(y) * 64 + static_cast<std::size_t>(x))];
+            p[0] = p[1] = p[2] = (x / 8 + y / 8) % 2 == 0 ? 0.95f : 0.05f;
+        }
+    Material ceiling;
+    ceiling.name = "ceiling";
+    ceiling.kd = glm::vec3(0.8f);
+    scene.materials.push_back(ceiling);
+    TriangleMesh& mesh = scene.mesh;
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    for (const glm::vec3& p : {glm::vec3(-4, 2, 0), glm::vec3(-4, 2, -8), glm::vec3(4, 2, -8), glm::vec3(4, 2, 0)}) {
+        mesh.positions.push_back(p);
+        mesh.normals.emplace_back(0, -1, 0);
+        mesh.uvs.emplace_back(0, 0);
+    }
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.triangles.push_back({base, base + 2, base + 3});
+    mesh.materialIds.insert(mesh.materialIds.end(), {1, 1});
+    mesh.objectIds.insert(mesh.objectIds.end(), {1, 1});
+    PointLight lamp;
+    lamp.name = "lamp";
+    lamp.position = {0, 1, -4};
+    lamp.intensity = glm::vec3(4.0f);
+    scene.pointLights.push_back(lamp);
+    View up;
+    up.position = {0, 0.2f, -4};
+    up.direction = {0, 1, 0};
+    up.up = {0, 0, -1};
+    up.horizontalFovDeg = up.verticalFovDeg = 90.0f;
+
+    const Tracer tracer(scene);
+    const auto meanRed = [&](float footprint) {
+        TraceSettings t;
+        t.width = t.height = 32;
+        t.shading.mode = ShadingMode::Path;
+        t.shading.maxDepth = 3;  // the ceiling, the floor, the light: one bounce off the texture
+        t.shading.bounceFootprint = footprint;
+        StrategySettings st;
+        st.name = "uniform";
+        st.strata = 8;
+        const ImageRGB image = tracer.render(up, t, st).image;
+        double sum = 0.0;
+        for (const glm::vec3& c : image.pixels()) sum += c.r;
+        return sum / static_cast<double>(image.pixels().size());
+    };
+    const double texels = meanRed(0.0f), filtered = meanRed(0.25f);
+    ASSERT_GT(texels, 0.0);
+    EXPECT_NE(texels, filtered);  // the key reaches the lookups
+    EXPECT_NEAR(filtered / texels, 1.0, 0.005);
+}
+
 }  // namespace
 }  // namespace aamap
