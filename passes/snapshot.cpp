@@ -272,6 +272,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     graph.addResource(depth);
     // Shadow maps only for what is there: no lights (or no geometry to cast), no shadow pass.
     passes::GBufferShadows shadows;
+    bool mirrorsForceFullShadows = false;
     const bool shadowed = settings.shadows.enabled && s.sceneGpu.lightCount() > 0 && !s.emptyMesh;
     if (shadowed) {
         if (!s.shadows) s.shadows.emplace(s.context);
@@ -287,6 +288,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
             s.mirrors.anyInView(snapshotView, {snapW, snapH}) || s.probes.anyInView(snapshotView, {snapW, snapH});
         // Each light's face size by need (passes/view_budget.h); lights at infinity take the whole layer.
         // In pixels of the map (the render's), which is what a shadow edge's position must be right to.
+        mirrorsForceFullShadows = mirrorsInView;
         const passes::ShadowNeedView need{viewProj, snapshotView.camera.origin,
                                           {static_cast<unsigned>(width), static_cast<unsigned>(height)}, region};
         const std::vector<int> bySize =
@@ -371,8 +373,9 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     }
     if (shadowed) {
         result.explain += fmt::format("shadow faces by need (texels per side, one texel at most {} render pixel(s) at "
-                                      "full contrast, at most {}):",
-                                      settings.shadows.texelPixels, settings.shadows.resolution);
+                                      "full contrast, at most {}{}):",
+                                      settings.shadows.texelPixels, settings.shadows.resolution,
+                                      mirrorsForceFullShadows ? "; a mirror in view: every light at most" : "");
         const std::span<const std::uint32_t> sizes = s.sceneGpu.shadowFaceSizes();
         for (std::size_t i = 0; i < sizes.size() && i < s.lightNames.size(); ++i)
             result.explain += fmt::format("{} '{}' {}", i ? "," : "", s.lightNames[i], sizes[i]);
