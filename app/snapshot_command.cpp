@@ -95,7 +95,9 @@ std::string sceneDecisions(const Scene& scene, const SnapshotSettings& s, const 
     else if (scene.mesh.triangles.empty())
         text += "  shadow pass: not declared: no geometry to cast shadows\n";
     else
-        text += fmt::format("  shadow pass: {} cube map(s) of {}^2 per face, one per light sample{}{}\n", samples,
+        text += fmt::format("  shadow pass: {} cube map(s) of at most {}^2 per face (each light's by need, listed "
+                            "below), one per light sample{}{}\n",
+                            samples,
                             s.shadows.resolution, spots > 0 ? " (spots too: a cube map, not a 2D map)" : "",
                             directional + fromMap > 0 ? " (a directional light's orthographic map takes one face)" : "");
     return text;

@@ -67,10 +67,12 @@ vec4 shadowParams;
 
 // Area-light samples (a patch in cone.w) cast soft shadows; point and spot lights hard ones. For
 // the inline lights the test folds, and without patches (kSoftShadows 0) so does the soft code.
+// Each light's faces have their own size (GpuLight::position.w), in w of the parameters.
 float visibility(GpuLight l, uint light, vec3 r, vec3 n) {
+    const vec4 params = vec4(shadowParams.xyz, l.position.w);
     if (kSoftShadows != 0u && l.cone.w > 0.0)
-        return softShadowVisibility(shadowCubes, light, r, n, shadowParams, l.cone.w, int(kShadowPcf));
-    return shadowVisibility(shadowCubes, light, r, n, shadowParams, int(kShadowPcf));
+        return softShadowVisibility(shadowCubes, light, r, n, params, l.cone.w, int(kShadowPcf));
+    return shadowVisibility(shadowCubes, light, r, n, params, int(kShadowPcf));
 }
 #endif
 
@@ -105,7 +107,8 @@ vec3 lightContribution(GpuLight light, uint i, vec3 n, vec3 kd) {
         float weight = max(dot(n, light.normal.xyz), 0.0);
 #ifdef GBUFFER_SHADOWS
         if (weight > 0.0)
-            weight *= directionalShadowVisibility(shadowCubes, i, light, worldPosition, n, shadowParams, int(kShadowPcf));
+            weight *= directionalShadowVisibility(shadowCubes, i, light, worldPosition, n,
+                                                  vec4(shadowParams.xyz, light.position.w), int(kShadowPcf));
 #endif
         return brdf(kd, light.normal.xyz) * light.intensity.rgb * weight;
     }

@@ -40,14 +40,17 @@ layout(binding = GEOMETRY_BINDING_SHADOW) uniform texture2DArray shadowCubes;
 bool occludes(GpuLight light, uint i, vec3 n, vec4 shadow) {
     if (isDirectional(light))
         return dot(n, light.normal.xyz) > 0.0 &&
-               directionalShadowVisibility(shadowCubes, i, light, worldPosition, n, shadow, int(kShadowPcf)) < 0.5;
+               directionalShadowVisibility(shadowCubes, i, light, worldPosition, n, vec4(shadow.xyz, light.position.w),
+                                           int(kShadowPcf)) < 0.5;
     const vec3 toLight = light.position.xyz - worldPosition;
     const float d2 = dot(toLight, toLight);
     if (d2 <= 0.0) return false;
     const vec3 wi = toLight * inversesqrt(d2);
     // Not outside a spot's outer cone nor behind a lobe's emitter.
     const bool reaches = dot(n, wi) > 0.0 && angularFactor(light.normal.xyz, light.cone, wi) > 0.0;
-    return reaches && shadowVisibility(shadowCubes, i, -toLight, n, shadow, int(kShadowPcf)) < 0.5;
+    // Each light's faces have their own size (GpuLight::position.w).
+    return reaches &&
+           shadowVisibility(shadowCubes, i, -toLight, n, vec4(shadow.xyz, light.position.w), int(kShadowPcf)) < 0.5;
 }
 
 uint occlusionMask(vec3 n) {

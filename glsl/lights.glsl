@@ -9,7 +9,7 @@ layout(constant_id = LIGHTING_SPEC_LIGHT_KINDS) const uint kLightKinds =
 // 0: every light is a point (hard shadows only, the soft-shadow code folds away).
 layout(constant_id = LIGHTING_SPEC_SOFT_SHADOWS) const uint kSoftShadows = 0u;
 
-// Light k < LIGHTING_INLINE_LIGHTS as constants kLight<k>_<field> (field 0..12 as
+// Light k < LIGHTING_INLINE_LIGHTS as constants kLight<k>_<field> (field 0..13 as
 // LIGHTING_SPEC_LIGHT_DATA says), and INLINE_LIGHT(k) its GpuLight.
 #define LIGHT_CONSTANT(k, f)                                                                        \
     layout(constant_id = LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * k + f) const float \
@@ -17,9 +17,10 @@ layout(constant_id = LIGHTING_SPEC_SOFT_SHADOWS) const uint kSoftShadows = 0u;
 #define DECLARE_INLINE_LIGHT(k)                                                                     \
     LIGHT_CONSTANT(k, 0) LIGHT_CONSTANT(k, 1) LIGHT_CONSTANT(k, 2) LIGHT_CONSTANT(k, 3)             \
     LIGHT_CONSTANT(k, 4) LIGHT_CONSTANT(k, 5) LIGHT_CONSTANT(k, 6) LIGHT_CONSTANT(k, 7)             \
-    LIGHT_CONSTANT(k, 8) LIGHT_CONSTANT(k, 9) LIGHT_CONSTANT(k, 10) LIGHT_CONSTANT(k, 11) LIGHT_CONSTANT(k, 12)
+    LIGHT_CONSTANT(k, 8) LIGHT_CONSTANT(k, 9) LIGHT_CONSTANT(k, 10) LIGHT_CONSTANT(k, 11) LIGHT_CONSTANT(k, 12) \
+    LIGHT_CONSTANT(k, 13)
 #define INLINE_LIGHT(k)                                                                             \
-    GpuLight(vec4(kLight##k##_0, kLight##k##_1, kLight##k##_2, 1.0),                                 \
+    GpuLight(vec4(kLight##k##_0, kLight##k##_1, kLight##k##_2, kLight##k##_13),                      \
              vec4(kLight##k##_3, kLight##k##_4, kLight##k##_5, 0.0),                                 \
              vec4(kLight##k##_6, kLight##k##_7, kLight##k##_8, 0.0),                                 \
              vec4(kLight##k##_9, kLight##k##_10, kLight##k##_11, kLight##k##_12))

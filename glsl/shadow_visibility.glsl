@@ -23,7 +23,7 @@ float litFraction(texture2DArray shadowCubes, vec2 st, int layer, int size, floa
 
 // Fraction of the PCF kernel (pcf x pcf nearest texels of the light's cube face) that sees no
 // occluder nearer than the receiver. `r` runs from the light to the surface. shadow: x cube-map
-// near plane, y depth bias, z slope bias (texels), w face size (GBufferPush::shadow).
+// near plane, y depth bias, z slope bias (texels), w the light's face size (GpuLight::position.w).
 float shadowVisibility(texture2DArray shadowCubes, uint light, vec3 r, vec3 n, vec4 shadow, int pcf) {
     uint face;
     const vec3 f = cubeLookup(r, face);

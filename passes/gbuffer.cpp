@@ -200,9 +200,9 @@ void GBufferPass::updateCulledDraw(const ViewFrustum& frustum) {
 
 const vk::Pipeline& GBufferPass::pipelineFor(vk::PrepareFn& prepare, bool shadowed, bool mirrored, bool grey,
                                              std::uint32_t pcf, bool withGlass) {
-    const PipelineKey key{shadowed, mirrored, grey, shadowed ? std::max(pcf, 1u) : 1u, scene_->lightsVersion()};
-    std::erase_if(pipelines_, [&](const auto& entry) { return entry.first.lightsVersion != key.lightsVersion; });
-    if (withGlass && glassLightsVersion_ != key.lightsVersion) glassPipeline_.reset();  // lights inlined
+    const PipelineKey key{shadowed, mirrored, grey, shadowed ? std::max(pcf, 1u) : 1u, scene_->shadingVersion()};
+    std::erase_if(pipelines_, [&](const auto& entry) { return entry.first.shadingVersion != key.shadingVersion; });
+    if (withGlass && glassShadingVersion_ != key.shadingVersion) glassPipeline_.reset();  // lights inlined
     vk::Pipeline& pipeline = pipelines_[key];
     prepare = [this, &pipeline, key, withGlass] {
         if (!pipeline.handle())
@@ -210,7 +210,7 @@ const vk::Pipeline& GBufferPass::pipelineFor(vk::PrepareFn& prepare, bool shadow
                                     !key.mirrored && hasDepthPrepass(), scene_->lightingConstants(key.pcf));
         if (withGlass && !glassPipeline_.handle()) {
             glassPipeline_ = makeGlassPipeline(*context_, scene_->textured(), scene_->lightingConstants(1));
-            glassLightsVersion_ = key.lightsVersion;
+            glassShadingVersion_ = key.shadingVersion;
         }
     };
     return pipeline;

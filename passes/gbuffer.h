@@ -122,13 +122,14 @@ private:
                 const CulledDraw* culled = nullptr) const;
 
     // The shading pipeline of each variant, specialised for the scene's light list of
-    // `lightsVersion` (older versions are dropped: their recordings must be declared again
+    // `shadingVersion` (SceneGpu: light list and shadow face sizes; older versions are dropped:
+    // their recordings must be declared again
     // anyway); built by the executor's prepare step of a kept pass (a scene without lights never
     // builds a shadowed one). A std::map, so the references that recordings hold stay valid.
     struct PipelineKey {
         bool shadowed = false, mirrored = false, grey = false;
         std::uint32_t pcf = 1;
-        std::uint64_t lightsVersion = 0;
+        std::uint64_t shadingVersion = 0;
         auto operator<=>(const PipelineKey&) const = default;
     };
     // The pipeline slot for these settings, and in `prepare` the pass's step that builds it if the
@@ -140,8 +141,8 @@ private:
     VulkanContext* context_;
     const SceneGpu* scene_;
     std::map<PipelineKey, vk::Pipeline> pipelines_;
-    vk::Pipeline glassPipeline_;     // for lightsVersion glassLightsVersion_, built when the pass is kept
-    std::uint64_t glassLightsVersion_ = 0;
+    vk::Pipeline glassPipeline_;     // for shadingVersion glassShadingVersion_, built when the pass is kept
+    std::uint64_t glassShadingVersion_ = 0;
     std::string glassUnsupported_;
     vk::Pipeline depthPipeline_;  // the pre-pass (SceneGpu::sharedPositions() only)
     CulledDraw culled_;           // the camera's view, when add culls to it

@@ -333,8 +333,24 @@ void SceneGpu::setLights(std::span<const PointLight> lights, std::span<const Dir
     lightPositions_.clear();
     for (const gpu::GpuLight& l : gpuLights) lightPositions_.push_back(glm::vec3(l.position));
     ++lightsVersion_;
+    ++shadingVersion_;
+    faceSizes_.assign(gpuLights.size(), 0u);
+    for (gpu::GpuLight& l : gpuLights) l.position.w = 0.0f;  // set by setShadowFaceSizes
     gpuLights.resize(GBUFFER_MAX_LIGHTS);  // the shader declares the whole array
-    lights_ = vk::uploadBuffer(*context_, bytesOf(gpuLights), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+    gpuLights_ = std::move(gpuLights);
+    lights_ = vk::uploadBuffer(*context_, bytesOf(gpuLights_), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+}
+
+void SceneGpu::setShadowFaceSizes(std::span<const std::uint32_t> sizes) {
+    if (sizes.size() != faceSizes_.size())
+        throw std::logic_error(fmt::format("SceneGpu::setShadowFaceSizes: {} sizes for {} lights", sizes.size(),
+                                           faceSizes_.size()));
+    if (std::equal(sizes.begin(), sizes.end(), faceSizes_.begin())) return;
+    faceSizes_.assign(sizes.begin(), sizes.end());
+    for (std::size_t i = 0; i < faceSizes_.size(); ++i) gpuLights_[i].position.w = static_cast<float>(faceSizes_[i]);
+    for (std::size_t k = 0; k < inlineLights_.size(); ++k) inlineLights_[k].position.w = gpuLights_[k].position.w;
+    ++shadingVersion_;
+    lights_ = vk::uploadBuffer(*context_, bytesOf(gpuLights_), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
 }
 
 std::vector<std::uint32_t> SceneGpu::lightingConstants(std::uint32_t pcf) const {
@@ -343,14 +359,15 @@ std::vector<std::uint32_t> SceneGpu::lightingConstants(std::uint32_t pcf) const 
     constants[LIGHTING_SPEC_SHADOW_PCF] = std::max(pcf, 1u);
     constants[LIGHTING_SPEC_LIGHT_KINDS] = lightKinds_;
     constants[LIGHTING_SPEC_SOFT_SHADOWS] = softShadows_ ? 1u : 0u;
-    static_assert(sizeof(gpu::GpuLight) == 4 * sizeof(glm::vec4) && LIGHTING_SPEC_FLOATS_PER_LIGHT == 13);
+    static_assert(sizeof(gpu::GpuLight) == 4 * sizeof(glm::vec4) && LIGHTING_SPEC_FLOATS_PER_LIGHT == 14);
     for (std::size_t k = 0; k < inlineLights_.size(); ++k) {
         const gpu::GpuLight& l = inlineLights_[k];
         const glm::vec4 fields[4] = {l.position, l.intensity, l.normal, l.cone};
         const std::size_t first = LIGHTING_SPEC_LIGHT_DATA + LIGHTING_SPEC_FLOATS_PER_LIGHT * k;
         for (int f = 0; f < 4; ++f)  // xyz of each field, w dropped
             for (int c = 0; c < 3; ++c) constants[first + 3 * f + c] = std::bit_cast<std::uint32_t>(fields[f][c]);
-        constants[first + 12] = std::bit_cast<std::uint32_t>(l.cone.w);  // the patch's half side
+        constants[first + 12] = std::bit_cast<std::uint32_t>(l.cone.w);      // the patch's half side
+        constants[first + 13] = std::bit_cast<std::uint32_t>(l.position.w);  // the shadow face size
     }
     constants[LIGHTING_SPEC_MICROFACET] = microfacet_ ? 1u : 0u;
     constants[LIGHTING_SPEC_AMBIENT] = ambient_ ? 1u : 0u;

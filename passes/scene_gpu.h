@@ -84,6 +84,15 @@ public:
     // with this PCF side (glsl/lights.glsl).
     std::vector<std::uint32_t> lightingConstants(std::uint32_t pcf) const;
     std::uint64_t lightsVersion() const { return lightsVersion_; }
+    // Texels per side of each light's shadow cube faces (GpuLight::position.w, inlined by the lit
+    // shaders; passes/view_budget.h shadowFaceSizes). setLights sets them to 0: whoever adds the
+    // shadow pass sets them, one per light, each at least 1. A change replaces the light buffer,
+    // as setLights does, but keeps lightsVersion() (the light set, its positions) and bumps
+    // shadingVersion().
+    void setShadowFaceSizes(std::span<const std::uint32_t> sizes);
+    std::span<const std::uint32_t> shadowFaceSizes() const { return faceSizes_; }
+    // Counts the changes of what the lit shaders inline: light lists and shadow face sizes.
+    std::uint64_t shadingVersion() const { return shadingVersion_; }
 
     // CPU copies for the shadow pass's per-face culling: the occluders' vertex positions (three per
     // triangle, in vertex-buffer order) and the lights' positions.
@@ -119,7 +128,9 @@ private:
     bool microfacet_ = false;  // some drawn material has a microfacet lobe (LIGHTING_SPEC_MICROFACET)
     glm::vec3 background_{0.0f};
     std::array<glm::vec3, 9> ambientSH_{};
-    std::uint64_t lightsVersion_ = 0;
+    std::uint64_t lightsVersion_ = 0, shadingVersion_ = 0;
+    std::vector<gpu::GpuLight> gpuLights_;    // the whole list as uploaded (GBUFFER_MAX_LIGHTS entries)
+    std::vector<std::uint32_t> faceSizes_;    // per light, its position.w
     bool textured_ = false, alphaMasked_ = false;
     std::uint32_t atlasEntries_ = 0;
     std::uint32_t vertexCount_ = 0, occluderVertexCount_ = 0;

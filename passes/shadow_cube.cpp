@@ -163,6 +163,17 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
         throw std::invalid_argument(fmt::format("{} shadow cube maps need {} layers; '{}' allows {}: fewer lights or "
                                                 "area-light samples, or shadows off",
                                                 lights, layers, context_->deviceName(), maxLayers_));
+    // Each light's faces fill the top-left faceSizes[i]^2 of its layers (by need, passes/view_budget.h);
+    // the receivers read the same corner (GpuLight::position.w).
+    const std::span<const std::uint32_t> faceSizes = scene.shadowFaceSizes();
+    std::vector<std::uint32_t> layerSizes;
+    for (const std::uint32_t size : faceSizes) {
+        if (size < 1 || size > faceSize)
+            throw std::logic_error(fmt::format("ShadowCubePass::add: a light's face size {} outside [1, {}] (set "
+                                               "SceneGpu::setShadowFaceSizes first)",
+                                               size, faceSize));
+        layerSizes.insert(layerSizes.end(), 6, size);
+    }
     graph::ResourceDesc desc;
     desc.name = resource;
     desc.format = kFormat;
@@ -178,20 +189,22 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
     const std::uint32_t occluders = scene.occluderVertexCount();
     const double keptShare = occluders > 0 ? static_cast<double>(kept) / (6.0 * lights * occluders) : 0.0;
     std::string names;
-    for (std::uint32_t i = 0; i < lights && i < 6; ++i) names += fmt::format("{}'{}'", i ? ", " : "", lightNames[i]);
+    for (std::uint32_t i = 0; i < lights && i < 6; ++i)
+        names += fmt::format("{}'{}' {}^2", i ? ", " : "", lightNames[i], faceSizes[i]);
     if (lights > 6) names += fmt::format(", ... ({} more)", lights - 6);
     gpu::ShadowPush push{};
     push.nearPlane = nearPlane;
     const vk::Pipeline& pipeline = pipelineSlot(scene);
     vk::PassDeclaration pass;
     pass.desc = {kShadowPass, graph::QueueKind::Graphics, {graph::writes(resource, graph::Usage::DepthAttachment)},
-                 fmt::format("shadow cube maps ({}^2 per face, 6 layers each; a directional light's orthographic map fills "
-                             "the first) for {} light{}: {}; per-face culling draws {:.1f}% of triangles x faces{}{}",
+                 fmt::format("shadow cube maps (at most {}^2 per face, each light's by need, 6 layers each; a "
+                             "directional light's orthographic map fills the first) for {} light{}: {}; per-face "
+                             "culling draws {:.1f}% of triangles x faces{}{}",
                              faceSize, lights, lights == 1 ? "" : "s", names, 100.0 * keptShare,
                              view != nullptr ? " (those that can shadow a point in view)" : "",
                              scene.alphaMasked() ? "; alpha test from the texture atlas (the scene has masks)" : "")};
     pass.prepare = [this, &scene] { buildPipeline(scene); };
-    pass.record = [this, &scene, &pipeline, resource, push, layers](vk::PassContext& pc) {
+    pass.record = [this, &scene, &pipeline, resource, push, layers, layerSizes](vk::PassContext& pc) {
         const vk::Image& target = pc.image(resource);
         const VkExtent2D extent{target.info().width, target.info().height};
         VkRenderingAttachmentInfo depthInfo{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -221,9 +234,14 @@ graph::PassId ShadowCubePass::add(graph::RenderGraph& graph, vk::GraphExecutor& 
             const VkDeviceSize offset = 0;
             vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
             vkCmdBindIndexBuffer(cmd, faceIndices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+            std::uint32_t viewportSize = extent.width;
             for (std::uint32_t layer = 0; layer < layers; ++layer) {  // gl_InstanceIndex = layer: face f of light i
                 const auto [first, count] = faceRanges_[layer];
-                if (count > 0) vkCmdDrawIndexed(cmd, count, 1, first, 0, layer);
+                if (count == 0) continue;
+                const VkExtent2D face{layerSizes[layer], layerSizes[layer]};
+                if (face.width != viewportSize) vk::setFullViewport(cmd, face);
+                viewportSize = face.width;
+                vkCmdDrawIndexed(cmd, count, 1, first, 0, layer);
             }
         }
         vkCmdEndRendering(cmd);

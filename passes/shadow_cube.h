@@ -11,6 +11,9 @@
 //   * one rendering instance for all faces of all lights is the cheapest way to rasterise them
 //     on lavapipe (no per-face or per-light begin/end and clear; multiview is capped at 6 views
 //     there, so it would still need one rendering per light).
+// Face sizes by need: light i's faces fill the top-left SceneGpu::shadowFaceSizes()[i]^2 texels
+// of its layers (passes/view_budget.h shadowFaceSizes; the viewport changes per light), so a light
+// that needs few texels rasterises few fragments; the array is as large as the largest face.
 // Per-face culling: each face draws only the triangles that can reach its 90-degree pyramid, from
 // an index list built on the CPU once per light set (one indexed draw per face, firstInstance =
 // its layer). A triangle lies in one or two faces of most lights, so large scenes shade about a
@@ -49,7 +52,8 @@ public:
     // Throws EnvironmentError when the device lacks shaderOutputLayer (Vulkan 1.2 feature).
     explicit ShadowCubePass(VulkanContext& context);
 
-    // Declares `resource` (faceSize^2, 6 layers per light) and the pass "shadow" that renders the
+    // Declares `resource` (faceSize^2, 6 layers per light; each light's faces at its
+    // SceneGpu::shadowFaceSizes(), at most faceSize) and the pass "shadow" that renders the
     // cube maps of `scene`'s lights (lightNames: one per light, for --explain) from its
     // vertices. Throws std::invalid_argument past the device's layer limits. `scene` and this
     // object must outlive execution.

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <span>
 #include <stdexcept>
 
 #include <glm/geometric.hpp>
@@ -73,6 +74,8 @@ void validate(const ShadowSettings& s) {
     if (!(s.depthBias >= 0.0f) || !(s.slopeBias >= 0.0f) || !std::isfinite(s.depthBias) ||
         !std::isfinite(s.slopeBias))
         throw std::invalid_argument("ShadowSettings::depthBias and slopeBias must be finite and non-negative");
+    if (!(s.texelPixels >= 0.0f) || !std::isfinite(s.texelPixels))
+        throw std::invalid_argument("ShadowSettings::texelPixels must be finite and non-negative");
 }
 
 // The compiled graph plus why the scene needs each kept pass (the shadow passes name their lights).
@@ -105,6 +108,8 @@ struct SnapshotRenderer::Impl {
     int environmentLights = -1;  // and the environment's extracted lights
     bool softShadows = false;    // and whether area-light samples had patches
     std::vector<std::string> lightNames;     // of the light buffer, in order
+    std::vector<PointLight> pointLights;     // the buffer's point lights and area-light samples, first
+    double infiniteIrradiance = 0.0;         // luminance of what its directional lights add
     std::optional<passes::ShadowCubePass> shadows;  // built on first use (needs a light)
 
     Impl(VulkanContext& c, const Scene& scene)
@@ -196,6 +201,11 @@ struct SnapshotRenderer::Impl {
         sceneGpu.setBackground(env ? env->background : glm::vec3(0.0f));
         lightNames.clear();
         for (const PointLight& l : lights) lightNames.push_back(l.name);
+        pointLights = lights;
+        infiniteIrradiance = 0.0;
+        for (const DirectionalLight& d : directionals)
+            if (glm::length(d.direction) > 0.0f)
+                infiniteIrradiance += 0.2126 * d.irradiance.x + 0.7152 * d.irradiance.y + 0.0722 * d.irradiance.z;
         for (const DirectionalLight& d : directionals)
             if (glm::length(d.direction) > 0.0f) {
                 lightNames.push_back(d.name);
@@ -262,6 +272,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     graph.addResource(depth);
     // Shadow maps only for what is there: no lights (or no geometry to cast), no shadow pass.
     passes::GBufferShadows shadows;
+    bool mirrorsForceFullShadows = false;
     const bool shadowed = settings.shadows.enabled && s.sceneGpu.lightCount() > 0 && !s.emptyMesh;
     if (shadowed) {
         if (!s.shadows) s.shadows.emplace(s.context);
@@ -269,13 +280,26 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         // Geometry within this distance of a light (its own emitter, for area-light samples) casts
         // no shadow; the stored near/ma keeps float precision at every distance.
         shadows.nearPlane = std::max(1e-4f * glm::length(s.bounds.extent()), 1e-6f);
-        shadows.faceSize = static_cast<std::uint32_t>(settings.shadows.resolution);
         shadows.depthBias = settings.shadows.depthBias;
         shadows.slopeBias = settings.shadows.slopeBias;
         shadows.pcf = static_cast<std::uint32_t>(settings.shadows.pcf);
-        // Mirrors show points outside the frustum, which need every caster.
+        // Mirrors show points outside the frustum, which need every caster and the full resolution.
         const bool mirrorsInView =
             s.mirrors.anyInView(snapshotView, {snapW, snapH}) || s.probes.anyInView(snapshotView, {snapW, snapH});
+        // Each light's face size by need (passes/view_budget.h); lights at infinity take the whole layer.
+        // In pixels of the map (the render's), which is what a shadow edge's position must be right to.
+        mirrorsForceFullShadows = mirrorsInView;
+        const passes::ShadowNeedView need{viewProj, snapshotView.camera.origin,
+                                          {static_cast<unsigned>(width), static_cast<unsigned>(height)}, region};
+        const std::vector<int> bySize =
+            passes::shadowFaceSizes(s.pointLights, s.infiniteIrradiance, need,
+                                    mirrorsInView ? 0.0f : settings.shadows.texelPixels, settings.shadows.resolution);
+        std::vector<std::uint32_t> faceSizes(s.sceneGpu.lightCount(),
+                                             static_cast<std::uint32_t>(settings.shadows.resolution));
+        for (std::size_t i = 0; i < bySize.size() && i < faceSizes.size(); ++i)
+            faceSizes[i] = static_cast<std::uint32_t>(bySize[i]);
+        s.sceneGpu.setShadowFaceSizes(faceSizes);
+        shadows.faceSize = *std::max_element(faceSizes.begin(), faceSizes.end());
         const passes::ViewFrustum frustum = passes::ViewFrustum::fromViewProjection(viewProj);
         s.shadows->add(graph, s.executor, shadows.resource, s.sceneGpu, s.lightNames, shadows.faceSize,
                        shadows.nearPlane, mirrorsInView ? nullptr : &frustum, s.cullRadii);
@@ -346,6 +370,17 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
         for (std::size_t a = 0; a < s.lighting.areaLights.size() && a < s.areaSamples.size(); ++a)
             result.explain += fmt::format("{} '{}' {}", a ? "," : "", s.lighting.areaLights[a].name, s.areaSamples[a]);
         result.explain += "\n";
+    }
+    if (shadowed) {
+        result.explain += fmt::format("shadow faces by need (texels per side, one texel at most {} render pixel(s) at "
+                                      "full contrast, at most {}{}):",
+                                      settings.shadows.texelPixels, settings.shadows.resolution,
+                                      mirrorsForceFullShadows ? "; a mirror in view: every light at most" : "");
+        const std::span<const std::uint32_t> sizes = s.sceneGpu.shadowFaceSizes();
+        for (std::size_t i = 0; i < sizes.size() && i < s.lightNames.size(); ++i)
+            result.explain += fmt::format("{} '{}' {}", i ? "," : "", s.lightNames[i], sizes[i]);
+        result.explain += "\n";
+        result.shadowFaceSizes.assign(sizes.begin(), sizes.end());
     }
     result.dot = compiled.toDot();
     result.shadowCubeMaps = shadowed ? static_cast<int>(s.sceneGpu.lightCount()) : 0;

@@ -36,6 +36,9 @@ struct SnapshotResult {
     int shadowCubeMaps = 0;  // cube maps rendered: one per shadowed point light / area-light sample
                              // (and per directional light: its orthographic map takes a cube's layers)
     std::vector<int> areaLightSamples;  // the point samples each area light got, in the scene's order
+    // Texels per side of each shadowed light's cube faces (point lights, area-light samples, then
+    // directional lights; passes/view_budget.h shadowFaceSizes); empty without the shadow pass.
+    std::vector<int> shadowFaceSizes;
 };
 
 // What of the scene the Snapshot cannot show the way the tracer will, one sentence each (curved

@@ -42,8 +42,9 @@ bool parse(const std::string& name, AamapSource& source) {
 // subpixel map's k range its header's: one definition each, which the schema names.
 namespace {
 
-// The keys of the section that the passes take in their own structs: soft_shadows (its default
-// ShadowSettings' own) and the aamap filter chain's (their defaults glsl/shared/aamap_filter.h's).
+// The keys of the section that the passes take in their own structs: soft_shadows and
+// shadow_texel_pixels (their defaults ShadowSettings' own) and the aamap filter chain's (their
+// defaults glsl/shared/aamap_filter.h's).
 const Schema<ShadowSettings>& shadowKeys() {
     using H = ShadowSettings;
     static const Schema<H> schema = [] {
@@ -53,7 +54,15 @@ const Schema<ShadowSettings>& shadowKeys() {
                    "blocker search and a filter of the penumbra's width in its shadow map, "
                    "[architecture.md](architecture.md), \"Soft shadows of area-light samples\"); false: hard "
                    "shadows from every sample. Point and spot lights cast hard shadows either way. Only `false` "
-                   "enters the cache keys");
+                   "enters the cache keys")
+            .field(&H::texelPixels, "shadow_texel_pixels", in(0.0, 64.0), ShadowSettings{}.texelPixels,
+                   "shadow maps by need: each light's cube faces get the fewest texels (a multiple of 16, at least "
+                   "32, at most the shadow resolution, 256) for which one texel spans at most this many render "
+                   "pixels (the map's) at the receivers in view, divided by the light's share of the irradiance "
+                   "there (a faint shadow's edge may move further), so a light near what it lights, far from the "
+                   "eye or outshone gets fewer ([architecture.md](architecture.md), \"Samples and casters by "
+                   "need\"); with a mirror in view every light gets the full resolution; 0: every light the full "
+                   "resolution");
         return s;
     }();
     return schema;

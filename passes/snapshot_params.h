@@ -24,7 +24,11 @@ bool parse(const std::string& name, AamapSource& source);  // false for an unkno
 // Shadow cube maps, one per point light and per area-light sample.
 struct ShadowSettings {
     bool enabled = true;     // no lights: no shadow pass either way
-    int resolution = 256;    // texels per cube-face side
+    int resolution = 256;    // texels per cube-face side at most (each light's by need, texelPixels)
+    // Each light's faces get the fewest texels for which one spans at most this many render
+    // pixels (the map's) at the receivers in view, for a shadow edge of full contrast (passes/view_budget.h
+    // shadowFaceSizes); 0: every light at `resolution`. The config key snapshot.shadow_texel_pixels.
+    float texelPixels = 1.0f;
     float depthBias = 0.5f;  // constant bias, in shadow-map texels at the receiver
     float slopeBias = 1.0f;  // times tan(incidence angle), in texels (slope-scaled bias)
     int pcf = 1;             // percentage-closer filter kernel side in texels; 1 = one tap
@@ -63,7 +67,7 @@ struct SnapshotSettings {
     // against (glsl/shared/subpixel_map.h; metrics.flip_threshold).
     int subpixel;
     float flipThreshold = 0.1f;
-    ShadowSettings shadows;  // soft_shadows
+    ShadowSettings shadows;  // soft_shadows, shadow_texel_pixels
     bool operator==(const SnapshotSettings&) const = default;
 };
 

@@ -102,4 +102,83 @@ void cullShadowCasters(std::span<const glm::vec3> positions, std::span<const std
     }
 }
 
+std::vector<glm::vec3> shadowReceivers(const ShadowNeedView& view) {
+    std::vector<glm::vec3> receivers;
+    const glm::mat4 inverse = glm::inverse(view.viewProj);
+    constexpr int kGrid = 5;
+    for (int j = 0; j < kGrid; ++j)
+        for (int i = 0; i < kGrid; ++i) {
+            // A point on the ray through the cell's centre, in front of the eye (any depth in (0, 1)).
+            const glm::vec4 ndc(-1.0f + (2.0f * i + 1.0f) / kGrid, -1.0f + (2.0f * j + 1.0f) / kGrid, 0.5f, 1.0f);
+            const glm::vec4 q = inverse * ndc;
+            if (!(std::abs(q.w) > 0.0f)) continue;
+            const glm::vec3 d = glm::vec3(q) / q.w - view.eye;
+            if (!(glm::dot(d, d) > 0.0f)) continue;
+            const glm::vec3 dir = glm::normalize(d);
+            // The ray's segment inside the region (slabs).
+            float t0 = 0.0f, t1 = INFINITY;
+            for (int a = 0; a < 3; ++a) {
+                if (std::abs(dir[a]) < 1e-12f) {
+                    if (view.eye[a] < view.region.lo[a] || view.eye[a] > view.region.hi[a]) t1 = -1.0f;
+                    continue;
+                }
+                float ta = (view.region.lo[a] - view.eye[a]) / dir[a];
+                float tb = (view.region.hi[a] - view.eye[a]) / dir[a];
+                if (ta > tb) std::swap(ta, tb);
+                t0 = std::max(t0, ta);
+                t1 = std::min(t1, tb);
+            }
+            if (!(t1 > t0) || !std::isfinite(t1)) continue;
+            for (const float f : {0.25f, 0.5f, 0.75f, 1.0f}) receivers.push_back(view.eye + (t0 + f * (t1 - t0)) * dir);
+        }
+    return receivers;
+}
+
+std::vector<int> shadowFaceSizes(std::span<const PointLight> lights, double otherIrradiance, const ShadowNeedView& view,
+                                 float texelPixels, int maxSize) {
+    maxSize = std::max(maxSize, 1);
+    const int minSize = std::min(kMinShadowFaceSize, maxSize);
+    std::vector<int> sizes(lights.size(), maxSize);
+    if (!(texelPixels > 0.0f) || lights.empty()) return sizes;
+    const std::vector<glm::vec3> receivers = shadowReceivers(view);
+    if (receivers.empty()) return sizes;  // nothing known of what is seen: the full resolution
+    // Pixels per world unit across the view at clip depth w: half the raster times the length of
+    // clip x's (or y's) row over w, the finer of the two.
+    auto row = [&](int r) {
+        return glm::vec3(view.viewProj[0][r], view.viewProj[1][r], view.viewProj[2][r]);
+    };
+    const double pixelsPerUnitAtDepthOne =
+        0.5 * std::max(view.pixels.x * glm::length(row(0)), view.pixels.y * glm::length(row(1)));
+    std::vector<double> need(lights.size(), 0.0), irradiance(lights.size());
+    for (const glm::vec3& p : receivers) {
+        const glm::vec4 clip = view.viewProj * glm::vec4(p, 1.0f);
+        if (!(clip.w > 0.0f)) continue;
+        const double pixelsPerUnit = pixelsPerUnitAtDepthOne / clip.w;
+        double total = std::max(otherIrradiance, 0.0);
+        for (std::size_t i = 0; i < lights.size(); ++i) {
+            const PointLight& l = lights[i];
+            const glm::vec3 r = p - l.position;
+            const double d2 = glm::dot(r, r);
+            const double lum = 0.2126 * l.intensity.x + 0.7152 * l.intensity.y + 0.0722 * l.intensity.z;
+            const glm::vec3 out = d2 > 0.0 ? r / static_cast<float>(std::sqrt(d2)) : glm::vec3(0.0f);
+            irradiance[i] = d2 > 0.0 ? std::max(lum, 0.0) * emissionFactor(l, out) / d2 : 0.0;
+            total += irradiance[i];
+        }
+        if (!(total > 0.0) || !std::isfinite(total)) continue;
+        for (std::size_t i = 0; i < lights.size(); ++i) {
+            const double distance = glm::length(p - lights[i].position);
+            // A texel spans at most 2 d / size here, which is (2 d / size) pixelsPerUnit pixels.
+            const double share = irradiance[i] / total;
+            need[i] = std::max(need[i], 2.0 * distance * pixelsPerUnit * share / texelPixels);
+        }
+    }
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        if (!std::isfinite(need[i])) continue;  // stays maxSize
+        const double steps = std::ceil(need[i] / kShadowFaceStep);
+        const int size = steps * kShadowFaceStep >= maxSize ? maxSize : static_cast<int>(steps) * kShadowFaceStep;
+        sizes[i] = std::clamp(size, minSize, maxSize);
+    }
+    return sizes;
+}
+
 }  // namespace aamap::passes

@@ -14,12 +14,19 @@
 //   between its light and some point in view: for each of those planes with the light (and the
 //   patch it stands for) inside it, a triangle entirely outside cannot cut a segment from the
 //   light to a point inside (both ends lie in the half-space, and so does the segment).
+// * Shadow-map resolution by need: a shadow edge drawn from a map moves by up to one texel's
+//   footprint at its receiver; the Laplacian sees that move as the edge's contrast times its
+//   distance. So each light's cube faces get the fewest texels for which a texel at every sampled
+//   receiver in view spans at most `texelPixels / c` pixels of the map, c the light's share of the
+//   unshadowed irradiance there: a light near what it lights, far from the eye, or outshone by
+//   another gets fewer texels.
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -62,5 +69,34 @@ std::vector<std::uint32_t> trianglesInView(std::span<const glm::vec3> positions,
 void cullShadowCasters(std::span<const glm::vec3> positions, std::span<const std::uint32_t> faceIndices,
                        const glm::vec3& light, float patchRadius, const ViewFrustum& frustum,
                        std::vector<std::uint32_t>& out);
+
+// The least and the rounding step of a shadow cube face's side chosen by need (texels), below the
+// configured resolution: a face's side is a multiple of the step, so small view changes rarely
+// change it (the lit shaders inline the sizes).
+inline constexpr int kMinShadowFaceSize = 32;
+inline constexpr int kShadowFaceStep = 16;
+
+// What shadowFaceSizes needs of the view: its camera and raster, and the region it can see.
+struct ShadowNeedView {
+    glm::mat4 viewProj{1.0f};  // the Snapshot camera's (clip x, y in [-w, w], w the eye's depth)
+    glm::vec3 eye{0.0f};
+    glm::uvec2 pixels{0u};     // the map's size (the render's): the pixels an edge must be placed in
+    Bounds region;             // visibleRegion(viewProj, scene bounds)
+};
+
+// The receivers shadowFaceSizes samples: along a 5 x 5 grid of the camera's rays, the points at a
+// quarter, half, three quarters and all of each ray's segment inside `region` (from the eye when
+// it is inside). Rays that miss the region add none.
+std::vector<glm::vec3> shadowReceivers(const ShadowNeedView& view);
+
+// Texels per cube-face side for each light (a multiple of kShadowFaceStep in [min(kMinShadowFaceSize,
+// maxSize), maxSize]): the least for which, at every receiver p of shadowReceivers, the face's
+// texel there (at most 2 d / size wide at distance d from the light) spans at most
+// texelPixels / c(p) pixels of the raster, c(p) = E_i(p) / (sum_j E_j(p) + otherIrradiance) with
+// E_j = luminance(intensity) x emission factor / d^2 (the unshadowed irradiance, the receiver's
+// cosine left out). otherIrradiance: what lights at infinity add (luminance). texelPixels <= 0:
+// every light maxSize.
+std::vector<int> shadowFaceSizes(std::span<const PointLight> lights, double otherIrradiance, const ShadowNeedView& view,
+                                 float texelPixels, int maxSize);
 
 }  // namespace aamap::passes

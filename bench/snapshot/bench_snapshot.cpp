@@ -37,6 +37,8 @@ int main(int argc, char** argv) {
     app.add_option("--map", mapName, "snapshot.map: luminance, geometric, combined or subpixel");
     app.add_option("--subpixel", options.settings.subpixel, "the subpixel map's samples per pixel side k");
     app.add_option("--shadow-resolution", options.settings.shadows.resolution, "shadow cube-face size (texels)");
+    app.add_option("--shadow-texel-pixels", options.settings.shadows.texelPixels,
+                   "snapshot.shadow_texel_pixels: shadow faces by need (0: every light at --shadow-resolution)");
     app.add_option("--shadow-pcf", options.settings.shadows.pcf, "shadow PCF kernel side (1: one tap)");
     bool noShadows = false;
     app.add_flag("--no-shadows", noShadows, "snapshot without shadow cube maps");

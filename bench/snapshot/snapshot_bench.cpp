@@ -60,8 +60,9 @@ std::string formatSnapshotBench(const SnapshotBenchResult& result, const Snapsho
                                   result.deviceName, sw, sh, options.width, options.height,
                                   passes::toString(options.settings.map), options.settings.areaLightSamples,
                                   options.settings.shadows.enabled
-                                      ? fmt::format("shadows {}^2 per face, pcf {}", options.settings.shadows.resolution,
-                                                    options.settings.shadows.pcf)
+                                      ? fmt::format("shadows at most {}^2 per face (by need, {} px per texel), pcf {}",
+                                                    options.settings.shadows.resolution,
+                                                    options.settings.shadows.texelPixels, options.settings.shadows.pcf)
                                       : std::string("no shadows"),
                                   options.iterations, options.warmup);
     out += fmt::format("{:<12} {:>10}\n", "pass", "GPU ms");

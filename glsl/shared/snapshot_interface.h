@@ -64,7 +64,8 @@ struct GpuLobe {
 // radius of the sphere its orthographic shadow map covers (the scene's bounds): layer 6i of the
 // shadow array holds that map, layers 6i+1..6i+5 stay empty.
 struct GpuLight {
-    vec4 position;   // xyz
+    vec4 position;   // xyz; w: the side of its shadow cube faces in texels (shadow maps by need,
+                     // passes/view_budget.h), drawn in the layers' top-left corner
     vec4 intensity;  // rgb, W/sr
     vec4 normal;     // xyz: lobe or spot-cone axis (unit), or 0 for an isotropic light
     vec4 cone;       // x: cos inner, y: cos outer half-angle; z: 1 for a spot (axis in normal), else 0;
@@ -85,11 +86,12 @@ struct GpuLight {
 #define LIGHTING_SPEC_SHADOW_PCF 1   // uint: PCF kernel side in texels (1: one tap)
 #define LIGHTING_SPEC_LIGHT_KINDS 2  // uint: the LIGHT_KIND_* bits of the kinds in the list
 #define LIGHTING_SPEC_SOFT_SHADOWS 3 // uint: 1 if some light has a patch (GpuLight::cone.w > 0)
-// Then light k < LIGHTING_INLINE_LIGHTS as floats from LIGHTING_SPEC_LIGHT_DATA + 13 k: position
-// xyz, intensity rgb, normal xyz, cone xyzw (GpuLight's fields in order, the other w dropped);
-// zeros past the list. Lights from LIGHTING_INLINE_LIGHTS on are read from the uniform buffer.
+// Then light k < LIGHTING_INLINE_LIGHTS as floats from LIGHTING_SPEC_LIGHT_DATA + 14 k: position
+// xyz, intensity rgb, normal xyz, cone xyzw (GpuLight's fields in order, the other w dropped),
+// then position.w (the shadow face size); zeros past the list. Lights from
+// LIGHTING_INLINE_LIGHTS on are read from the uniform buffer.
 #define LIGHTING_SPEC_LIGHT_DATA 4
-#define LIGHTING_SPEC_FLOATS_PER_LIGHT 13
+#define LIGHTING_SPEC_FLOATS_PER_LIGHT 14
 #define LIGHTING_INLINE_LIGHTS 8  // = the APPLY list of FOR_EACH_INLINE_LIGHT (glsl/lights.glsl)
 #define LIGHT_KIND_ISOTROPIC 1u      // GpuLight::normal is 0
 #define LIGHT_KIND_LOBE 2u           // cosine lobe about GpuLight::normal (area-light samples)
@@ -111,7 +113,8 @@ struct GBufferPush {
     uint mirrorLayer;  // mirror variants (GBUFFER_MIRROR): the layer of mirror.colour to draw into
     float exposure;    // grey variants (GBUFFER_GREY): as FilterPush::exposure
     uint pad1, pad2;
-    vec4 shadow;     // x: cube-map near plane, y: depth bias, z: slope bias (texels), w: face size
+    vec4 shadow;     // x: cube-map near plane, y: depth bias, z: slope bias (texels), w: the layers'
+                     // size (each light's faces: GpuLight::position.w)
     vec4 clipPlane;  // mirror variants: keep dot(xyz, p) >= w, the mirror's side of its plane
 };
 

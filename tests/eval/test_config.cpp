@@ -112,6 +112,8 @@ TEST(ConfigErrors, OutOfRange) {
     expectAt(parseError(kMinimal + "image: {width: 0}\n"), 4, 16, "0 is out of range [1, 16384]");
     expectAt(parseError(kMinimal + "image: {exposure: 0}\n"), 4, 19, "out of range (0");
     expectAt(parseError(kMinimal + "snapshot: {noise_floor: 1.5}\n"), 4, 25, "out of range");
+    expectAt(parseError(kMinimal + "snapshot: {shadow_texel_pixels: 65}\n"), 4, 33, "65 is out of range [0, 64]");
+    expectAt(parseError(kMinimal + "snapshot: {shadow_texel_pixels: -1}\n"), 4, 33, "out of range");
     expectAt(parseError(kMinimal + "snapshot: {scale: .nan}\n"), 4, 19, "finite");
     expectAt(parseError("scene: builtin:cornell\nrenders: [{strategy: uniform, rpp: 4096}]\n"), 2, 36, "out of range");
     expectAt(parseError(kMinimal + "shading: {light_selection: random}\n"), 4, 28,

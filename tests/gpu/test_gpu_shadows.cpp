@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -136,6 +137,46 @@ TEST_F(SnapshotShadows, ShadowEdgeLiesOnTheAnalyticProjection) {
     }
 }
 
+// Shadow maps by need (passes/view_budget.h): a wider texel allowed gives the light fewer texels,
+// and its shadow edge stays within that many pixels of the analytic one; 0 gives the resolution.
+TEST_F(SnapshotShadows, ShadowFacesByNeedKeepTheEdgeWithinTheirTexel) {
+    const Scene scene = boxScene(true);
+    SnapshotRenderer renderer(context(), scene);
+    SnapshotSettings settings;
+    settings.scale = 1.0f;
+    const int size = 160;
+    const float s = kLight.z / (kLight.z - kHeight);
+    const float edgeX = kLight.x + (kHalf - kLight.x) * s;
+    const PinholeCamera camera = PinholeCamera::fromView(topView());
+    int previous = 1 << 30;
+    for (const float texelPixels : {0.0f, 1.0f, 4.0f}) {
+        settings.shadows.texelPixels = texelPixels;
+        const SnapshotResult r = renderer.render(topView(), size, size, settings);
+        ASSERT_EQ(r.shadowFaceSizes.size(), 1u);
+        const int faceSize = r.shadowFaceSizes[0];
+        if (texelPixels == 0.0f) EXPECT_EQ(faceSize, settings.shadows.resolution);
+        EXPECT_LE(faceSize, previous);
+        previous = faceSize;
+        EXPECT_NE(r.explain.find("'bulb' " + std::to_string(faceSize)), std::string::npos) << r.explain;
+        const int y = size / 2;
+        int expected = -1, measured = -1;
+        float lit = 0.0f;
+        for (int x = 0; x < size; ++x) {
+            const glm::vec3 d = camera.direction((x + 0.5f) / size, (y + 0.5f) / size);
+            const glm::vec3 hit = camera.origin + (-camera.origin.z / d.z) * d;
+            if (expected < 0 && hit.x > edgeX) expected = x;
+            if (hit.x > edgeX) lit = std::max(lit, r.snapshot.at(x, y).r);
+        }
+        for (int x = 0; x < size && measured < 0; ++x) {
+            const glm::vec3 d = camera.direction((x + 0.5f) / size, (y + 0.5f) / size);
+            const glm::vec3 hit = camera.origin + (-camera.origin.z / d.z) * d;
+            if (hit.x > kHalf + 0.02f && r.snapshot.at(x, y).r > 0.5f * lit) measured = x;
+        }
+        EXPECT_NEAR(measured, expected, std::max(1.0f, texelPixels) + 1.0f) << "at " << texelPixels;
+    }
+    EXPECT_LT(previous, settings.shadows.resolution);  // 4 pixels per texel: fewer texels
+}
+
 TEST_F(SnapshotShadows, ShadowPassesOnlyForLights) {
     SnapshotSettings settings;
     {
@@ -149,7 +190,12 @@ TEST_F(SnapshotShadows, ShadowPassesOnlyForLights) {
     const SnapshotResult r = renderer.render(topView(), 32, 32, settings);
     EXPECT_EQ(countPass(r, "shadow"), 1);
     EXPECT_EQ(r.shadowCubeMaps, 1);
-    EXPECT_NE(r.explain.find("'shadow.cubes': 256x256 D32Float, 6 layers"), std::string::npos) << r.explain;
+    // The array is as large as the light's faces, which a 32-pixel view needs fewer of (by need).
+    ASSERT_EQ(r.shadowFaceSizes.size(), 1u);
+    EXPECT_LE(r.shadowFaceSizes[0], settings.shadows.resolution);
+    EXPECT_NE(r.explain.find(fmt::format("'shadow.cubes': {0}x{0} D32Float, 6 layers", r.shadowFaceSizes[0])),
+              std::string::npos)
+        << r.explain;
     EXPECT_NE(r.explain.find("for 1 light: 'bulb'"), std::string::npos) << r.explain;
     EXPECT_EQ(r.passTimes.front().pass, "shadow");  // ordered before the G-buffer that samples it
 

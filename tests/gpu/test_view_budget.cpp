@@ -180,5 +180,105 @@ TEST(ViewBudget, ShadowCullKeepsEveryCasterOfAVisiblePoint) {
     }
 }
 
+// Shadow-map resolution by need: a camera at the origin looking down -z (20 degrees, 256^2
+// pixels) at a wall `distance` away, which fills the view; lights in front of the wall.
+ShadowNeedView wallView(float distance) {
+    ShadowNeedView v;
+    v.viewProj = glm::perspective(glm::radians(20.0f), 1.0f, 0.01f, 1000.0f) *
+                 glm::lookAt(glm::vec3(0.0f), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
+    v.eye = glm::vec3(0.0f);
+    v.pixels = {256u, 256u};
+    const Bounds wall{glm::vec3(-1000.0f, -1000.0f, -1.01f * distance), glm::vec3(1000.0f, 1000.0f, -distance)};
+    v.region = visibleRegion(v.viewProj, wall);
+    return v;
+}
+
+PointLight pointLight(const glm::vec3& position, float intensity = 1.0f) {
+    PointLight l;
+    l.position = position;
+    l.intensity = glm::vec3(intensity);
+    return l;
+}
+
+TEST(ShadowNeed, ReceiversLieInTheVisibleRegion) {
+    const ShadowNeedView v = wallView(10.0f);
+    const std::vector<glm::vec3> receivers = shadowReceivers(v);
+    ASSERT_EQ(receivers.size(), 100u);  // 5 x 5 rays, 4 points each, every ray meets the wall
+    for (const glm::vec3& p : receivers) {
+        EXPECT_GE(p.z, v.region.lo.z - 1e-3f);
+        EXPECT_LE(p.z, v.region.hi.z + 1e-3f);
+    }
+}
+
+TEST(ShadowNeed, ALightAndWhatItLightsTwiceAsFarFromTheEyeNeverGetMoreTexels) {
+    int previous = 1 << 30;
+    for (const float d : {2.0f, 4.0f, 8.0f, 16.0f, 32.0f, 64.0f}) {
+        const PointLight light = pointLight({0.0f, 0.0f, 1.0f - d});  // one unit in front of the wall
+        for (const float texelPixels : {1.0f, 4.0f}) {
+            const int size = shadowFaceSizes(std::span(&light, 1), 0.0, wallView(d), texelPixels, 256)[0];
+            if (texelPixels == 1.0f) {
+                EXPECT_LE(size, previous) << "at distance " << d;
+                previous = size;
+            }
+        }
+    }
+    // Near the eye a texel must be small: the whole resolution.
+    const PointLight near = pointLight({0.0f, 0.0f, -1.0f});
+    EXPECT_EQ(shadowFaceSizes(std::span(&near, 1), 0.0, wallView(2.0f), 1.0f, 256)[0], 256);
+}
+
+TEST(ShadowNeed, ALightTwiceAsFarAsABrighterOneNeverGetsMoreTexels) {
+    // Light a one unit from the wall; light b further: its share of the irradiance falls faster
+    // than its texels grow, so it needs fewer, down to the least size.
+    const float d = 20.0f;
+    const PointLight a = pointLight({0.0f, 0.0f, 1.0f - d});
+    int previous = 1 << 30;
+    for (const float h : {1.5f, 3.0f, 6.0f, 12.0f}) {
+        const std::vector<PointLight> lights{a, pointLight({0.0f, 0.0f, h - d})};
+        const std::vector<int> sizes = shadowFaceSizes(lights, 0.0, wallView(d), 1.0f, 256);
+        EXPECT_LE(sizes[1], previous) << "at " << h;
+        EXPECT_LE(sizes[1], sizes[0]);
+        previous = sizes[1];
+    }
+    EXPECT_LT(previous, 256);
+    // A dimmer light (and one outshone by lights at infinity) never gets more.
+    int dimmer = 1 << 30;
+    for (const float intensity : {1.0f, 0.5f, 0.1f, 0.01f}) {
+        const std::vector<PointLight> lights{a, pointLight({0.0f, 0.0f, 3.0f - d}, intensity)};
+        const int size = shadowFaceSizes(lights, 0.0, wallView(d), 1.0f, 256)[1];
+        EXPECT_LE(size, dimmer) << "at intensity " << intensity;
+        dimmer = size;
+        EXPECT_LE(shadowFaceSizes(lights, 1.0, wallView(d), 1.0f, 256)[1], size);
+    }
+    EXPECT_EQ(dimmer, kMinShadowFaceSize);
+}
+
+TEST(ShadowNeed, SizesStayWithinTheLimits) {
+    const float d = 20.0f;
+    const std::vector<PointLight> lights{pointLight({0.0f, 0.0f, 1.0f - d}), pointLight({3.0f, 1.0f, 2.0f - d}, 0.3f),
+                                         pointLight({0.0f, 0.0f, -1.0f})};
+    int previous[3] = {1 << 30, 1 << 30, 1 << 30};
+    for (const float texelPixels : {0.25f, 0.5f, 1.0f, 2.0f, 4.0f, 16.0f, 64.0f}) {
+        for (const int maxSize : {16, 100, 256, 1024}) {
+            const std::vector<int> sizes = shadowFaceSizes(lights, 0.0, wallView(d), texelPixels, maxSize);
+            for (std::size_t i = 0; i < sizes.size(); ++i) {
+                EXPECT_LE(sizes[i], maxSize);
+                EXPECT_GE(sizes[i], std::min(kMinShadowFaceSize, maxSize));
+                EXPECT_TRUE(sizes[i] == maxSize || sizes[i] % kShadowFaceStep == 0) << sizes[i];
+                if (maxSize == 1024) {  // a wider texel allowed: never more texels
+                    EXPECT_LE(sizes[i], previous[i]) << "light " << i << " at " << texelPixels;
+                    previous[i] = sizes[i];
+                }
+            }
+        }
+    }
+    EXPECT_EQ(previous[0], kMinShadowFaceSize);  // 64 pixels per texel: the least size
+    // 0: every light at the full resolution; so without any receiver in view.
+    for (const int size : shadowFaceSizes(lights, 0.0, wallView(d), 0.0f, 256)) EXPECT_EQ(size, 256);
+    ShadowNeedView away = wallView(d);
+    away.region = Bounds{glm::vec3(10.0f, 10.0f, 10.0f), glm::vec3(11.0f, 11.0f, 11.0f)};  // behind the eye
+    for (const int size : shadowFaceSizes(lights, 0.0, away, 1.0f, 256)) EXPECT_EQ(size, 256);
+}
+
 }  // namespace
 }  // namespace aamap::passes
