@@ -154,7 +154,9 @@ TEST_F(SnapshotShadows, ShadowFacesByNeedKeepTheEdgeWithinTheirTexel) {
         const SnapshotResult r = renderer.render(topView(), size, size, settings);
         ASSERT_EQ(r.shadowFaceSizes.size(), 1u);
         const int faceSize = r.shadowFaceSizes[0];
-        if (texelPixels == 0.0f) EXPECT_EQ(faceSize, settings.shadows.resolution);
+        if (texelPixels == 0.0f) {
+            EXPECT_EQ(faceSize, settings.shadows.resolution);
+        }
         EXPECT_LE(faceSize, previous);
         previous = faceSize;
         EXPECT_NE(r.explain.find("'bulb' " + std::to_string(faceSize)), std::string::npos) << r.explain;

@@ -112,7 +112,9 @@ TEST(ViewBudget, TrianglesInViewKeepsEveryVisibleTriangle) {
                                           v * (positions[3 * t + 2] - positions[3 * t]));
         }
         visible += seen;
-        if (seen) EXPECT_TRUE(isKept[t]) << "triangle " << t << " is seen but culled";
+        if (seen) {
+            EXPECT_TRUE(isKept[t]) << "triangle " << t << " is seen but culled";
+        }
     }
     EXPECT_GT(visible, 100);
     EXPECT_LT(kept.size(), 3000u / 2);  // and most of the space around it is culled
