@@ -185,6 +185,42 @@ ShapeMesh sphere(const Element& shape) {
     return m;
 }
 
+
+// Mitsuba's cylinder: an open tube (no caps) of the given radius from p0 to p1, normals outward,
+// u around the axis and v along it. Straight along the axis, so one ring of quads is exact there.
+ShapeMesh cylinder(const Element& shape) {
+    const glm::vec3 p0 = pointProperty(shape, "p0", glm::vec3(0.0f));
+    const glm::vec3 p1 = pointProperty(shape, "p1", glm::vec3(0.0f, 0.0f, 1.0f));
+    const float radius = floatProperty(shape, "radius", 1.0f);
+    if (!(radius > 0.0f) || !std::isfinite(radius)) fail(shape, fmt::format("cylinder radius {} is not positive", radius));
+    const glm::vec3 axis = p1 - p0;
+    const float length = glm::length(axis);
+    if (!(length > 0.0f) || !std::isfinite(length)) fail(shape, "cylinder p0 and p1 coincide");
+    const glm::vec3 w = axis / length;
+    // Any unit vector across the axis; the branch keeps it away from parallel to w.
+    const glm::vec3 u = glm::normalize(std::abs(w.x) > 0.9f ? glm::cross(w, glm::vec3(0, 1, 0)) : glm::cross(w, glm::vec3(1, 0, 0)));
+    const glm::vec3 v = glm::cross(w, u);
+    // The segment count bounds the chord's sagitta; the n-gon's vertices lie on the true circle.
+    const int around = circleSegments(kTessellationError);
+    ShapeMesh m;
+    for (int end = 0; end < 2; ++end) {
+        for (int i = 0; i <= around; ++i) {
+            const float phi = 2.0f * kPi * i / around;
+            const glm::vec3 d = std::cos(phi) * u + std::sin(phi) * v;
+            m.positions.push_back((end == 0 ? p0 : p1) + radius * d);
+            m.normals.push_back(d);
+            m.uvs.push_back({static_cast<float>(i) / around, static_cast<float>(end)});
+        }
+    }
+    const auto at = [&](int i, int end) { return static_cast<std::uint32_t>(end * (around + 1) + i); };
+    for (int i = 0; i < around; ++i) {
+        // Counter-clockwise from outside: (u, v, w) is right-handed, so tangent x axis points out.
+        m.triangles.emplace_back(at(i, 0), at(i + 1, 0), at(i + 1, 1));
+        m.triangles.emplace_back(at(i, 0), at(i + 1, 1), at(i, 1));
+    }
+    return m;
+}
+
 }  // namespace
 
 int circleSegments(float relativeError) {
@@ -201,7 +237,8 @@ ShapeMesh shapeGeometry(const Element& shape, Warnings&) {
     if (type == "cube") return cube();
     if (type == "disk") return disk();
     if (type == "sphere") return sphere(shape);
-    fail(shape, fmt::format("unknown shape type '{}' (supported: obj, ply, serialized, rectangle, cube, disk, sphere, "
+    if (type == "cylinder") return cylinder(shape);
+    fail(shape, fmt::format("unknown shape type '{}' (supported: obj, ply, serialized, rectangle, cube, disk, sphere, cylinder, "
                             "shapegroup, instance)", type));
 }
 

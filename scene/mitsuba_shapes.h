@@ -3,7 +3,8 @@
 // the shape's BSDF is), ply (binary or ASCII, through Assimp) and serialized (scene/mitsuba_serialized.h;
 // shape_index picks the mesh). Built-in shapes, in their local
 // frame before to_world: rectangle [-1,1]^2 at z = 0 facing +Z; cube [-1,1]^3; disk of radius 1
-// at z = 0 facing +Z; sphere (center, radius). Curved shapes are tessellated so that no point of
+// at z = 0 facing +Z; sphere (center, radius); cylinder (p0, p1, radius: an open tube, no caps,
+// as in Mitsuba). Curved shapes are tessellated so that no point of
 // the mesh lies farther than kTessellationError x radius from the true surface; the disk keeps
 // its exact area (an area light keeps its power).
 #include <cstdint>
@@ -27,7 +28,7 @@ struct ShapeMesh {
     std::vector<glm::uvec3> triangles;
 };
 
-// The local-space triangles of a shape of type obj, ply, serialized, rectangle, cube, disk or sphere. Throws
+// The local-space triangles of a shape of type obj, ply, serialized, rectangle, cube, disk, sphere or cylinder. Throws
 // InputError (the shape's file:line) for a missing or unreadable mesh file or a bad parameter.
 ShapeMesh shapeGeometry(const Element& shape, Warnings& warnings);
 

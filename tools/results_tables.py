@@ -281,7 +281,9 @@ def peer_json(script, extra):
 def throughput_tables(args, machine):
     shared = os.path.join(REPO, "..", "shared", "scenes")
     cases = [("mitsuba-cbox `scene.xml`", os.path.join(shared, "mitsuba-cbox", "scene.xml"), ["--size", "256", "--depth", "5"]),
-             ("Modern Hall `scene.xml`", os.path.join(shared, "modern-hall", "scene.xml"), ["--size", "320", "--depth", "65"])]
+             ("Modern Hall `scene.xml`", os.path.join(shared, "modern-hall", "scene.xml"), ["--size", "320", "--depth", "65"]),
+             ("furnished room `v_furnished_room.xml` (envmap through a window)",
+              os.path.join(REPO, "bench", "peers", "conformance", "v_furnished_room.xml"), ["--size", "320", "--depth", "65"])]
     rows = []
     for label, scene, extra in cases:
         if not os.path.exists(scene):

@@ -188,6 +188,50 @@ TEST_F(Mitsuba, SphereIsWithinTheStatedError) {
     }
 }
 
+TEST_F(Mitsuba, CylinderIsAnOpenTubeWithinTheStatedError) {
+    // Axis from (1, 0, 0) to (1, 3, 0), radius 0.5, then moved by to_world: every vertex, edge
+    // midpoint and centroid lies within the tessellation error of the tube, faces outwards, and
+    // the ends are open (no point inside the radius at the caps).
+    const Scene s = load(R"(<shape type="cylinder">
+  <point name="p0" x="1" y="0" z="0"/><point name="p1" x="1" y="3" z="0"/><float name="radius" value="0.5"/>
+  <transform name="to_world"><translate z="2"/></transform>
+</shape>
+)");
+    ASSERT_GT(s.mesh.triangles.size(), 50u);
+    const glm::vec3 p0(1, 0, 2);
+    const glm::vec3 w(0, 1, 0);
+    const float r = 0.5f;
+    double area = 0.0;
+    for (std::uint32_t t = 0; t < s.mesh.triangles.size(); ++t) {
+        const glm::uvec3 tri = s.mesh.triangles[t];
+        const glm::vec3 a = s.mesh.positions[tri.x], b = s.mesh.positions[tri.y], d = s.mesh.positions[tri.z];
+        const glm::vec3 centroid = (a + b + d) / 3.0f;
+        for (const glm::vec3& p : {a, centroid, 0.5f * (a + b), 0.5f * (b + d)}) {
+            const glm::vec3 q = p - p0;
+            const float along = glm::dot(q, w);
+            const float dist = glm::length(q - along * w);
+            ASSERT_GE(along, -1e-5f);
+            ASSERT_LE(along, 3.0f + 1e-5f);
+            ASSERT_LE(dist, r * (1 + 1e-5f));
+            ASSERT_GE(dist, r * (1 - mitsuba::kTessellationError) - 1e-5f) << "triangle " << t;
+        }
+        const glm::vec3 q = centroid - p0;
+        ASSERT_GT(glm::dot(triangleNormal(s.mesh, t), q - glm::dot(q, w) * w), 0.0f) << "faces inwards: " << t;
+        area += triangleArea(s.mesh, t);
+    }
+    // The inscribed polygon's perimeter is within the error bound of the circle's.
+    const double side = 2.0 * std::numbers::pi * r * 3.0;
+    EXPECT_LE(area, side * (1 + 1e-5));
+    EXPECT_GE(area, side * (1 - mitsuba::kTessellationError));
+}
+
+TEST_F(Mitsuba, CylinderWithCoincidentEndsIsAnError) {
+    const std::string e = error(R"(<shape type="cylinder"><point name="p0" x="1" y="1" z="1"/><point name="p1" x="1" y="1" z="1"/></shape>
+)");
+    EXPECT_NE(e.find("coincide"), std::string::npos) << e;
+    EXPECT_NE(e.find("scene.xml:2"), std::string::npos) << e;
+}
+
 TEST_F(Mitsuba, DiskKeepsItsAreaAndEmits) {
     const Scene s = load(R"(<shape type="disk">
   <transform name="to_world"><scale value="0.5"/></transform>
