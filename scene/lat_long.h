@@ -22,12 +22,18 @@ inline glm::vec2 fromDirection(const glm::vec3& d) {
     return {u, std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi};
 }
 
+// The direction in the map's frame at (u, v), given sinTheta = sin(pi v): unit up to rounding,
+// for a caller that needs sin(theta) as well and computes it once.
+inline glm::vec3 toDirection(glm::vec2 uv, float sinTheta) {
+    constexpr float kPi = std::numbers::pi_v<float>;
+    const float phi = uv.x * 2.0f * kPi, theta = uv.y * kPi;
+    return {sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)};
+}
+
 // The unit direction in the map's frame at (u, v).
 inline glm::vec3 toDirection(glm::vec2 uv) {
     constexpr float kPi = std::numbers::pi_v<float>;
-    const float phi = uv.x * 2.0f * kPi, theta = uv.y * kPi;
-    const float sinTheta = std::sin(theta);
-    return glm::normalize(glm::vec3(sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)));
+    return glm::normalize(toDirection(uv, std::sin(uv.y * kPi)));
 }
 
 // Solid angle of row `row` of a width x height map's pixels (each pixel of the row has this).

@@ -10,12 +10,26 @@
 namespace aamap {
 namespace {
 
+// guide[k] for k in [0, n): the interval holding k / n, i.e. the largest i with cdf[i] <= k / n
+// (at most n - 1). It starts the search in invert() one or two steps from the answer, where a
+// binary search over the whole CDF mispredicts a branch at every level.
+void buildGuide(const float* cdf, int n, int* guide) {
+    int i = 0;
+    for (int k = 0; k < n; ++k) {
+        const float t = static_cast<float>(k) / static_cast<float>(n);
+        while (i + 1 < n && cdf[i + 1] <= t) ++i;
+        guide[k] = i;
+    }
+}
+
 // The index i with cdf[i] <= u < cdf[i + 1] among the n intervals of cdf[0..n], skipping empty
-// ones; u is rescaled to [0,1) within it.
-int invert(const float* cdf, int n, float& u) {
-    const float* it = std::upper_bound(cdf, cdf + n + 1, u);
-    int i = static_cast<int>(it - cdf) - 1;
-    i = std::clamp(i, 0, n - 1);
+// ones; u is rescaled to [0,1) within it. The same index as a binary search for the last
+// cdf[i] <= u: the guide only picks where the scan starts, and the scan goes both ways.
+int invert(const float* cdf, const int* guide, int n, float& u) {
+    const float x = u * static_cast<float>(n);  // compared before the cast: a NaN starts at 0
+    int i = guide[x > 0.0f ? (x < static_cast<float>(n) ? static_cast<int>(x) : n - 1) : 0];
+    while (i > 0 && cdf[i] > u) --i;
+    while (i + 1 < n && cdf[i + 1] <= u) ++i;
     while (i > 0 && !(cdf[i + 1] > cdf[i])) --i;  // u at 1 - ulp on a trailing empty interval
     const float width = cdf[i + 1] - cdf[i];
     u = width > 0.0f ? std::clamp((u - cdf[i]) / width, 0.0f, 0x1.fffffep-1f) : 0.0f;
@@ -57,6 +71,12 @@ Distribution2D::Distribution2D(const std::vector<float>& weights, int width, int
     }
     marginal_.resize(height + 1);
     buildCdf(rowTotals.data(), height, marginal_.data());
+    marginalGuide_.resize(height);
+    buildGuide(marginal_.data(), height, marginalGuide_.data());
+    conditionalGuide_.resize(static_cast<std::size_t>(height) * width);
+    for (int y = 0; y < height; ++y)
+        buildGuide(&conditional_[static_cast<std::size_t>(y) * (width + 1)], width,
+                   &conditionalGuide_[static_cast<std::size_t>(y) * width]);
     empty_ = !(total > 0.0);
     scale_ = empty_ ? 0.0 : static_cast<double>(width) * height / total;
 }
@@ -64,8 +84,9 @@ Distribution2D::Distribution2D(const std::vector<float>& weights, int width, int
 Distribution2D::Sample Distribution2D::sample(glm::vec2 u) const {
     Sample s{};
     if (empty_) return s;
-    s.row = invert(marginal_.data(), height_, u.y);
-    s.column = invert(&conditional_[static_cast<std::size_t>(s.row) * (width_ + 1)], width_, u.x);
+    s.row = invert(marginal_.data(), marginalGuide_.data(), height_, u.y);
+    s.column = invert(&conditional_[static_cast<std::size_t>(s.row) * (width_ + 1)],
+                      &conditionalGuide_[static_cast<std::size_t>(s.row) * width_], width_, u.x);
     s.point = {(static_cast<float>(s.column) + u.x) / static_cast<float>(width_),
                (static_cast<float>(s.row) + u.y) / static_cast<float>(height_)};
     s.point = glm::min(s.point, glm::vec2(0x1.fffffep-1f));

@@ -2,7 +2,8 @@
 // A piecewise-constant 2D distribution over a W x H grid of non-negative weights (the environment
 // map's importance): a marginal CDF over the rows and one conditional CDF per row, sampled by
 // inversion (pbrt's Distribution2D). Inversion keeps a stratified [0,1)^2 pattern stratified over
-// the grid. Built in double, stored in float.
+// the grid. Built in double, stored in float. A guide table per CDF (the interval holding k / n)
+// makes an inversion a step or two instead of a binary search.
 #include <cstddef>
 #include <vector>
 
@@ -37,6 +38,8 @@ private:
     std::vector<float> weights_;      // sanitised copy
     std::vector<float> marginal_;     // height + 1 entries, 0 .. 1
     std::vector<float> conditional_;  // height rows of width + 1 entries, 0 .. 1 (uniform for an empty row)
+    std::vector<int> marginalGuide_;     // height entries: where the search for u starts (buildGuide)
+    std::vector<int> conditionalGuide_;  // height rows of width entries
 };
 
 }  // namespace aamap

@@ -64,7 +64,7 @@ EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
     const Distribution2D::Sample d = distribution_->sample(u);
     const float sinTheta = std::sin(d.point.y * kPi);
     if (!(d.pdf > 0.0f) || !(sinTheta > 0.0f)) return s;
-    s.direction = fromMap(d.point);
+    s.direction = glm::normalize(toWorld_ * latlong::toDirection(d.point, sinTheta));
     s.radiance = map_[static_cast<std::size_t>(d.row) * width_ + d.column];
     // Density over the unit square -> solid angle: d omega = 2 pi^2 sin(theta) du dv.
     s.pdf = d.pdf / (2.0f * kPi * kPi * sinTheta);

@@ -174,6 +174,61 @@ TEST(EnvironmentSampling, BlackCellsAreNeverSampledAndABlackMapGivesNoSamples) {
     EXPECT_EQ(s.pdf({0, 0, 1}), 0.0f);
 }
 
+TEST(EnvironmentSampling, GuidedInversionPicksTheCellsOfABinarySearch) {
+    // The guide tables only choose where the search starts: every u maps to the cell a binary
+    // search over the same CDFs finds (the last cdf[i] <= u, empty intervals skipped backwards),
+    // on a map with empty cells, an empty row, a spike and runs of equal CDF values.
+    const int w = 37, h = 11;
+    std::vector<float> weights(static_cast<std::size_t>(w) * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * w + x;
+            weights[i] = y == 4 || (x % 5 == 2) || x > 33 ? 0.0f : static_cast<float>((x * 7 + y * 3) % 11);
+        }
+    weights[static_cast<std::size_t>(6) * w + 10] = 1e6f;
+    const Distribution2D d(weights, w, h);
+    // The reference: cumulative sums in double, stored in float, as the class documents.
+    const auto cdfOf = [](const float* v, int n) {
+        std::vector<float> c(n + 1, 0.0f);
+        double total = 0.0, running = 0.0;
+        for (int i = 0; i < n; ++i) total += v[i];
+        for (int i = 0; i < n; ++i) {
+            running += v[i];
+            c[i + 1] = total > 0.0 ? static_cast<float>(running / total) : static_cast<float>(i + 1) / n;
+        }
+        c[n] = 1.0f;
+        return c;
+    };
+    const auto search = [](const std::vector<float>& c, float u) {
+        const int n = static_cast<int>(c.size()) - 1;
+        int i = std::clamp(static_cast<int>(std::upper_bound(c.begin(), c.end(), u) - c.begin()) - 1, 0, n - 1);
+        while (i > 0 && !(c[i + 1] > c[i])) --i;
+        return i;
+    };
+    std::vector<float> rows(h);
+    for (int y = 0; y < h; ++y) {
+        double t = 0.0;
+        for (int x = 0; x < w; ++x) t += weights[static_cast<std::size_t>(y) * w + x];
+        rows[y] = static_cast<float>(t);
+    }
+    const std::vector<float> marginal = cdfOf(rows.data(), h);
+    const Sampler rng(3, 0, 2);
+    std::vector<float> us = {0.0f, Sampler::kOneMinusUlp, 0.5f};
+    for (float c : marginal) us.insert(us.end(), {c, std::nextafter(c, 0.0f), std::nextafter(c, 1.0f)});
+    for (int i = 0; i < 20000; ++i) us.push_back(rng.get2D(static_cast<std::uint64_t>(i)).x);
+    for (const float uy : us) {
+        if (!(uy >= 0.0f && uy < 1.0f)) continue;
+        const int row = search(marginal, uy);
+        const std::vector<float> conditional = cdfOf(&weights[static_cast<std::size_t>(row) * w], w);
+        for (const float ux : {uy, 1.0f - uy, conditional[static_cast<std::size_t>(row % w)], Sampler::kOneMinusUlp}) {
+            if (!(ux >= 0.0f && ux < 1.0f)) continue;
+            const Distribution2D::Sample s = d.sample({ux, uy});
+            ASSERT_EQ(s.row, row) << "u.y " << uy;
+            ASSERT_EQ(s.column, search(conditional, ux)) << "u " << ux << ", " << uy;
+        }
+    }
+}
+
 TEST(EnvironmentSampling, RotationTurnsTheMapAboutItsUp) {
     // A map bright only in the cell towards local +X: rotated 90 degrees about +Y
     // (right-handed), that cell is seen towards world -Z.
