@@ -280,7 +280,7 @@ bool sceneDecidesRendering(const ExperimentConfig& c) {
 
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-15";  // bump when the image for the same settings and files changes (tracer or loader)
+    j["format"] = "aamap-render-16";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);
@@ -312,7 +312,7 @@ std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-12";  // bump as the render key
+    j["format"] = "aamap-snapshot-13";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c, true);
     addSubpixelThreshold(c, j);

@@ -9,11 +9,13 @@
 namespace aamap {
 
 // What a spectrum describes: RGB rendering multiplies a reflectance's RGB by the light's, so the
-// two are projected differently, as Mitsuba's RGB modes do (and as a spectral render would show).
+// two are projected differently. Both as Mitsuba 3's RGB modes read a <spectrum> (Mitsuba is the
+// reference renderer of the conformance suite): 0 outside the samples, and no per-channel rescaling.
 enum class SpectrumUse {
-    // Normalised per channel so that a constant spectrum c gives exactly (c, c, c): a white
-    // surface keeps the colour of the light it reflects. Held at its end values outside the
-    // samples (a wall does not turn black at 399 nm).
+    // Seen under the D65 illuminant: XYZ = integral of rho(lambda) D65(lambda) times the matching
+    // functions over the integral of D65 y-bar, then linear sRGB clamped to [0, 1]. A constant c
+    // over 360-830 nm is grey c (to the fit's error); over 400-700 nm, as scene files often give
+    // it, about 0.995 c, as in Mitsuba.
     Reflectance,
     // Absolute: XYZ = integral of L(lambda) times the matching functions over the integral of
     // y-bar, then linear sRGB, so an equal-energy spectrum is (1.20, 0.95, 0.91) as a spectral
