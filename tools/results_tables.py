@@ -46,15 +46,20 @@ MAP_KINDS = ["luminance", "geometric", "combined", "subpixel"]
 
 
 def machine_line(aamap):
-    cpu = "unknown CPU"
+    cpu, isa = "unknown CPU", ""
     try:
         with open("/proc/cpuinfo") as f:
             for line in f:
-                if line.startswith("model name"):
+                if line.startswith("model name") and cpu == "unknown CPU":
                     cpu = line.split(":", 1)[1].strip()
-                    break
+                elif line.startswith("flags") and not isa:
+                    # The widest vector ISA: Mitsuba's LLVM backend (and Highway) pick their width from it.
+                    flags = line.split(":", 1)[1].split()
+                    isa = "AVX-512" if "avx512f" in flags else "AVX2" if "avx2" in flags else "SSE"
     except OSError:
         pass
+    if isa:
+        cpu += f" ({isa})"
     device = ""
     try:
         out = subprocess.run([aamap, "run", "--list-devices"], capture_output=True, text=True, timeout=60).stdout

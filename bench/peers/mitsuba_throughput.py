@@ -132,11 +132,14 @@ def main():
     if not os.path.exists(args.bench):
         sys.exit(f"{args.bench}: build it first (cmake --build --preset release)")
     mi, dr = load_mitsuba(args.scene)
-    samples = args.size * args.size * args.spp
+    # The film's aspect ratio is kept: both render the same view at size x height pixels (aamap
+    # fits the view in size x size, as `aamap run` does).
+    height = max(1, round(args.size * film_aspect(args.scene)))
+    samples = args.size * height * args.spp
 
     with tempfile.TemporaryDirectory() as tmp:
         scene = mi.load_file(mitsuba_scene_file(args.scene, args.size, args.spp, args.depth,
-                                                "box" if args.filter == "box" else args.filter, tmp))
+                                                "box" if args.filter == "box" else args.filter, tmp, height))
 
         last = {}
 
@@ -150,7 +153,7 @@ def main():
             return seconds
 
         cold = render_mitsuba()  # compiles the kernels (cached for the timed rounds)
-        print(f"mitsuba {mi.__version__} llvm_ad_rgb, {args.size}x{args.size}, {args.spp} spp, depth {args.depth}, "
+        print(f"mitsuba {mi.__version__} llvm_ad_rgb, {args.size}x{height}, {args.spp} spp, depth {args.depth}, "
               f"{args.filter} filter; first render (kernel compilation) {cold:.2f} s", flush=True)
 
         aamap_exr = os.path.join(tmp, "aamap.exr")
@@ -159,7 +162,7 @@ def main():
             out = subprocess.run([args.bench, "--scene", args.scene, "--size", str(args.size), "--strata",
                                   str(strata), "--mode", "path", "--max-depth", str(args.depth), "--light-samples",
                                   "1", "--filter", args.filter, "--filter-mode", args.filter_mode,
-                                  "--light-sampling", args.light_sampling, "--repeat", "1",
+                                  "--light-sampling", args.light_sampling, "--repeat", "1", "--fit-view",
                                   "--out", aamap_exr],
                                  check=True, capture_output=True, text=True).stdout
             m = re.search(r"best time ([0-9.]+) s", out)
@@ -197,7 +200,7 @@ def main():
         print(f"mean radiance: mitsuba {mean_m:.5f}, aamap {mean_a:.5f} (aamap/mitsuba {mean_a / mean_m:.4f})")
 
     ratios = [r["ratio"] for r in rounds]
-    summary = {"scene": os.path.abspath(args.scene), "size": args.size, "spp": args.spp, "depth": args.depth,
+    summary = {"scene": os.path.abspath(args.scene), "size": args.size, "height": height, "spp": args.spp, "depth": args.depth,
                "filter": args.filter, "filter_mode": args.filter_mode, "mitsuba": mi.__version__,
                "mitsuba_first_render_s": cold,
                "mean_radiance": {"mitsuba": mean_m, "aamap": mean_a},

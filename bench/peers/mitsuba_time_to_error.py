@@ -20,6 +20,7 @@ Both render at the film's aspect ratio (--size is the width), so a scene such as
 Setup as bench/peers/mitsuba_throughput.py (libllvm19, pip mitsuba==3.6.4 in .venv), then
     .venv/bin/python bench/peers/mitsuba_time_to_error.py [--size 256] [--filter gaussian]
         [--filter-mode convolution] [--common-reference mitsuba] [--reference-spp 4096]
+        [--cache-rpp 16,64 [--cache-bounces 3]]   # and cache mode (its pre-pass in its time)
 """
 import argparse
 import json
@@ -43,9 +44,11 @@ def ladder(text):
 
 
 def aamap_config(scene, size, height, depth, rfilter, filter_mode, uniform, variance, thresholds, min_samples, reference,
-                 light_sampling):
+                 light_sampling, cache_bounces=None):
     """The experiment: path mode with one light sample per hit (as Mitsuba's one emitter sample per
-    bounce), Russian roulette from depth 5 on as Mitsuba's default rr_depth."""
+    bounce), Russian roulette from depth 5 on as Mitsuba's default rr_depth. With cache_bounces,
+    cache mode instead: that many bounces through the irradiance cache (the light transport of
+    path mode's max_depth cache_bounces + 2) and its default light samples per hit."""
     renders = [f'  - {{name: "uniform{{rpp}}", series: Uniform, strategy: uniform, rpp: {json.dumps(uniform)}}}']
     if variance:
         renders.append(f'  - {{name: "variance{{rpp}}_t{{noise_threshold}}", series: "Variance {{noise_threshold}}", '
@@ -54,7 +57,9 @@ def aamap_config(scene, size, height, depth, rfilter, filter_mode, uniform, vari
     return "\n".join([
         f"scene: {json.dumps(os.path.abspath(scene))}",
         f"image: {{width: {size}, height: {height}, filter: {rfilter}, filter_mode: {filter_mode}}}",
-        f"shading: {{mode: path, max_depth: {depth}, area_light_samples: 1, light_sampling: {light_sampling}}}",
+        (f"shading: {{mode: path, max_depth: {depth}, area_light_samples: 1, light_sampling: {light_sampling}}}"
+         if cache_bounces is None else
+         f"shading: {{mode: cache, max_depth: {depth}, light_sampling: {light_sampling}, cache: {{bounces: {cache_bounces}}}}}"),
         "renders:", *renders,
         f"reference: {reference}",
         "metrics: {map_quality: false}",
@@ -79,6 +84,11 @@ def main():
     ap.add_argument("--variance-threshold", default="0.01,0.04,0.08",
                     help="its noise_threshold values (0.01: Cycles' default)")
     ap.add_argument("--variance-min-samples", type=int, default=16)
+    ap.add_argument("--cache-rpp", type=ladder, default=[],
+                    help="also aamap's cache mode, uniform at these rpp, against aamap's path reference "
+                         "(default: none)")
+    ap.add_argument("--cache-bounces", type=int, default=None,
+                    help="cache mode's bounces (default --depth - 2: the same light transport)")
     ap.add_argument("--reference-spp", type=int, default=1024, help="each renderer's own reference")
     ap.add_argument("--common-reference", default="mitsuba", choices=["mitsuba", "aamap"],
                     help="whose --reference-spp render every image is also measured against")
@@ -94,6 +104,11 @@ def main():
     mi, dr = load_mitsuba(args.scene)
     import numpy as np
     height = max(1, round(args.size * film_aspect(args.scene)))
+    # aamap's reference.rpp stops at 1024: a larger --reference-spp is Mitsuba's alone.
+    aamap_reference_spp = min(args.reference_spp, 1024)
+    cache_bounces = args.cache_bounces if args.cache_bounces is not None else args.depth - 2
+    if args.cache_rpp and not 0 <= cache_bounces <= 16:
+        sys.exit(f"--cache-bounces {cache_bounces}: not in [0, 16] (give it, or a --depth in [2, 18])")
 
     def diff(reference, test):
         return json.loads(subprocess.run([args.aamap, "diff", reference, test, "--json"], check=True,
@@ -136,7 +151,7 @@ def main():
                     mi.Bitmap(image).write(test)
                     errors[("mitsuba", f"{spp} spp")] = diff(mitsuba_ref, test)
                     mitsuba_images[spp] = test
-            reference_yaml = (f"{{type: uniform, mode: path, rpp: {args.reference_spp}}}" if r == 0
+            reference_yaml = (f"{{type: uniform, mode: path, rpp: {aamap_reference_spp}}}" if r == 0
                               else f"{{type: file, path: {json.dumps(aamap_ref)}}}")
             config = os.path.join(tmp, f"aamap_{r}.yaml")
             with open(config, "w") as f:
@@ -157,6 +172,26 @@ def main():
                     kept = os.path.join(tmp, f"aamap_{rec['name']}.exr")
                     os.replace(os.path.join(out, rec["name"] + ".exr"), kept)
                     aamap_images[rec["name"]] = kept
+            if args.cache_rpp:  # against aamap's path reference, traced in the first round above
+                config = os.path.join(tmp, f"aamap_cache_{r}.yaml")
+                with open(config, "w") as f:
+                    f.write(aamap_config(args.scene, args.size, height, args.depth, args.filter, args.filter_mode,
+                                         args.cache_rpp, [], [], args.variance_min_samples,
+                                         f"{{type: file, path: {json.dumps(aamap_ref)}}}", args.light_sampling,
+                                         cache_bounces))
+                out = os.path.join(tmp, f"aamap_cache_{r}")
+                subprocess.run([args.aamap, "run", config, "-o", out, "--no-plots"], check=True, capture_output=True)
+                with open(os.path.join(out, "results.json")) as f:
+                    results = json.load(f)
+                for rec in results["renders"]:
+                    key = ("aamap cache", rec["name"])
+                    # The trace's time holds the cache's pre-pass (Tracer::render builds the cache first).
+                    times.setdefault(key, []).append(rec["times_s"]["trace"])
+                    errors[key] = dict(rec["metrics"], mean_rpp=rec["mean_primary_rpp"])
+                    if r == 0:
+                        kept = os.path.join(tmp, f"aamap_cache_{rec['name']}.exr")
+                        os.replace(os.path.join(out, rec["name"] + ".exr"), kept)
+                        aamap_images[("aamap cache", rec["name"])] = kept
             done = ", ".join(f"{k[0]} {k[1]} {v[-1]:.2f} s" for k, v in times.items())
             print(f"round {r + 1}: {done}", flush=True)
 
@@ -164,10 +199,11 @@ def main():
         common_ref = mitsuba_ref if args.common_reference == "mitsuba" else aamap_ref
         ref_means = channel_means(common_ref)
         images = [(("mitsuba", f"{spp} spp"), p) for spp, p in mitsuba_images.items()]
-        images += [(("aamap path", name), p) for name, p in aamap_images.items()]
+        images += [(name if isinstance(name, tuple) else ("aamap path", name), p) for name, p in aamap_images.items()]
         other_ref = aamap_ref if args.common_reference == "mitsuba" else mitsuba_ref
         images.append(((("aamap path" if args.common_reference == "mitsuba" else "mitsuba"),
-                        f"reference {args.reference_spp}"), other_ref))
+                        f"reference {aamap_reference_spp if args.common_reference == 'mitsuba' else args.reference_spp}"),
+                       other_ref))
         for key, path in images:
             common[key] = dict(diff(common_ref, path), ratio=list(channel_means(path) / np.maximum(ref_means, 1e-12)))
 
@@ -180,7 +216,8 @@ def main():
                      "min_s": min(ts), "max_s": max(ts), "pct_error_flip": e["pct_error_flip"],
                      "flip_mean": e["flip_mean"], "common_pct_error_flip": c.get("pct_error_flip"),
                      "common_flip_mean": c.get("flip_mean"), "common_channel_ratio": c.get("ratio")})
-    print(f"\nown: each against its own {args.reference_spp}-spp reference; common: against "
+    print(f"\nown: each against its own reference (Mitsuba {args.reference_spp} spp, aamap {aamap_reference_spp} rpp); "
+          f"common: against "
           f"{args.common_reference}'s, with the image's mean per channel over the reference's")
     print(f"{'renderer':<12} {'setting':<20} {'mean spp':>8} {'median s':>9} {'range s':>13} {'own %>0.1':>9} "
           f"{'own FLIP':>9} {'common %':>9} {'common FLIP':>11}  mean r/g/b ratio")
@@ -204,13 +241,14 @@ def main():
                 best = fastest.get(row["renderer"])
                 if best is None or row["median_s"] < best["median_s"]:
                     fastest[row["renderer"]] = row
-        for renderer in ("mitsuba", "aamap path"):
+        for renderer in ("mitsuba", "aamap path") + (("aamap cache",) if args.cache_rpp else ()):
             best = fastest.get(renderer)
             print(f"fastest to <= {args.target} % against {label} ({renderer}): " +
                   (f"{best['setting']}, {best['median_s']:.2f} s, {best[measure]:.2f} %" if best else "none"))
-        if len(fastest) == 2:
-            print(f"mitsuba / aamap time to <= {args.target} % against {label}: "
-                  f"{fastest['mitsuba']['median_s'] / fastest['aamap path']['median_s']:.2f}")
+        for renderer in ("aamap path", "aamap cache"):
+            if "mitsuba" in fastest and renderer in fastest:
+                print(f"mitsuba / {renderer} time to <= {args.target} % against {label}: "
+                      f"{fastest['mitsuba']['median_s'] / fastest[renderer]['median_s']:.2f}")
     if args.json:
         tmp_json = args.json + ".tmp"
         with open(tmp_json, "w") as f:
