@@ -140,8 +140,31 @@ def main():
             render(spp)  # kernels for every sample count before the timed rounds
 
         aamap_ref = os.path.join(tmp, "aamap_reference.exr")
+
+        def run_aamap(name, renderer, r, config_text):
+            """One `aamap run` of config_text: each render's trace time (the cache's pre-pass
+            included: Tracer::render builds the cache first) and metrics under (renderer, render);
+            the first round keeps the images, and the reference as aamap_ref."""
+            config = os.path.join(tmp, name + ".yaml")
+            with open(config, "w") as f:
+                f.write(config_text)
+            out = os.path.join(tmp, name)
+            subprocess.run([args.aamap, "run", config, "-o", out, "--no-plots"], check=True, capture_output=True)
+            with open(os.path.join(out, "results.json")) as f:
+                results = json.load(f)
+            if r == 0 and not os.path.exists(aamap_ref):
+                os.replace(os.path.join(out, "reference.exr"), aamap_ref)
+            for rec in results["renders"]:
+                key = (renderer, rec["name"])
+                times.setdefault(key, []).append(rec["times_s"]["trace"])
+                errors[key] = dict(rec["metrics"], mean_rpp=rec["mean_primary_rpp"])
+                if r == 0:
+                    kept = os.path.join(tmp, f"{name}_{rec['name']}.exr")
+                    os.replace(os.path.join(out, rec["name"] + ".exr"), kept)
+                    aamap_images[key] = kept
+
         mitsuba_images = {}  # spp -> EXR of the first round
-        aamap_images = {}  # render name -> EXR of the first round
+        aamap_images = {}  # (renderer, render name) -> EXR of the first round
         for r in range(args.rounds):
             for spp in args.mitsuba_spp:
                 image, seconds = render(spp)
@@ -153,45 +176,17 @@ def main():
                     mitsuba_images[spp] = test
             reference_yaml = (f"{{type: uniform, mode: path, rpp: {aamap_reference_spp}}}" if r == 0
                               else f"{{type: file, path: {json.dumps(aamap_ref)}}}")
-            config = os.path.join(tmp, f"aamap_{r}.yaml")
-            with open(config, "w") as f:
-                f.write(aamap_config(args.scene, args.size, height, args.depth, args.filter, args.filter_mode,
-                                     args.uniform_rpp, args.variance_rpp, [float(t) for t in args.variance_threshold.split(",") if t],
-                                     args.variance_min_samples, reference_yaml, args.light_sampling))
-            out = os.path.join(tmp, f"aamap_{r}")
-            subprocess.run([args.aamap, "run", config, "-o", out, "--no-plots"], check=True, capture_output=True)
-            with open(os.path.join(out, "results.json")) as f:
-                results = json.load(f)
-            if r == 0:
-                os.replace(os.path.join(out, "reference.exr"), aamap_ref)
-            for rec in results["renders"]:
-                key = ("aamap path", rec["name"])
-                times.setdefault(key, []).append(rec["times_s"]["trace"])
-                errors[key] = dict(rec["metrics"], mean_rpp=rec["mean_primary_rpp"])
-                if r == 0:
-                    kept = os.path.join(tmp, f"aamap_{rec['name']}.exr")
-                    os.replace(os.path.join(out, rec["name"] + ".exr"), kept)
-                    aamap_images[rec["name"]] = kept
+            run_aamap(f"aamap_{r}", "aamap path", r,
+                      aamap_config(args.scene, args.size, height, args.depth, args.filter, args.filter_mode,
+                                   args.uniform_rpp, args.variance_rpp,
+                                   [float(t) for t in args.variance_threshold.split(",") if t],
+                                   args.variance_min_samples, reference_yaml, args.light_sampling))
             if args.cache_rpp:  # against aamap's path reference, traced in the first round above
-                config = os.path.join(tmp, f"aamap_cache_{r}.yaml")
-                with open(config, "w") as f:
-                    f.write(aamap_config(args.scene, args.size, height, args.depth, args.filter, args.filter_mode,
-                                         args.cache_rpp, [], [], args.variance_min_samples,
-                                         f"{{type: file, path: {json.dumps(aamap_ref)}}}", args.light_sampling,
-                                         cache_bounces))
-                out = os.path.join(tmp, f"aamap_cache_{r}")
-                subprocess.run([args.aamap, "run", config, "-o", out, "--no-plots"], check=True, capture_output=True)
-                with open(os.path.join(out, "results.json")) as f:
-                    results = json.load(f)
-                for rec in results["renders"]:
-                    key = ("aamap cache", rec["name"])
-                    # The trace's time holds the cache's pre-pass (Tracer::render builds the cache first).
-                    times.setdefault(key, []).append(rec["times_s"]["trace"])
-                    errors[key] = dict(rec["metrics"], mean_rpp=rec["mean_primary_rpp"])
-                    if r == 0:
-                        kept = os.path.join(tmp, f"aamap_cache_{rec['name']}.exr")
-                        os.replace(os.path.join(out, rec["name"] + ".exr"), kept)
-                        aamap_images[("aamap cache", rec["name"])] = kept
+                run_aamap(f"aamap_cache_{r}", "aamap cache", r,
+                          aamap_config(args.scene, args.size, height, args.depth, args.filter, args.filter_mode,
+                                       args.cache_rpp, [], [], args.variance_min_samples,
+                                       f"{{type: file, path: {json.dumps(aamap_ref)}}}", args.light_sampling,
+                                       cache_bounces))
             done = ", ".join(f"{k[0]} {k[1]} {v[-1]:.2f} s" for k, v in times.items())
             print(f"round {r + 1}: {done}", flush=True)
 
@@ -199,7 +194,7 @@ def main():
         common_ref = mitsuba_ref if args.common_reference == "mitsuba" else aamap_ref
         ref_means = channel_means(common_ref)
         images = [(("mitsuba", f"{spp} spp"), p) for spp, p in mitsuba_images.items()]
-        images += [(name if isinstance(name, tuple) else ("aamap path", name), p) for name, p in aamap_images.items()]
+        images += list(aamap_images.items())
         other_ref = aamap_ref if args.common_reference == "mitsuba" else mitsuba_ref
         images.append(((("aamap path" if args.common_reference == "mitsuba" else "mitsuba"),
                         f"reference {aamap_reference_spp if args.common_reference == 'mitsuba' else args.reference_spp}"),
