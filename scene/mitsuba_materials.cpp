@@ -472,8 +472,8 @@ Material MaterialBuilder::convert(const Element& element, int depth) {
         if (hasEtaK) {
             if (material != nullptr && text::toLower(stringProperty(bsdf, "material", "none")) != "none")
                 fail(*material, "give either eta / k or material, not both");
-            m.eta = colourProperty(bsdf, "eta", glm::vec3(0.0f), warnings_);
-            m.k = colourProperty(bsdf, "k", glm::vec3(1.0f), warnings_);
+            m.eta = colourProperty(bsdf, "eta", glm::vec3(0.0f), warnings_, SpectrumUse::Unbounded);
+            m.k = colourProperty(bsdf, "k", glm::vec3(1.0f), warnings_, SpectrumUse::Unbounded);
             for (int c = 0; c < 3; ++c)
                 if (!(std::isfinite(m.eta[c]) && std::isfinite(m.k[c]) && m.eta[c] >= 0.0f && m.k[c] >= 0.0f))
                     fail(*bsdf.property(bsdf.property("eta") != nullptr ? "eta" : "k"),

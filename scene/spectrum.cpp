@@ -76,14 +76,14 @@ glm::vec3 spectrumToRgb(std::vector<std::pair<double, double>> samples, Spectrum
         return glm::vec3(glm::max(project(at) / yIntegral, glm::dvec3(0.0)));
     }
     // A reflectance is seen under D65, normalised so that a constant 1 has Y = 1, and clamped to
-    // [0, 1] (a reflectance reflects no more than arrives).
+    // [0, 1] (a reflectance reflects no more than arrives); an unbounded constant at 0 only.
     static const double d65Y = [] {
         double y = 0.0;
         for (double nm = 360.0; nm <= 830.0; nm += 1.0) y += d65(nm) * cie1931(nm).y;
         return y;
     }();
-    const glm::dvec3 rgb = project([&](double nm) { return at(nm) * d65(nm); }) / d65Y;
-    return glm::vec3(glm::clamp(rgb, glm::dvec3(0.0), glm::dvec3(1.0)));
+    const glm::dvec3 rgb = glm::max(project([&](double nm) { return at(nm) * d65(nm); }) / d65Y, glm::dvec3(0.0));
+    return glm::vec3(use == SpectrumUse::Unbounded ? rgb : glm::min(rgb, glm::dvec3(1.0)));
 }
 
 }  // namespace aamap

@@ -17,6 +17,9 @@ enum class SpectrumUse {
     // over 360-830 nm is grey c (to the fit's error); over 400-700 nm, as scene files often give
     // it, about 0.995 c, as in Mitsuba.
     Reflectance,
+    // A material constant that is not bounded by 1 (a conductor's eta and k): as a reflectance,
+    // but clamped at 0 only, as Mitsuba reads its unbounded spectra.
+    Unbounded,
     // Absolute: XYZ = integral of L(lambda) times the matching functions over the integral of
     // y-bar, then linear sRGB, so an equal-energy spectrum is (1.20, 0.95, 0.91) as a spectral
     // renderer shows it on an sRGB (D65) display; 0 outside the samples, as Mitsuba reads them.

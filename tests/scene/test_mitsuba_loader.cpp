@@ -691,6 +691,8 @@ TEST(Spectrum, ReflectanceReadsAsMitsubaReadsIt) {
         EXPECT_GE(spike[c], 0.0f);
         EXPECT_LE(spike[c], 1.0f);
     }
+    // A conductor's k is no reflectance: read the same way, but not clamped at 1.
+    expectVec(spectrumToRgb({{360, 3}, {830, 3}}, SpectrumUse::Unbounded), glm::vec3(3.0f), 0.03f);
 }
 
 // Emission is absolute, as a spectral render shows it on an sRGB display: equal energy is not grey
