@@ -39,7 +39,10 @@ bool lightToward(const SurfaceHit& hit, const glm::vec3& wi, float diffusePick, 
 // One light sample per vertex: Auto samples area lights by area (docs/tracer.md, "Lights").
 PathIntegrator::PathIntegrator(const EmbreeScene& geometry, const LightSet& lights, const ShadingSettings& shading)
     : Integrator(geometry, lights, shading, "path", LightSampling::Area) {
-    simd_ = lights_.points.empty() && !lights_.areas.empty() && !lights_.selectCdf.empty() && !bySolidAngle();
+    // The lanes sample area lights by area, or no finite light at all (lights at infinity alone,
+    // sampled per lane afterwards); point lights and solid-angle sampling stay scalar.
+    simd_ = lights_.points.empty() &&
+            (lights_.areas.empty() ? lights_.selectCdf.empty() : !lights_.selectCdf.empty() && !bySolidAngle());
     if (simd_) simdLights_ = pathsimd::makeLightTable(lights_);
 }
 

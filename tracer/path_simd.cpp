@@ -138,65 +138,74 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         const VF ur = Draw(df, keys, salts.roulette);
         store(ur, L.uRoulette);
 
-        // LightSet::select: the light on the power CDF, u0 rescaled within its interval.
-        const float* cdf = t.selectCdf.data();
-        const VI l = hn::Min(UpperBound(df, cdf, zeroI, lights, u0), hn::Sub(lights, oneI));
-        const VF lowCdf = hn::IfThenElse(hn::RebindMask(df, l == zeroI), zero,
-                                         hn::GatherIndex(df, cdf, hn::Max(hn::Sub(l, oneI), zeroI)));
-        const VF width = hn::Sub(hn::GatherIndex(df, cdf, l), lowCdf);
-        const VF rescaled = hn::Min(hn::Max(hn::Div(hn::Sub(u0, lowCdf), width), zero), hn::Set(df, kOneMinusUlp));
-        u0 = hn::IfThenElse(width > zero, rescaled, zero);
-        const VF pick = hn::GatherIndex(df, t.selectPdf.data(), l);
-
-        // AreaLightSampler::sample(u): the triangle, then a point uniform on it.
-        const VI start = hn::GatherIndex(di, t.triStart.data(), l);
-        const VI tris = hn::GatherIndex(di, t.triCount.data(), l);
-        const VI tri = hn::Add(start, hn::Min(UpperBound(df, t.cdf.data(), start, tris, u0), hn::Sub(tris, oneI)));
-        const VF ux = hn::Min(hn::Max(hn::Mul(hn::Sub(u0, hn::GatherIndex(df, t.cdfLow.data(), tri)),
-                                              hn::GatherIndex(df, t.invCdfWidth.data(), tri)),
-                                      zero),
-                              hn::Set(df, kOneMinusUlp));
-        const VF su = hn::Sqrt(ux);
-        const VF s1 = hn::Mul(su, hn::Sub(one, u1)), s2 = hn::Mul(su, u1);
-        VF q[3], ln[3], p[3], w[3];
+        // The sample's inputs, and what the lanes below read of it. Without finite lights (a scene
+        // lit by lights at infinity alone) no lane has a light sample, as prepareNextEventFinite.
+        VF p[3], g[3], n[3], wi[3], radiance[3], origin[3];
         for (int c = 0; c < 3; ++c) {
-            const VF v0 = hn::GatherIndex(df, t.v0[c].data(), tri);
-            const VF e1 = hn::GatherIndex(df, t.e1[c].data(), tri), e2 = hn::GatherIndex(df, t.e2[c].data(), tri);
-            q[c] = hn::Add(hn::Add(v0, hn::Mul(s1, e1)), hn::Mul(s2, e2));
-            ln[c] = hn::GatherIndex(df, t.normal[c].data(), tri);
             p[c] = load(L.p[c]);
-            w[c] = hn::Sub(q[c], p[c]);
-        }
-
-        // PathIntegrator::prepareNextEventFinite's geometry.
-        const VF d2 = Dot(w[0], w[1], w[2], w[0], w[1], w[2]);
-        auto ok = d2 > zero;
-        const VF invD = hn::Div(one, hn::Sqrt(d2));
-        VF wi[3], g[3], n[3];
-        for (int c = 0; c < 3; ++c) {
-            wi[c] = hn::Mul(w[c], invD);
             g[c] = load(L.g[c]);
             n[c] = load(L.n[c]);
+            wi[c] = n[c];
+            radiance[c] = zero;
+            origin[c] = p[c];
         }
-        const VF cosLight = hn::Neg(Dot(ln[0], ln[1], ln[2], wi[0], wi[1], wi[2]));
-        const VF cg = Dot(g[0], g[1], g[2], wi[0], wi[1], wi[2]);
-        const VF cs = Dot(n[0], n[1], n[2], wi[0], wi[1], wi[2]);
-        ok = hn::And(ok, hn::And(cosLight > zero, hn::And(cg > zero, cs > zero)));
-        const VF offset = load(L.offset);
-        VF origin[3];
-        for (int c = 0; c < 3; ++c) origin[c] = hn::Add(p[c], hn::Mul(offset, g[c]));
-        // rayOffset(q, vertexScale) (tracer/ray_offset.h).
-        const VF scale = StdMax(StdMax(hn::Abs(q[0]), hn::Abs(q[1])), StdMax(hn::Abs(q[2]), hn::Set(df, 1e-30f)));
-        const VF vertexScale = hn::GatherIndex(df, t.vertexScale.data(), l);
-        const VF rayOffset = hn::Mul(hn::Set(df, 1e-4f), StdMax(scale, hn::Mul(hn::Set(df, 1e-2f), vertexScale)));
-        const VF tfar = hn::Sub(one, hn::Mul(rayOffset, invD));
-        ok = hn::And(ok, tfar > zero);
-        const VF inv = hn::Div(hn::Mul(hn::GatherIndex(df, t.area.data(), l), cosLight), d2);
-        VF radiance[3];
+        VF cs = zero, inv = zero, pick = one, tfar = zero;
+        VF segment[3] = {zero, zero, zero};
+        auto ok = zero > zero;
+        if (!t.selectCdf.empty()) {
+            // LightSet::select: the light on the power CDF, u0 rescaled within its interval.
+            const float* cdf = t.selectCdf.data();
+            const VI l = hn::Min(UpperBound(df, cdf, zeroI, lights, u0), hn::Sub(lights, oneI));
+            const VF lowCdf = hn::IfThenElse(hn::RebindMask(df, l == zeroI), zero,
+                                             hn::GatherIndex(df, cdf, hn::Max(hn::Sub(l, oneI), zeroI)));
+            const VF width = hn::Sub(hn::GatherIndex(df, cdf, l), lowCdf);
+            const VF rescaled = hn::Min(hn::Max(hn::Div(hn::Sub(u0, lowCdf), width), zero), hn::Set(df, kOneMinusUlp));
+            u0 = hn::IfThenElse(width > zero, rescaled, zero);
+            pick = hn::GatherIndex(df, t.selectPdf.data(), l);
+
+            // AreaLightSampler::sample(u): the triangle, then a point uniform on it.
+            const VI start = hn::GatherIndex(di, t.triStart.data(), l);
+            const VI tris = hn::GatherIndex(di, t.triCount.data(), l);
+            const VI tri = hn::Add(start, hn::Min(UpperBound(df, t.cdf.data(), start, tris, u0), hn::Sub(tris, oneI)));
+            const VF ux = hn::Min(hn::Max(hn::Mul(hn::Sub(u0, hn::GatherIndex(df, t.cdfLow.data(), tri)),
+                                                  hn::GatherIndex(df, t.invCdfWidth.data(), tri)),
+                                          zero),
+                                  hn::Set(df, kOneMinusUlp));
+            const VF su = hn::Sqrt(ux);
+            const VF s1 = hn::Mul(su, hn::Sub(one, u1)), s2 = hn::Mul(su, u1);
+            VF q[3], ln[3], w[3];
+            for (int c = 0; c < 3; ++c) {
+                const VF v0 = hn::GatherIndex(df, t.v0[c].data(), tri);
+                const VF e1 = hn::GatherIndex(df, t.e1[c].data(), tri), e2 = hn::GatherIndex(df, t.e2[c].data(), tri);
+                q[c] = hn::Add(hn::Add(v0, hn::Mul(s1, e1)), hn::Mul(s2, e2));
+                ln[c] = hn::GatherIndex(df, t.normal[c].data(), tri);
+                w[c] = hn::Sub(q[c], p[c]);
+            }
+
+            // PathIntegrator::prepareNextEventFinite's geometry.
+            const VF d2 = Dot(w[0], w[1], w[2], w[0], w[1], w[2]);
+            ok = d2 > zero;
+            const VF invD = hn::Div(one, hn::Sqrt(d2));
+            for (int c = 0; c < 3; ++c) wi[c] = hn::Mul(w[c], invD);
+            const VF cosLight = hn::Neg(Dot(ln[0], ln[1], ln[2], wi[0], wi[1], wi[2]));
+            const VF cg = Dot(g[0], g[1], g[2], wi[0], wi[1], wi[2]);
+            cs = Dot(n[0], n[1], n[2], wi[0], wi[1], wi[2]);
+            ok = hn::And(ok, hn::And(cosLight > zero, hn::And(cg > zero, cs > zero)));
+            const VF offset = load(L.offset);
+            for (int c = 0; c < 3; ++c) origin[c] = hn::Add(p[c], hn::Mul(offset, g[c]));
+            // rayOffset(q, vertexScale) (tracer/ray_offset.h).
+            const VF scale = StdMax(StdMax(hn::Abs(q[0]), hn::Abs(q[1])), StdMax(hn::Abs(q[2]), hn::Set(df, 1e-30f)));
+            const VF vertexScale = hn::GatherIndex(df, t.vertexScale.data(), l);
+            const VF rayOffset = hn::Mul(hn::Set(df, 1e-4f), StdMax(scale, hn::Mul(hn::Set(df, 1e-2f), vertexScale)));
+            tfar = hn::Sub(one, hn::Mul(rayOffset, invD));
+            ok = hn::And(ok, tfar > zero);
+            inv = hn::Div(hn::Mul(hn::GatherIndex(df, t.area.data(), l), cosLight), d2);
+            for (int c = 0; c < 3; ++c) radiance[c] = hn::GatherIndex(df, t.radiance[c].data(), l);
+            for (int c = 0; c < 3; ++c) segment[c] = hn::Sub(q[c], origin[c]);
+        }
         for (int c = 0; c < 3; ++c) {
-            radiance[c] = hn::GatherIndex(df, t.radiance[c].data(), l);
             store(origin[c], L.origin[c]);
-            store(hn::Sub(q[c], origin[c]), L.segment[c]);
+            store(segment[c], L.segment[c]);
             store(wi[c], L.wi[c]);
             store(radiance[c], L.radiance[c]);
         }

@@ -28,8 +28,9 @@ using testing::renderScene;
 // A closed room of Lambert walls (three colours), a rough plastic floor and box, a Phong box and a
 // rough conductor panel (GGX), lit by three area lights of different sizes and colours: every
 // lane takes the SIMD path, Lambert and rough plastic lanes to the end, the others for their
-// light samples.
-Scene simdRoom() {
+// light samples. sky: no area lights and no ceiling, lit by an environment map with a bright
+// patch instead (the lanes with no finite light, the sky sampled per lane after them).
+Scene simdRoom(bool sky = false) {
     testing::SceneBuilder b;
     const auto white = b.material("white", glm::vec3(0.7f));
     const auto red = b.material("red", glm::vec3(0.6f, 0.1f, 0.1f));
@@ -59,7 +60,7 @@ Scene simdRoom() {
     const auto conductor = testing::addMaterial(b, metal);
     const glm::vec3 X(2, 0, 0), Y(0, 2, 0), Z(0, 0, 2), o(-1, 0, -1);
     b.quad(o, Z, X, roughPlastic);  // the floor
-    b.quad(o + Y, X, Z, white);
+    if (!sky) b.quad(o + Y, X, Z, white);
     b.quad(o, X, Y, white);
     b.quad(o, Y, Z, red);
     b.quad(o + X, Z, Y, green);
@@ -67,10 +68,22 @@ Scene simdRoom() {
     b.box({-0.7f, 0.0f, -0.6f}, {-0.2f, 0.7f, -0.1f}, glossy);
     b.box({0.2f, 0.0f, -0.3f}, {0.7f, 0.4f, 0.2f}, roughPlastic);
     b.quad({-0.9f, 0.2f, -0.99f}, {0.6f, 0, 0}, {0, 0.8f, 0}, conductor);
-    b.areaLightQuad({-0.25f, 1.999f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, glm::vec3(8.0f, 7.0f, 6.0f));
-    b.areaLightQuad({0.5f, 1.999f, 0.4f}, {0.2f, 0, 0}, {0, 0, 0.2f}, glm::vec3(20.0f, 20.0f, 30.0f));
-    b.areaLightQuad({-0.999f, 1.2f, 0.3f}, {0, 0, 0.3f}, {0, 0.3f, 0}, glm::vec3(5.0f, 3.0f, 2.0f));
+    if (!sky) {
+        b.areaLightQuad({-0.25f, 1.999f, -0.25f}, {0.5f, 0, 0}, {0, 0, 0.5f}, glm::vec3(8.0f, 7.0f, 6.0f));
+        b.areaLightQuad({0.5f, 1.999f, 0.4f}, {0.2f, 0, 0}, {0, 0, 0.2f}, glm::vec3(20.0f, 20.0f, 30.0f));
+        b.areaLightQuad({-0.999f, 1.2f, 0.3f}, {0, 0, 0.3f}, {0, 0.3f, 0}, glm::vec3(5.0f, 3.0f, 2.0f));
+    }
     Scene scene = std::move(b.scene());
+    if (sky) {
+        EnvironmentLight env;
+        env.mapWidth = 16;
+        env.mapHeight = 8;
+        for (int y = 0; y < env.mapHeight; ++y)
+            for (int x = 0; x < env.mapWidth; ++x)
+                env.map.push_back(y == 1 && x >= 6 && x <= 8 ? glm::vec3(40.0f, 36.0f, 30.0f)
+                                                             : glm::vec3(0.3f, 0.4f, 0.6f) * (1.0f - 0.1f * y));
+        scene.environment = env;
+    }
     scene.views.push_back(lookAt({0, 1, 0.95f}, {0, 0.6f, -1}, 70));
     return scene;
 }
@@ -128,8 +141,8 @@ TEST(PathSimd, DrawsTheScalarSamplersNumbers) { forEachTarget(expectScalarSample
 // direction may differ in its last bits and, rarely, a path then takes another way (an edge, a
 // roulette draw at its threshold): the test bounds how many samples do, and how far the sums
 // drift, well below what any wrong weight, pdf or light pick would give.
-void expectLanesAgreeWithSingleRays() {
-    const Scene scene = simdRoom();
+void expectLanesAgreeWithSingleRays(bool sky) {
+    const Scene scene = simdRoom(sky);
     const EmbreeScene geometry(scene);
     const LightSet lights = buildLights(scene, geometry);
     ShadingSettings sh;
@@ -178,12 +191,19 @@ void expectLanesAgreeWithSingleRays() {
         EXPECT_EQ(packetRays.primary, singleRays.primary);
     }
     EXPECT_GT(compared, 3500);
+    EXPECT_GT(sumSingle, 0.05 * compared);  // lit: the comparison is not of zeros
     EXPECT_LE(differ, compared / 500) << differ << " of " << compared << " samples differ";
     EXPECT_LE(pixelsDiffer, pixels / 100) << pixelsDiffer << " of " << pixels << " pixels differ";
     EXPECT_NEAR(sumLockstep, sumSingle, 2e-5 * sumSingle);
 }
 
-TEST(PathSimd, LanesAgreeWithSingleRayPaths) { forEachTarget(expectLanesAgreeWithSingleRays); }
+TEST(PathSimd, LanesAgreeWithSingleRayPaths) {
+    forEachTarget([] { expectLanesAgreeWithSingleRays(false); });
+}
+
+TEST(PathSimd, SkyLitLanesAgreeWithSingleRayPaths) {
+    forEachTarget([] { expectLanesAgreeWithSingleRays(true); });
+}
 
 TEST(PathSimd, BitIdenticalFor1And2Threads) {
     const Scene scene = simdRoom();
