@@ -280,7 +280,7 @@ bool sceneDecidesRendering(const ExperimentConfig& c) {
 
 Json renderKeyObject(const ExperimentConfig& c, const RenderConfig& r) {
     Json j;
-    j["format"] = "aamap-render-17";  // bump when the image for the same settings and files changes (tracer or loader)
+    j["format"] = "aamap-render-18";  // bump when the image for the same settings and files changes (tracer or loader)
     j["scene"] = sceneJson(c);
     j["seed"] = c.seed;
     j["shading"] = shadingJson(c, r.shadingMode, true);

@@ -31,6 +31,12 @@ public:
     // Density over [0,1)^2 of the cell (column, row), as sample() reports it.
     float pdf(int column, int row) const;
 
+    // The tables sample() reads, for code that inverts them itself (path mode's SIMD lanes).
+    const std::vector<float>& marginalCdf() const { return marginal_; }
+    const std::vector<float>& conditionalCdfs() const { return conditional_; }
+    const std::vector<int>& marginalGuide() const { return marginalGuide_; }
+    const std::vector<int>& conditionalGuide() const { return conditionalGuide_; }
+
 private:
     int width_, height_;
     bool empty_ = true;

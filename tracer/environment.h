@@ -43,6 +43,13 @@ public:
     glm::vec2 toMap(const glm::vec3& dir) const;
     glm::vec3 fromMap(glm::vec2 uv) const;
 
+    // The map and its distribution as sample() reads them (only for !constant()).
+    int width() const { return width_; }
+    int height() const { return height_; }
+    const std::vector<glm::vec3>& map() const { return map_; }
+    const Distribution2D& distribution() const { return *distribution_; }
+    const glm::mat3& toWorld() const { return toWorld_; }
+
 private:
     int cellIndex(glm::vec2 uv, int& column, int& row) const;
 

@@ -1,6 +1,7 @@
 #include "tracer/path_integrator.h"
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -47,7 +48,7 @@ PathIntegrator::PathIntegrator(const EmbreeScene& geometry, const LightSet& ligh
 }
 
 glm::vec3 PathIntegrator::nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                                            RayCounts& rays) const {
+                                            RayCounts& rays, bool environment) const {
     glm::vec3 L(0.0f);
     float cosSurface = 0.0f;
     glm::vec3 origin;
@@ -57,7 +58,7 @@ glm::vec3 PathIntegrator::nextEventInfinite(const SurfaceHit& hit, const Sampler
         if (!unoccludedToward(origin, d.toLight, rays)) continue;
         L += e.f * d.irradiance * cosSurface;
     }
-    if (!lights_.environment || lights_.environment->constant()) return L;
+    if (!environment || !lights_.environment || lights_.environment->constant()) return L;
     const EnvironmentSampler::Sample s = lights_.environment->sample(sampler.get2D(dims::path(depth, dims::PathSlot::EnvLight)));
     if (!(s.pdf > 0.0f)) return L;
     if (!lightToward(hit, s.direction, diffusePick, cosSurface, origin, e)) return L;
@@ -139,10 +140,13 @@ struct PathIntegrator::PathVertex {
     bool shadow;     // finite has a segment to test
     bool infiniteLights;
     bool next;       // the path goes on from nextOrigin along unit nextDir
+    bool envShadow;  // the SIMD lanes sampled the environment map: envContribution where the ray
+                     // from envOrigin along envDir escapes (infinite then holds the rest)
     glm::vec3 neeBeta, finite, infinite;
     ShadowSegment segment;
     glm::vec3 nextOrigin, nextDir;
-    void reset() { nextEvent = shadow = infiniteLights = next = false; }
+    glm::vec3 envContribution, envOrigin, envDir;
+    void reset() { nextEvent = shadow = infiniteLights = next = envShadow = false; }
 };
 
 void PathIntegrator::addEmission(PathState& s) const {
@@ -291,8 +295,16 @@ void PathIntegrator::finishSimdLane(PathState& s, const Sampler& sampler, const 
         out.finite = e.f * vec(lanes.radiance) * (cosSurface * (pick * inv / denominator));
     }
     if (out.shadow) out.segment = {vec(lanes.origin), vec(lanes.segment), lanes.tfar[k]};
+    // The lanes sampled an environment map for this lane (Lambert and rough plastic lanes).
+    const bool envOnLanes = onLanes && simdLights_.envWidth > 0;
+    if (envOnLanes && lanes.envShadow[k] != 0) {
+        out.envShadow = true;
+        out.envContribution = vec(lanes.envContribution);
+        out.envOrigin = vec(lanes.origin);
+        out.envDir = vec(lanes.envDir);
+    }
     out.infiniteLights = !lights_.directionals.empty() || lights_.environment.has_value();
-    if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays);
+    if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays, !envOnLanes);
 
     glm::vec3 dir;
     if (onLanes) {
@@ -338,9 +350,10 @@ RayCone PathIntegrator::nextCone(const PathState& s) const {
     return cone;
 }
 
-void PathIntegrator::addNextEvent(PathState& s, const PathVertex& v, bool visible) const {
+void PathIntegrator::addNextEvent(PathState& s, const PathVertex& v, bool visible, bool envVisible) const {
     glm::vec3 nee = visible ? v.finite : glm::vec3(0.0f);
     if (v.infiniteLights) nee += v.infinite;
+    if (envVisible) nee += v.envContribution;
     s.L += v.neeBeta * nee;
 }
 
@@ -356,7 +369,7 @@ glm::vec3 PathIntegrator::tracePath(const SurfaceHit& first, const Sampler& samp
         v.reset();
         scatterPathVertex(s, sampler, v, rays);
         if (v.nextEvent)
-            addNextEvent(s, v, v.shadow && !occluded(v.segment.origin, v.segment.dir, v.segment.tfar, rays));
+            addNextEvent(s, v, v.shadow && !occluded(v.segment.origin, v.segment.dir, v.segment.tfar, rays), false);
         if (!v.next) break;
         if (!intersect(v.nextOrigin, v.nextDir, s.hit, rays.other, nextCone(s))) {
             endPath(s, v);
@@ -383,10 +396,11 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
         lanes[active++] = i;
     }
     // Lanes a packet does not trace keep finite data from their last use (Embree may load them).
-    RTCRay8 shadow;
+    RTCRay8 shadow, envShadow;
     RayPacket<W> next;
     for (int i = 0; i < W; ++i) {
         setShadowLane(shadow, i, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), 0.0f);
+        setShadowLane(envShadow, i, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f), 0.0f);
         next.setIdle(i);
     }
     // Every path scatters, then their shadow segments go out as one packet and their next rays as
@@ -491,11 +505,31 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
             rtcOccluded8(shadowValid, scene_, &context, &shadow);
             rays.shadow += static_cast<std::uint64_t>(shadows);
         }
+        // The environment samples the lanes took, as a second packet (to infinity, as
+        // unoccludedToward traces them one by one).
+        alignas(32) int envValid[W] = {};
+        int envShadows = 0;
+        for (int a = 0; a < active; ++a) {
+            const int i = lanes[a];
+            if (!v[i].envShadow) continue;
+            envValid[i] = -1;
+            ++envShadows;
+            setShadowLane(envShadow, i, v[i].envOrigin, v[i].envDir, std::numeric_limits<float>::infinity());
+        }
+        if (envShadows > 0) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+            rtcOccluded8(envValid, scene_, &context, &envShadow);
+            rays.shadow += static_cast<std::uint64_t>(envShadows);
+        }
         alignas(32) int nextValid[W] = {};
         int going = 0;
         for (int a = 0; a < active; ++a) {
             const int i = lanes[a];
-            if (v[i].nextEvent) addNextEvent(s[i], v[i], shadowValid[i] != 0 && shadow.tfar[i] >= 0.0f);
+            if (v[i].nextEvent)
+                addNextEvent(s[i], v[i], shadowValid[i] != 0 && shadow.tfar[i] >= 0.0f,
+                             envValid[i] != 0 && envShadow.tfar[i] >= 0.0f);
             if (!v[i].next) continue;
             nextValid[i] = -1;
             next.set(i, v[i].nextOrigin, v[i].nextDir);

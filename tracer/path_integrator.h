@@ -60,7 +60,8 @@ private:
                         RayCounts& rays) const;
     // Adds the vertex's next-event estimate; visible: its shadow segment was clear.
     RayCone nextCone(const PathState& s) const;
-    void addNextEvent(PathState& s, const PathVertex& v, bool visible) const;
+    // envVisible: the lanes' environment sample (PathVertex::envShadow) escaped.
+    void addNextEvent(PathState& s, const PathVertex& v, bool visible, bool envVisible) const;
     // Ends a path whose next ray left the scene: what the environment sends back along it.
     void endPath(PathState& s, const PathVertex& v) const;
     // One point or area light from the power CDF, MIS-weighted against BSDF sampling, before its
@@ -69,9 +70,9 @@ private:
     bool prepareNextEventFinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
                                 glm::vec3& contribution, ShadowSegment& segment) const;
     // Every directional light and one environment-map sample (a constant environment is left to
-    // BSDF sampling), their shadow rays traced here.
+    // BSDF sampling; environment false: the SIMD lanes took that sample), their shadow rays traced here.
     glm::vec3 nextEventInfinite(const SurfaceHit& hit, const Sampler& sampler, int depth, float diffusePick,
-                                RayCounts& rays) const;
+                                RayCounts& rays, bool environment = true) const;
     // What a BSDF-sampled ray that left the scene brings back, MIS-weighted against the
     // environment's light samples (pdfBefore: the BSDF sample's solid-angle pdf).
     glm::vec3 escapedPath(const glm::vec3& dir, bool specularBefore, float pdfBefore) const;

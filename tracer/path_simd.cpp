@@ -21,7 +21,7 @@
 namespace aamap::pathsimd {
 // The salts of one step's draws: Sampler::dimSalt of each slot's dimension(s).
 struct Salts {
-    std::uint64_t lobe, light0, light1, bsdf0, bsdf1, roulette;
+    std::uint64_t lobe, light0, light1, bsdf0, bsdf1, roulette, env0, env1;
 };
 constexpr float kOneMinusUlp = 0x1.fffffep-1f;  // Sampler::kOneMinusUlp
 }  // namespace aamap::pathsimd
@@ -110,6 +110,41 @@ HWY_INLINE V Dot(V a0, V a1, V a2, V b0, V b1, V b2) {
     return hn::Add(hn::Add(hn::Mul(a0, b0), hn::Mul(a1, b1)), hn::Mul(a2, b2));
 }
 
+// Distribution2D's guided inversion (tracer/distribution_2d.cpp, invert) per lane: the CDF of n
+// intervals at cdf + cdfBase, its guide at guide + guideBase; u is rescaled within the interval.
+template <class DF, class VF = hn::Vec<DF>, class VI = hn::Vec<hn::RebindToSigned<DF>>>
+HWY_INLINE VI Invert(DF df, const float* cdf, const std::int32_t* guide, VI cdfBase, VI guideBase, int n, VF& u) {
+    const hn::RebindToSigned<DF> di;
+    const VF zero = hn::Zero(df), nf = hn::Set(df, static_cast<float>(n));
+    const VI zeroI = hn::Zero(di), oneI = hn::Set(di, 1), nI = hn::Set(di, n);
+    const VF x = hn::Mul(u, nf);
+    // x > 0 ? (x < n ? int(x) : n - 1) : 0, a NaN at 0.
+    const VI k = hn::IfThenElse(hn::RebindMask(di, x > zero),
+                                hn::IfThenElse(hn::RebindMask(di, x < nf), hn::ConvertTo(di, x), hn::Sub(nI, oneI)), zeroI);
+    VI i = hn::GatherIndex(di, guide, hn::Add(guideBase, k));
+    const auto at = [&](VI j) { return hn::GatherIndex(df, cdf, hn::Add(cdfBase, j)); };
+    for (;;) {  // while (i > 0 && cdf[i] > u) --i
+        const auto back = hn::And(hn::RebindMask(df, i > zeroI), at(i) > u);
+        if (hn::AllFalse(df, back)) break;
+        i = hn::Sub(i, hn::IfThenElseZero(hn::RebindMask(di, back), oneI));
+    }
+    for (;;) {  // while (i + 1 < n && cdf[i + 1] <= u) ++i
+        const VI next = hn::Add(i, oneI);
+        const auto on = hn::And(hn::RebindMask(df, next < nI), at(hn::Min(next, nI)) <= u);
+        if (hn::AllFalse(df, on)) break;
+        i = hn::Add(i, hn::IfThenElseZero(hn::RebindMask(di, on), oneI));
+    }
+    for (;;) {  // while (i > 0 && !(cdf[i + 1] > cdf[i])) --i
+        const auto empty = hn::And(hn::RebindMask(df, i > zeroI), hn::Not(at(hn::Add(i, oneI)) > at(i)));
+        if (hn::AllFalse(df, empty)) break;
+        i = hn::Sub(i, hn::IfThenElseZero(hn::RebindMask(di, empty), oneI));
+    }
+    const VF lo = at(i), width = hn::Sub(at(hn::Add(i, oneI)), lo);
+    const VF rescaled = hn::Min(hn::Max(hn::Div(hn::Sub(u, lo), width), zero), hn::Set(df, kOneMinusUlp));
+    u = hn::IfThenElse(width > zero, rescaled, zero);
+    return i;
+}
+
 void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bool roulette) {
     const hn::CappedTag<float, kLanes> df;
     const hn::RebindToSigned<decltype(df)> di;
@@ -147,8 +182,9 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
             n[c] = load(L.n[c]);
             wi[c] = n[c];
             radiance[c] = zero;
-            origin[c] = p[c];
         }
+        const VF offset = load(L.offset);
+        for (int c = 0; c < 3; ++c) origin[c] = hn::Add(p[c], hn::Mul(offset, g[c]));
         VF cs = zero, inv = zero, pick = one, tfar = zero;
         VF segment[3] = {zero, zero, zero};
         auto ok = zero > zero;
@@ -191,8 +227,6 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
             const VF cg = Dot(g[0], g[1], g[2], wi[0], wi[1], wi[2]);
             cs = Dot(n[0], n[1], n[2], wi[0], wi[1], wi[2]);
             ok = hn::And(ok, hn::And(cosLight > zero, hn::And(cg > zero, cs > zero)));
-            const VF offset = load(L.offset);
-            for (int c = 0; c < 3; ++c) origin[c] = hn::Add(p[c], hn::Mul(offset, g[c]));
             // rayOffset(q, vertexScale) (tracer/ray_offset.h).
             const VF scale = StdMax(StdMax(hn::Abs(q[0]), hn::Abs(q[1])), StdMax(hn::Abs(q[2]), hn::Set(df, 1e-30f)));
             const VF vertexScale = hn::GatherIndex(df, t.vertexScale.data(), l);
@@ -316,6 +350,60 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         const VF weight = hn::Mul(cs, hn::Div(hn::Mul(pick, inv), denominator));
         for (int c = 0; c < 3; ++c) store(hn::Mul(hn::Mul(f[c], radiance[c]), weight), L.contribution[c]);
 
+        // EnvironmentSampler::sample and nextEventInfinite's map sample: the cell by the guided
+        // inversion of the marginal and the row's CDF, the direction from its sine and cosine, the
+        // BSDF towards it and the power heuristic, for Lambert and rough plastic lanes.
+        if (t.envWidth > 0) {
+            VF ux = Draw(df, keys, salts.env0), uy = Draw(df, keys, salts.env1);
+            const int w = t.envWidth, h = t.envHeight;
+            const VI row = Invert(df, t.envMarginal.data(), t.envMarginalGuide.data(), zeroI, zeroI, h, uy);
+            const VI col = Invert(df, t.envConditional.data(), t.envConditionalGuide.data(),
+                                  hn::Mul(row, hn::Set(di, w + 1)), hn::Mul(row, hn::Set(di, w)), w, ux);
+            const VF kMax = hn::Set(df, kOneMinusUlp);
+            const VF px = hn::Min(hn::Div(hn::Add(hn::ConvertTo(df, col), ux), hn::Set(df, static_cast<float>(w))), kMax);
+            const VF py = hn::Min(hn::Div(hn::Add(hn::ConvertTo(df, row), uy), hn::Set(df, static_cast<float>(h))), kMax);
+            const VI cell = hn::Add(hn::Mul(row, hn::Set(di, w)), col);
+            const VF cellPdf = hn::GatherIndex(df, t.envPdf.data(), cell);
+            const VF kPi = hn::Set(df, std::numbers::pi_v<float>);
+            const VF theta = hn::Mul(py, kPi), phi = hn::Mul(hn::Mul(px, hn::Set(df, 2.0f)), kPi);
+            const VF sinTheta = hn::Sin(df, theta), cosTheta = hn::Cos(df, theta);
+            const VF local[3] = {hn::Mul(sinTheta, hn::Sin(df, phi)), cosTheta, hn::Neg(hn::Mul(sinTheta, hn::Cos(df, phi)))};
+            VF ed[3];
+            for (int c = 0; c < 3; ++c) {
+                const float* m = t.envToWorld;
+                ed[c] = hn::Add(hn::Add(hn::Mul(hn::Set(df, m[c]), local[0]), hn::Mul(hn::Set(df, m[3 + c]), local[1])),
+                                hn::Mul(hn::Set(df, m[6 + c]), local[2]));
+            }
+            const VF edScale = hn::Div(one, hn::Sqrt(Dot(ed[0], ed[1], ed[2], ed[0], ed[1], ed[2])));
+            for (int c = 0; c < 3; ++c) ed[c] = hn::Mul(ed[c], edScale);
+            const VF envPdf = hn::Div(cellPdf, hn::Mul(hn::Set(df, 2.0f * std::numbers::pi_v<float> * std::numbers::pi_v<float>),
+                                                       sinTheta));
+            // lightToward: above both normals; the BSDF as for the area light's sample.
+            const VF eg = Dot(g[0], g[1], g[2], ed[0], ed[1], ed[2]);
+            const VF ec = Dot(n[0], n[1], n[2], ed[0], ed[1], ed[2]);
+            VF ef[3];
+            for (int c = 0; c < 3; ++c) ef[c] = albedoPi[c];
+            VF ePdf = hn::Mul(ec, invPi);
+            if (anyPlastic) {
+                VF fp[3], pdfPlastic;
+                evalPlastic(ed, fp, pdfPlastic);
+                for (int c = 0; c < 3; ++c) ef[c] = hn::IfThenElse(plastic, fp[c], ef[c]);
+                ePdf = hn::IfThenElse(plastic, pdfPlastic, ePdf);
+            }
+            const auto envOk = hn::And(shaded, hn::And(hn::And(cellPdf > zero, sinTheta > zero), hn::And(eg > zero, ec > zero)));
+            storeMask(envOk, L.envShadow + i);
+            // powerHeuristic(envPdf, ePdf), then cosSurface * weight / envPdf.
+            const VF a2 = hn::Mul(envPdf, envPdf), b2 = hn::Mul(ePdf, ePdf);
+            const VF sum2 = hn::Add(a2, b2);
+            const VF heuristic = hn::IfThenElseZero(sum2 > zero, hn::Div(a2, sum2));
+            const VF scale = hn::Div(hn::Mul(ec, heuristic), envPdf);
+            for (int c = 0; c < 3; ++c) {
+                const VF radianceC = hn::GatherIndex(df, t.envRadiance[c].data(), cell);
+                store(hn::IfThenElseZero(envOk, hn::Mul(hn::Mul(ef[c], radianceC), scale)), L.envContribution[c]);
+                store(ed[c], L.envDir[c]);
+            }
+        }
+
         // The bounce: bsdf::sampleCosine, or for the coating's share of rough plastic lanes a
         // visible GGX normal (Heitz 2018, as microfacet::Distribution::sampleVisibleGgx), then the
         // checks and weights of scatterPathVertex's non-delta branch. Both take the same r, phi.
@@ -401,6 +489,7 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 #include "tracer/integrator.h"
+#include "tracer/environment.h"
 #include "tracer/lights.h"
 
 namespace aamap::pathsimd {
@@ -414,7 +503,9 @@ void shade(const LightTable& lights, Lanes& lanes, int count, int depth, bool ro
                       Sampler::dimSalt(dims::path(depth, PathSlot::Light) + 1),
                       Sampler::dimSalt(dims::path(depth, PathSlot::Bsdf)),
                       Sampler::dimSalt(dims::path(depth, PathSlot::Bsdf) + 1),
-                      Sampler::dimSalt(dims::path(depth, PathSlot::Roulette))};
+                      Sampler::dimSalt(dims::path(depth, PathSlot::Roulette)),
+                      Sampler::dimSalt(dims::path(depth, PathSlot::EnvLight)),
+                      Sampler::dimSalt(dims::path(depth, PathSlot::EnvLight) + 1)};
     HWY_DYNAMIC_DISPATCH(ShadeLanes)(lights, lanes, count, salts, roulette);
 }
 
@@ -441,6 +532,22 @@ LightTable makeLightTable(const LightSet& lights) {
                 t.normal[c].push_back(tri.normal[c]);
             }
         }
+    }
+    if (lights.environment && !lights.environment->constant()) {
+        const EnvironmentSampler& env = *lights.environment;
+        const Distribution2D& d = env.distribution();
+        t.envWidth = env.width();
+        t.envHeight = env.height();
+        t.envMarginal = d.marginalCdf();
+        t.envConditional = d.conditionalCdfs();
+        t.envMarginalGuide.assign(d.marginalGuide().begin(), d.marginalGuide().end());
+        t.envConditionalGuide.assign(d.conditionalGuide().begin(), d.conditionalGuide().end());
+        for (int y = 0; y < t.envHeight; ++y)
+            for (int x = 0; x < t.envWidth; ++x) t.envPdf.push_back(d.pdf(x, y));
+        for (const glm::vec3& r : env.map())
+            for (int c = 0; c < 3; ++c) t.envRadiance[c].push_back(r[c]);
+        for (int col = 0; col < 3; ++col)
+            for (int c = 0; c < 3; ++c) t.envToWorld[3 * col + c] = env.toWorld()[col][c];
     }
     return t;
 }

@@ -25,6 +25,13 @@ struct LightTable {
     std::vector<float> radiance[3], area, vertexScale;
     std::vector<float> cdfLow, cdf, invCdfWidth;  // per triangle, as AreaLightSampler::Tri
     std::vector<float> v0[3], e1[3], e2[3], normal[3];
+    // An environment map sampled on the lanes (EnvironmentSampler::sample): its CDFs and guide
+    // tables, each cell's density over [0,1)^2 and radiance, and the map-to-world rotation
+    // (column-major). envWidth 0: none, or a constant sky (left to BSDF sampling).
+    int envWidth = 0, envHeight = 0;
+    std::vector<float> envMarginal, envConditional, envPdf, envRadiance[3];
+    std::vector<std::int32_t> envMarginalGuide, envConditionalGuide;
+    float envToWorld[9] = {};
 };
 LightTable makeLightTable(const LightSet& lights);
 
@@ -61,6 +68,10 @@ struct alignas(64) Lanes {
     // the surface being above both normals), with the new beta and the BSDF pdf.
     std::int32_t shadow[kLanes], next[kLanes];
     float contribution[3][kLanes], dir[3][kLanes], pdf[kLanes];
+    // out, Lambert and rough plastic lanes with an environment map in the table: its light sample
+    // (nextEventInfinite's), a shadow ray from origin along envDir to infinity when envShadow.
+    std::int32_t envShadow[kLanes];
+    float envDir[3][kLanes], envContribution[3][kLanes];
 };
 
 // Shades lanes [0, count) at path vertex `depth` (the same for every lane of a lockstep step);
