@@ -35,6 +35,28 @@ bool lightToward(const SurfaceHit& hit, const glm::vec3& wi, float diffusePick, 
     return true;
 }
 
+// Traces the segments segmentOf(i) gives (nullptr: none) for the active lanes as one occlusion
+// packet: valid[i] = -1 for those traced, and packet.tfar[i] < 0 where something blocks them.
+template <class SegmentOf>
+void traceShadows(RTCScene scene, RTCRay8& packet, int* valid, const int* lanes, int active, RayCounts& rays,
+                  SegmentOf&& segmentOf) {
+    int count = 0;
+    for (int a = 0; a < active; ++a) {
+        const int i = lanes[a];
+        const ShadowSegment* segment = segmentOf(i);
+        if (segment == nullptr) continue;
+        valid[i] = -1;
+        ++count;
+        setShadowLane(packet, i, segment->origin, segment->dir, segment->tfar);
+    }
+    if (count == 0) return;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    rtcOccluded8(valid, scene, &context, &packet);
+    rays.shadow += static_cast<std::uint64_t>(count);
+}
+
 }  // namespace
 
 // One light sample per vertex: Auto samples area lights by area (docs/tracer.md, "Lights").
@@ -140,12 +162,13 @@ struct PathIntegrator::PathVertex {
     bool shadow;     // finite has a segment to test
     bool infiniteLights;
     bool next;       // the path goes on from nextOrigin along unit nextDir
-    bool envShadow;  // the SIMD lanes sampled the environment map: envContribution where the ray
-                     // from envOrigin along envDir escapes (infinite then holds the rest)
+    bool envShadow;  // the SIMD lanes sampled the environment map: envContribution where
+                     // envSegment (to infinity) is clear; infinite then holds the rest
     glm::vec3 neeBeta, finite, infinite;
     ShadowSegment segment;
     glm::vec3 nextOrigin, nextDir;
-    glm::vec3 envContribution, envOrigin, envDir;
+    glm::vec3 envContribution;
+    ShadowSegment envSegment;
     void reset() { nextEvent = shadow = infiniteLights = next = envShadow = false; }
 };
 
@@ -300,8 +323,7 @@ void PathIntegrator::finishSimdLane(PathState& s, const Sampler& sampler, const 
     if (envOnLanes && lanes.envShadow[k] != 0) {
         out.envShadow = true;
         out.envContribution = vec(lanes.envContribution);
-        out.envOrigin = vec(lanes.origin);
-        out.envDir = vec(lanes.envDir);
+        out.envSegment = {vec(lanes.origin), vec(lanes.envDir), std::numeric_limits<float>::infinity()};
     }
     out.infiniteLights = !lights_.directionals.empty() || lights_.environment.has_value();
     if (out.infiniteLights) out.infinite = nextEventInfinite(hit, sampler, depth, diffusePick, rays, !envOnLanes);
@@ -489,40 +511,14 @@ void PathIntegrator::primaryPacket(const RayPacket<kMaxPacket>& primaries, int c
             for (int k = 0; k < simdCount; ++k)
                 finishSimdLane(s[simdLane[k]], samplers[simdLane[k]], simd, k, v[simdLane[k]], rays);
         }
+        // The light samples' shadow segments as one packet, and the environment samples the lanes
+        // took as another (to infinity, as unoccludedToward traces them one by one).
         alignas(32) int shadowValid[W] = {};
-        int shadows = 0;
-        for (int a = 0; a < active; ++a) {
-            const int i = lanes[a];
-            if (!v[i].shadow) continue;
-            shadowValid[i] = -1;
-            ++shadows;
-            setShadowLane(shadow, i, v[i].segment.origin, v[i].segment.dir, v[i].segment.tfar);
-        }
-        if (shadows > 0) {
-            RTCIntersectContext context;
-            rtcInitIntersectContext(&context);
-            context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-            rtcOccluded8(shadowValid, scene_, &context, &shadow);
-            rays.shadow += static_cast<std::uint64_t>(shadows);
-        }
-        // The environment samples the lanes took, as a second packet (to infinity, as
-        // unoccludedToward traces them one by one).
         alignas(32) int envValid[W] = {};
-        int envShadows = 0;
-        for (int a = 0; a < active; ++a) {
-            const int i = lanes[a];
-            if (!v[i].envShadow) continue;
-            envValid[i] = -1;
-            ++envShadows;
-            setShadowLane(envShadow, i, v[i].envOrigin, v[i].envDir, std::numeric_limits<float>::infinity());
-        }
-        if (envShadows > 0) {
-            RTCIntersectContext context;
-            rtcInitIntersectContext(&context);
-            context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-            rtcOccluded8(envValid, scene_, &context, &envShadow);
-            rays.shadow += static_cast<std::uint64_t>(envShadows);
-        }
+        traceShadows(scene_, shadow, shadowValid, lanes, active, rays,
+                     [&](int i) { return v[i].shadow ? &v[i].segment : nullptr; });
+        traceShadows(scene_, envShadow, envValid, lanes, active, rays,
+                     [&](int i) { return v[i].envShadow ? &v[i].envSegment : nullptr; });
         alignas(32) int nextValid[W] = {};
         int going = 0;
         for (int a = 0; a < active; ++a) {

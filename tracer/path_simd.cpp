@@ -332,17 +332,24 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
                                                     hn::Mul(hn::Mul(hn::Sub(one, pickSpecular), li[2]), invPi)));
         };
 
-        // The BSDF towards the light and the power heuristic's weight over the light's pdf in one
-        // division, as prepareNextEventFinite. Lambert: albedo / pi, pdf cos / pi.
-        VF albedoPi[3], f[3];
-        for (int c = 0; c < 3; ++c) f[c] = albedoPi[c] = hn::Mul(load(L.albedo[c]), invPi);
-        VF pdfLight = hn::Mul(cs, invPi);
-        if (anyPlastic) {
+        // The BSDF of a lane's model towards a light sample w at cosine cosW: Lambert albedo / pi
+        // with pdf cos / pi, or rough plastic's lobes.
+        VF albedoPi[3];
+        for (int c = 0; c < 3; ++c) albedoPi[c] = hn::Mul(load(L.albedo[c]), invPi);
+        const auto evalLanes = [&](const VF (&w)[3], VF cosW, VF (&f)[3], VF& pdf) {
+            for (int c = 0; c < 3; ++c) f[c] = albedoPi[c];
+            pdf = hn::Mul(cosW, invPi);
+            if (!anyPlastic) return;
             VF fp[3], pdfPlastic;
-            evalPlastic(wi, fp, pdfPlastic);
+            evalPlastic(w, fp, pdfPlastic);
             for (int c = 0; c < 3; ++c) f[c] = hn::IfThenElse(plastic, fp[c], f[c]);
-            pdfLight = hn::IfThenElse(plastic, pdfPlastic, pdfLight);
-        }
+            pdf = hn::IfThenElse(plastic, pdfPlastic, pdf);
+        };
+
+        // The BSDF towards the light and the power heuristic's weight over the light's pdf in one
+        // division, as prepareNextEventFinite.
+        VF f[3], pdfLight;
+        evalLanes(wi, cs, f, pdfLight);
         const VF bsdfInv = hn::Mul(pdfLight, inv);
         const VF denominator = hn::Add(hn::Mul(pick, pick), hn::Mul(bsdfInv, bsdfInv));
         const auto shadow = hn::And(shaded, hn::And(ok, denominator > zero));
@@ -381,15 +388,8 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
             // lightToward: above both normals; the BSDF as for the area light's sample.
             const VF eg = Dot(g[0], g[1], g[2], ed[0], ed[1], ed[2]);
             const VF ec = Dot(n[0], n[1], n[2], ed[0], ed[1], ed[2]);
-            VF ef[3];
-            for (int c = 0; c < 3; ++c) ef[c] = albedoPi[c];
-            VF ePdf = hn::Mul(ec, invPi);
-            if (anyPlastic) {
-                VF fp[3], pdfPlastic;
-                evalPlastic(ed, fp, pdfPlastic);
-                for (int c = 0; c < 3; ++c) ef[c] = hn::IfThenElse(plastic, fp[c], ef[c]);
-                ePdf = hn::IfThenElse(plastic, pdfPlastic, ePdf);
-            }
+            VF ef[3], ePdf;
+            evalLanes(ed, ec, ef, ePdf);
             const auto envOk = hn::And(shaded, hn::And(hn::And(cellPdf > zero, sinTheta > zero), hn::And(eg > zero, ec > zero)));
             storeMask(envOk, L.envShadow + i);
             // powerHeuristic(envPdf, ePdf), then cosSurface * weight / envPdf.
