@@ -290,7 +290,7 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
             const VF g = hn::Div(one, hn::Add(one, lambdaGgx(v)));
             return hn::IfThenElseZero(hn::Mul(Dot(v[0], v[1], v[2], h[0], h[1], h[2]), v[2]) > zero, g);
         };
-        const auto evalPlastic = [&](const VF (&w)[3], VF (&f)[3], VF& pdf) {
+        const auto evalPlastic = [&](const VF (&w)[3], VF (&f)[3], VF& pdf) __attribute__((always_inline)) {
             VF li[3], h[3];
             li[0] = Dot(w[0], w[1], w[2], tx, ty, tz);
             li[1] = Dot(w[0], w[1], w[2], bx, by, bz);
@@ -336,7 +336,7 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         // with pdf cos / pi, or rough plastic's lobes.
         VF albedoPi[3];
         for (int c = 0; c < 3; ++c) albedoPi[c] = hn::Mul(load(L.albedo[c]), invPi);
-        const auto evalLanes = [&](const VF (&w)[3], VF cosW, VF (&f)[3], VF& pdf) {
+        const auto evalLanes = [&](const VF (&w)[3], VF cosW, VF (&f)[3], VF& pdf) __attribute__((always_inline)) {
             for (int c = 0; c < 3; ++c) f[c] = albedoPi[c];
             pdf = hn::Mul(cosW, invPi);
             if (!anyPlastic) return;
