@@ -44,7 +44,6 @@ EnvironmentSampler::EnvironmentSampler(const EnvironmentLight& light)
 
 glm::vec2 EnvironmentSampler::toMap(const glm::vec3& dir) const { return latlong::fromDirection(toLocal_ * dir); }
 
-glm::vec3 EnvironmentSampler::fromMap(glm::vec2 uv) const { return glm::normalize(toWorld_ * latlong::toDirection(uv)); }
 
 int EnvironmentSampler::cellIndex(glm::vec2 uv, int& column, int& row) const {
     column = std::clamp(static_cast<int>(uv.x * static_cast<float>(width_)), 0, width_ - 1);

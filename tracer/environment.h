@@ -39,9 +39,8 @@ public:
     // The solid-angle density sample() has for `dir`; 0 for a constant environment.
     float pdf(const glm::vec3& dir) const;
 
-    // Map coordinates of a world direction, and back (the Mitsuba convention, scene/scene.h).
+    // Map coordinates of a world direction (the Mitsuba convention, scene/scene.h).
     glm::vec2 toMap(const glm::vec3& dir) const;
-    glm::vec3 fromMap(glm::vec2 uv) const;
 
     // The map and its distribution as sample() reads them (only for !constant()).
     int width() const { return width_; }
