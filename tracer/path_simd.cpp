@@ -130,7 +130,7 @@ HWY_INLINE VI Invert(DF df, const float* cdf, const std::int32_t* guide, VI cdfB
     }
     for (;;) {  // while (i + 1 < n && cdf[i + 1] <= u) ++i
         const VI next = hn::Add(i, oneI);
-        const auto on = hn::And(hn::RebindMask(df, next < nI), at(hn::Min(next, nI)) <= u);
+        const auto on = hn::And(hn::RebindMask(df, next < nI), at(next) <= u);  // next <= n: in the CDF
         if (hn::AllFalse(df, on)) break;
         i = hn::Add(i, hn::IfThenElseZero(hn::RebindMask(di, on), oneI));
     }
@@ -360,7 +360,9 @@ void ShadeLanes(const LightTable& t, Lanes& L, int count, const Salts& salts, bo
         // EnvironmentSampler::sample and nextEventInfinite's map sample: the cell by the guided
         // inversion of the marginal and the row's CDF, the direction from its sine and cosine, the
         // BSDF towards it and the power heuristic, for Lambert and rough plastic lanes.
-        if (t.envWidth > 0) {
+        // Skipped where every lane is kOther: finishSimdLane samples their sky and never reads
+        // their envShadow.
+        if (t.envWidth > 0 && !hn::AllFalse(df, shaded)) {
             VF ux = Draw(df, keys, salts.env0), uy = Draw(df, keys, salts.env1);
             const int w = t.envWidth, h = t.envHeight;
             const VI row = Invert(df, t.envMarginal.data(), t.envMarginalGuide.data(), zeroI, zeroI, h, uy);
