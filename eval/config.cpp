@@ -312,7 +312,7 @@ std::string renderKey(const ExperimentConfig& c, const RenderConfig& r) { return
 
 std::string snapshotKey(const ExperimentConfig& c) {
     Json j;
-    j["format"] = "aamap-snapshot-13";  // bump as the render key
+    j["format"] = "aamap-snapshot-14";  // bump as the render key
     j["scene"] = sceneJson(c);
     j["snapshot"] = snapshotJson(c, true);
     addSubpixelThreshold(c, j);

@@ -11,10 +11,11 @@ struct SubpixelImages {
     ImageGrey map;    // a = 0 where E <= tau, else 1 - tau / E
 };
 
-// colour and geometry: k W x k H (geometry images as the geometry raster writes them,
-// geometric_edges.h); the result W x H. Throws std::invalid_argument on mismatched sizes, a size
-// that is not a multiple of k, or k outside [SUBPIXEL_MIN_K, SUBPIXEL_MAX_K].
+// geometry: k W x k H (as the geometry raster writes them, geometric_edges.h); colour: the same,
+// or W x H with shared shading (one shade per pixel, rule 2'); the result W x H. Throws
+// std::invalid_argument on mismatched sizes, a size that is not a multiple of k, or k outside
+// [SUBPIXEL_MIN_K, SUBPIXEL_MAX_K].
 SubpixelImages subpixelMap(const ImageRGB& colour, const GeometryImages& geometry, int k, float exposure,
-                           float tolerance);
+                           float tolerance, bool shared);
 
 }  // namespace aamap::cpu

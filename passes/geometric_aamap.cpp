@@ -77,12 +77,17 @@ void addAamapChain(graph::RenderGraph& graph, vk::GraphExecutor& executor, const
                    GeometryBufferPass& geometry, const GeometricEdgePass& edges, const SubpixelMapPass& subpixel,
                    AamapSource source, const MapChainInputs& in) {
     if (source == AamapSource::Subpixel) {
-        geometry.add(graph, executor, in.colour, in.view);
+        // k x the render resolution, whatever the colour's (one shade per pixel, or per sample).
+        const auto k = static_cast<std::uint32_t>(in.subpixel.k);
+        geometry.add(graph, executor,
+                     graph::Size::absolute(k * static_cast<std::uint32_t>(in.width),
+                                           k * static_cast<std::uint32_t>(in.height)),
+                     in.view);
         graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(in.width, in.height)));
         subpixel.add(graph, executor, in.colour, kGeometryNormalDepth, kGeometryIds, kAamap, in.subpixel);
         return;
     }
-    geometry.add(graph, executor, in.colour, in.view, in.shadows);
+    geometry.add(graph, executor, graph::Size::relative(in.colour), in.view, in.shadows);
     graph.addResource(graph::imageResource(kEdges, graph::Format::R32Float, graph::Size::relative(in.colour)));
     if (source == AamapSource::Luminance) {
         chain.add(graph, executor, in.colour, in.width, in.height, in.params, in.greyFromGBuffer);

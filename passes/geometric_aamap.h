@@ -43,7 +43,7 @@ struct MapChainInputs {
     FilterParams params;
     GBufferShadows shadows;  // the G-buffer's shadow maps (none: empty resource), for the occlusion mask
     bool greyFromGBuffer = false;  // kGrey is declared and the G-buffer writes it (GBufferGrey)
-    SubpixelSettings subpixel;     // the subpixel map: `colour` is k x the render resolution
+    SubpixelSettings subpixel;     // the subpixel map: `colour` is k x the render resolution unless shared
 };
 
 // Declares grey, laplacian, map and aamap (gpu_aamap.h) and the passes that make the aamap from

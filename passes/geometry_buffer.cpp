@@ -97,12 +97,12 @@ void GeometryBufferPass::prepare() {
     pendingIds_ = {};
 }
 
-void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& like,
+void GeometryBufferPass::add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const graph::Size& size,
                              const SnapshotView& view, const GBufferShadows& shadows) {
     const bool shadowed = !shadows.resource.empty();
-    graph.addResource(graph::imageResource(kGeometryNormalDepth, kFormat, graph::Size::relative(like)));
-    graph.addResource(graph::imageResource(kGeometryIds, kFormat, graph::Size::relative(like)));
-    graph.addResource(graph::imageResource(kGeometryDepth, graph::Format::D32Float, graph::Size::relative(like)));
+    graph.addResource(graph::imageResource(kGeometryNormalDepth, kFormat, size));
+    graph.addResource(graph::imageResource(kGeometryIds, kFormat, size));
+    graph.addResource(graph::imageResource(kGeometryDepth, graph::Format::D32Float, size));
     std::vector<graph::Access> accesses{graph::writes(kGeometryNormalDepth, graph::Usage::ColorAttachment),
                                         graph::writes(kGeometryIds, graph::Usage::ColorAttachment),
                                         graph::writes(kGeometryDepth, graph::Usage::DepthAttachment)};

@@ -32,11 +32,11 @@ public:
     GeometryBufferPass(VulkanContext& context, const Scene& scene, const SceneGpu& sceneGpu);
     ~GeometryBufferPass();
 
-    // Declares kGeometryNormalDepth, kGeometryIds and kGeometryDepth sized like `like` and the
+    // Declares kGeometryNormalDepth, kGeometryIds and kGeometryDepth of `size` and the
     // pass "geometry_buffer", which also reads shadows.resource when that is not empty (the same
     // GBufferShadows the G-buffer got). Must outlive execution. Nothing is uploaded or built
     // unless the graph keeps the pass (the executor's prepare step).
-    void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const std::string& like,
+    void add(graph::RenderGraph& graph, vk::GraphExecutor& executor, const graph::Size& size,
              const SnapshotView& view, const GBufferShadows& shadows = {});
     bool prepared() const { return static_cast<bool>(ids_) || triangleCount_ == 0; }
 

@@ -244,10 +244,12 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     if (subpixelMap && (settings.subpixel < SUBPIXEL_MIN_K || settings.subpixel > SUBPIXEL_MAX_K))
         throw std::invalid_argument("SnapshotSettings::subpixel must be in [2, 4], got " +
                                     std::to_string(settings.subpixel));
-    // The subpixel map reads k x k raster samples per render pixel, texel (k x + i, k y + j).
-    const auto k = static_cast<std::uint32_t>(settings.subpixel);
-    const std::uint32_t snapW = subpixelMap ? k * static_cast<std::uint32_t>(width) : scaled(width);
-    const std::uint32_t snapH = subpixelMap ? k * static_cast<std::uint32_t>(height) : scaled(height);
+    // The subpixel map reads k x k geometry samples per render pixel, texel (k x + i, k y + j), and
+    // one shade per pixel (shared) or per sample.
+    const bool sharedShading = settings.subpixelShading == passes::SubpixelShading::Pixel;
+    const auto colourScale = static_cast<std::uint32_t>(sharedShading ? 1 : settings.subpixel);
+    const std::uint32_t snapW = subpixelMap ? colourScale * static_cast<std::uint32_t>(width) : scaled(width);
+    const std::uint32_t snapH = subpixelMap ? colourScale * static_cast<std::uint32_t>(height) : scaled(height);
     passes::SnapshotView snapshotView;
     snapshotView.camera = PinholeCamera::fromView(view);
     clipPlanes(s.bounds, snapshotView.camera.origin, s.emptyMesh, snapshotView.nearPlane, snapshotView.farPlane);
@@ -325,7 +327,8 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     passes::MapChainInputs mapInputs{passes::kSnapshot, snapshotView, width, height, settings.filter};
     mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
     mapInputs.greyFromGBuffer = !grey.resource.empty();
-    mapInputs.subpixel = {settings.subpixel, settings.filter.exposure, subpixelTolerance(settings.flipThreshold)};
+    mapInputs.subpixel = {settings.subpixel, settings.filter.exposure, subpixelTolerance(settings.flipThreshold),
+                          sharedShading};
     passes::addAamapChain(graph, s.executor, s.chain, s.geometry, s.geometricEdges, s.subpixel, settings.map,
                           mapInputs);
     // Always declared: culled (with the reason in `explain`) unless a strategy asked for it.

@@ -20,9 +20,12 @@
 //   geometry_depth        D32, the raster's z-buffer   geometry_buffer
 //   edges                 R32F                         geometric_edges -> blur (geometric, combined)
 //   map                   R32F, snapshot resolution    blur -> reduce
+//   subpixel.geometry     R32F, render resolution      subpixel_geometry (the subpixel map's step 3
+//                                                      per pixel, from the geometry images at k x k
+//                                                      texels a pixel) -> subpixel_map
 //   aamap                 R32F, render resolution      reduce, or subpixel_map (subpixel map: reads
-//                                                      snapshot and the geometry images at k x k
-//                                                      texels a pixel) -> block_sum_rows; an output
+//                                                      snapshot and subpixel.geometry)
+//                                                      -> block_sum_rows; an output
 //   block_sums/_counts    (W+1) x (H+1) prefix tables  block_sum_columns; outputs
 // The graph culls what the scene and the requested outputs do not need, and says why.
 #include <string>
@@ -43,6 +46,7 @@ inline const std::string kGeometryIds = "geometry_ids";
 inline const std::string kGeometryDepth = "geometry_depth";
 inline const std::string kEdges = "edges";
 inline const std::string kMap = "map";
+inline const std::string kSubpixelGeometry = "subpixel.geometry";
 inline const std::string kAamap = "aamap";
 inline const std::string kBlockSumRowPrefixes = "block_sum_row_prefixes";    // transient
 inline const std::string kBlockCountRowPrefixes = "block_count_row_prefixes";  // transient
@@ -59,6 +63,7 @@ inline const std::string kLuminancePass = "luminance";
 inline const std::string kLaplacianPass = "laplacian";
 inline const std::string kGeometryBufferPass = "geometry_buffer";
 inline const std::string kGeometricEdgesPass = "geometric_edges";
+inline const std::string kSubpixelGeometryPass = "subpixel_geometry";
 inline const std::string kSubpixelMapPass = "subpixel_map";
 inline const std::string kBlurPass = "blur";
 inline const std::string kReducePass = "reduce";

@@ -19,7 +19,28 @@ const std::vector<std::pair<std::string, AamapSource>>& mapNames() {
     return names;
 }
 
+const std::vector<std::pair<std::string, SubpixelShading>>& shadingNames() {
+    static const std::vector<std::pair<std::string, SubpixelShading>> names = {{"pixel", SubpixelShading::Pixel},
+                                                                             {"sample", SubpixelShading::Sample}};
+    return names;
+}
+
 }  // namespace
+
+const char* toString(SubpixelShading shading) {
+    for (const auto& n : shadingNames())
+        if (n.second == shading) return n.first.c_str();
+    return "?";
+}
+
+bool parse(const std::string& name, SubpixelShading& shading) {
+    for (const auto& n : shadingNames())
+        if (n.first == name) {
+            shading = n.second;
+            return true;
+        }
+    return false;
+}
 
 const char* toString(AamapSource source) {
     for (const auto& n : mapNames())
@@ -119,9 +140,14 @@ const Schema<SnapshotSettings>& snapshotSchema() {
                     "`metrics.flip_threshold` ([architecture.md](architecture.md), \"Sub-pixel aamap\"; the blur, "
                     "dead zone and `scale` keys do not apply). Only non-default values enter the cache keys")
             .field(&S::subpixel, "subpixel", in(SUBPIXEL_MIN_K, SUBPIXEL_MAX_K), SUBPIXEL_DEFAULT_K,
-                   "`map: subpixel`: samples per pixel side k; the Snapshot rasterises colour and geometry at k x "
-                   "the render resolution. With `map: subpixel`, `metrics.flip_threshold` enters the Snapshot's "
-                   "cache key too");
+                   "`map: subpixel`: samples per pixel side k; the Snapshot rasterises geometry (and with "
+                   "`subpixel_shading: sample` colour) at k x the render resolution. With `map: subpixel`, "
+                   "`metrics.flip_threshold` enters the Snapshot's cache key too")
+            .choice(&S::subpixelShading, "subpixel_shading", passes::shadingNames(),
+                    "`map: subpixel`: `pixel` shades once per render pixel and shares that shade with the pixel's k x "
+                    "k geometry samples (shading steps are read from the neighbouring pixels' shades), `sample` "
+                    "shades every sample, at k^2 times the shading work ([architecture.md](architecture.md), "
+                    "\"Sub-pixel aamap\")");
         return s;
     }();
     return schema;

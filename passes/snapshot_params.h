@@ -19,6 +19,13 @@ enum class AamapSource { Luminance, Geometric, Combined, Subpixel };
 const char* toString(AamapSource source);  // the config's name: "luminance", "geometric", ...
 bool parse(const std::string& name, AamapSource& source);  // false for an unknown name
 
+// Where the subpixel map's colour comes from (config snapshot.subpixel_shading): Pixel shades
+// once per render pixel and shares that shade with the pixel's k x k geometry samples; Sample
+// shades every sample (the raster at k x the render resolution). glsl/shared/subpixel_map.h.
+enum class SubpixelShading { Pixel, Sample };
+const char* toString(SubpixelShading shading);  // "pixel", "sample"
+bool parse(const std::string& name, SubpixelShading& shading);  // false for an unknown name
+
 }  // namespace passes
 
 // Shadow cube maps, one per point light and per area-light sample.
@@ -66,6 +73,7 @@ struct SnapshotSettings {
     // resolution; `scale` does not apply), and the FLIP threshold its predicted error is held
     // against (glsl/shared/subpixel_map.h; metrics.flip_threshold).
     int subpixel;
+    passes::SubpixelShading subpixelShading;  // one shade per pixel, or one per sample
     float flipThreshold = 0.1f;
     ShadowSettings shadows;  // soft_shadows, shadow_texel_pixels
     bool operator==(const SnapshotSettings&) const = default;

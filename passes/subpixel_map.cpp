@@ -34,42 +34,79 @@ graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor&
     if (settings.k < SUBPIXEL_MIN_K || settings.k > SUBPIXEL_MAX_K)
         throw std::invalid_argument("SubpixelSettings::k must be in [2, 4], got " + std::to_string(settings.k));
     const int k = settings.k;
-    vk::PassDeclaration pass;
-    pass.desc = {kSubpixelMapPass, graph::QueueKind::Compute,
-                 {graph::reads(colour, graph::Usage::StorageRead), graph::reads(normalDepth, graph::Usage::StorageRead),
-                  graph::reads(ids, graph::Usage::StorageRead), graph::writes(output, graph::Usage::StorageWrite)},
-                 "aamap: each pixel's predicted one-ray display error from its k x k samples"};
-    pass.prepare = [this, k] {
-        vk::Pipeline& pipeline = pipelines_[k];
+    const int shared = settings.shared ? 1 : 0;
+    const auto push = [settings](const vk::Image& out) {
+        gpu::SubpixelPush p{};
+        p.outSize = {static_cast<int>(out.info().width), static_cast<int>(out.info().height)};
+        p.k = settings.k;
+        p.exposure = settings.exposure;
+        p.tolerance = settings.tolerance;
+        return p;
+    };
+    const auto build = [this](vk::Pipeline& pipeline, std::span<const std::uint32_t> code, int bindings,
+                              std::vector<std::uint32_t> constants) {
         if (pipeline.handle()) return;
-        std::vector<std::uint32_t> constants(SUBPIXEL_SPEC_K + 1, 0u);
-        constants[SUBPIXEL_SPEC_K] = static_cast<std::uint32_t>(k);
-        pipeline = vk::Pipeline(*context_, spirv::subpixel_map_comp,
-                                vk::LayoutDesc{std::vector<VkDescriptorType>(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+        pipeline = vk::Pipeline(*context_, code,
+                                vk::LayoutDesc{std::vector<VkDescriptorType>(static_cast<std::size_t>(bindings),
+                                                                             VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
                                                static_cast<std::uint32_t>(sizeof(gpu::SubpixelPush)),
                                                VK_SHADER_STAGE_COMPUTE_BIT},
                                 constants);
     };
-    pass.record = [this, colour, normalDepth, ids, output, settings](vk::PassContext& pc) {
+    // The render-resolution flags image is sized like the map.
+    graph.addResource(graph::imageResource(kSubpixelGeometry, graph::Format::R32Float, graph::Size::relative(output)));
+
+    vk::PassDeclaration geometry;
+    geometry.desc = {kSubpixelGeometryPass, graph::QueueKind::Compute,
+                     {graph::reads(normalDepth, graph::Usage::StorageRead), graph::reads(ids, graph::Usage::StorageRead),
+                      graph::writes(kSubpixelGeometry, graph::Usage::StorageWrite)},
+                     "aamap: which pixels' k x k geometry samples differ, inside and across each border"};
+    geometry.prepare = [this, k, build] {
+        std::vector<std::uint32_t> constants(SUBPIXEL_SPEC_K + 1, 0u);
+        constants[SUBPIXEL_SPEC_K] = static_cast<std::uint32_t>(k);
+        build(geometry_[k], spirv::subpixel_geometry_comp, 3, constants);
+    };
+    geometry.record = [this, normalDepth, ids, push, k](vk::PassContext& pc) {
+        const vk::Image& out = pc.image(kSubpixelGeometry);
+        const vk::Pipeline& pipeline = geometry_[k];
+        pipeline.bind(pc.cmd());
+        vk::DescriptorPush descriptors;
+        descriptors.storageImage(SUBPIXEL_GEOMETRY_BINDING_NORMAL_DEPTH, pc.image(normalDepth).view())
+            .storageImage(SUBPIXEL_GEOMETRY_BINDING_IDS, pc.image(ids).view())
+            .storageImage(SUBPIXEL_GEOMETRY_BINDING_OUTPUT, out.view());
+        descriptors.push(*context_, pc.cmd(), pipeline);
+        pipeline.pushConstants(pc.cmd(), push(out));
+        vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, SUBPIXEL_GROUP_X, SUBPIXEL_GROUP_Y);
+    };
+    vk::declarePass(graph, executor, std::move(geometry));
+
+    vk::PassDeclaration pass;
+    pass.desc = {kSubpixelMapPass, graph::QueueKind::Compute,
+                 {graph::reads(colour, graph::Usage::StorageRead),
+                  graph::reads(kSubpixelGeometry, graph::Usage::StorageRead),
+                  graph::writes(output, graph::Usage::StorageWrite)},
+                 shared ? "aamap: each pixel's predicted one-ray display error from its k x k geometry samples and "
+                          "the shades of it and its neighbours"
+                        : "aamap: each pixel's predicted one-ray display error from its k x k samples"};
+    pass.prepare = [this, k, shared, build] {
+        std::vector<std::uint32_t> constants(SUBPIXEL_SPEC_SHARED + 1, 0u);
+        constants[SUBPIXEL_SPEC_K] = static_cast<std::uint32_t>(k);
+        constants[SUBPIXEL_SPEC_SHARED] = static_cast<std::uint32_t>(shared);
+        build(pipelines_[k][shared], spirv::subpixel_map_comp, 3, constants);
+    };
+    pass.record = [this, colour, output, push, k, shared](vk::PassContext& pc) {
         const vk::Image& out = pc.image(output);
-        gpu::SubpixelPush push{};
-        push.outSize = {static_cast<int>(out.info().width), static_cast<int>(out.info().height)};
-        push.k = settings.k;
-        push.exposure = settings.exposure;
-        push.tolerance = settings.tolerance;
-        const vk::Pipeline& pipeline = pipelines_[settings.k];
+        const vk::Pipeline& pipeline = pipelines_[k][shared];
         pipeline.bind(pc.cmd());
         vk::DescriptorPush descriptors;
         descriptors.storageImage(SUBPIXEL_BINDING_COLOUR, pc.image(colour).view())
-            .storageImage(SUBPIXEL_BINDING_NORMAL_DEPTH, pc.image(normalDepth).view())
-            .storageImage(SUBPIXEL_BINDING_IDS, pc.image(ids).view())
+            .storageImage(SUBPIXEL_BINDING_GEOMETRY, pc.image(kSubpixelGeometry).view())
             .storageImage(SUBPIXEL_BINDING_OUTPUT, out.view());
         descriptors.push(*context_, pc.cmd(), pipeline);
-        pipeline.pushConstants(pc.cmd(), push);
+        pipeline.pushConstants(pc.cmd(), push(out));
         vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, SUBPIXEL_GROUP_X, SUBPIXEL_GROUP_Y);
     };
-    const graph::PassId id = vk::declarePass(graph, executor, std::move(pass));
-    return id;
+    return vk::declarePass(graph, executor, std::move(pass));
 }
 
 GpuSubpixelMap::GpuSubpixelMap(VulkanContext& context)
@@ -77,13 +114,15 @@ GpuSubpixelMap::GpuSubpixelMap(VulkanContext& context)
 GpuSubpixelMap::~GpuSubpixelMap() = default;
 
 ImageGrey GpuSubpixelMap::map(const ImageRGB& colour, const cpu::GeometryImages& g, const SubpixelSettings& settings) {
-    const int Ws = colour.width(), Hs = colour.height(), k = settings.k;
-    if (Ws <= 0 || Hs <= 0 || k <= 0 || Ws % k != 0 || Hs % k != 0 || g.normalDepth.width() != Ws ||
-        g.normalDepth.height() != Hs || g.ids.width() != Ws || g.ids.height() != Hs)
+    const int Ws = g.normalDepth.width(), Hs = g.normalDepth.height(), k = settings.k;
+    const int colourScale = settings.shared ? 1 : k;
+    if (Ws <= 0 || Hs <= 0 || k <= 0 || Ws % k != 0 || Hs % k != 0 || colour.width() * k != Ws * colourScale ||
+        colour.height() * k != Hs * colourScale || g.ids.width() != Ws || g.ids.height() != Hs)
         throw std::invalid_argument("GpuSubpixelMap: empty or mismatched images, or a size not a multiple of k");
     executor_->clear();
     graph::RenderGraph graph;
-    graph.addResource(graph::imageResource("colour", graph::Format::RGBA32Float, sizeOf(Ws, Hs), true));
+    graph.addResource(
+        graph::imageResource("colour", graph::Format::RGBA32Float, sizeOf(colour.width(), colour.height()), true));
     graph.addResource(graph::imageResource(kGeometryNormalDepth, graph::Format::RGBA32Float, sizeOf(Ws, Hs), true));
     graph.addResource(graph::imageResource(kGeometryIds, graph::Format::RGBA32Float, sizeOf(Ws, Hs), true));
     graph.addResource(graph::imageResource(kAamap, graph::Format::R32Float, sizeOf(Ws / k, Hs / k)));

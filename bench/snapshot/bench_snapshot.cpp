@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
     std::string mapName = "luminance";
     app.add_option("--map", mapName, "snapshot.map: luminance, geometric, combined or subpixel");
     app.add_option("--subpixel", options.settings.subpixel, "the subpixel map's samples per pixel side k");
+    std::string shadingName = aamap::passes::toString(options.settings.subpixelShading);
+    app.add_option("--subpixel-shading", shadingName, "the subpixel map's shading: pixel (shared) or sample");
     app.add_option("--shadow-resolution", options.settings.shadows.resolution, "shadow cube-face size (texels)");
     app.add_option("--shadow-texel-pixels", options.settings.shadows.texelPixels,
                    "snapshot.shadow_texel_pixels: shadow faces by need (0: every light at --shadow-resolution)");
@@ -53,6 +55,10 @@ int main(int argc, char** argv) {
     options.width = options.height = size;
     if (!aamap::passes::parse(mapName, options.settings.map)) {
         std::fprintf(stderr, "unknown --map '%s'\n", mapName.c_str());
+        return 2;
+    }
+    if (!aamap::passes::parse(shadingName, options.settings.subpixelShading)) {
+        std::fprintf(stderr, "unknown --subpixel-shading '%s' (pixel or sample)\n", shadingName.c_str());
         return 2;
     }
     options.settings.shadows.enabled = !noShadows;

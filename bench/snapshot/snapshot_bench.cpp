@@ -53,12 +53,21 @@ SnapshotBenchResult runSnapshotBench(VulkanContext& context, const Scene& scene,
 }
 
 std::string formatSnapshotBench(const SnapshotBenchResult& result, const SnapshotBenchOptions& options) {
-    const long sw = std::lround(options.settings.scale * static_cast<float>(options.width));
-    const long sh = std::lround(options.settings.scale * static_cast<float>(options.height));
-    std::string out = fmt::format("device: {}\nsnapshot {}x{} for a {}x{} render, map {}, up to {} area-light samples, "
+    // The colour raster's size: the subpixel map shades at k x the render or once per pixel.
+    const SnapshotSettings& s = options.settings;
+    const bool subpixel = s.map == passes::AamapSource::Subpixel;
+    const float scale = !subpixel ? s.scale
+                        : s.subpixelShading == passes::SubpixelShading::Pixel ? 1.0f
+                                                                              : static_cast<float>(s.subpixel);
+    const long sw = std::lround(scale * static_cast<float>(options.width));
+    const long sh = std::lround(scale * static_cast<float>(options.height));
+    const std::string map = subpixel ? fmt::format("subpixel (k = {}, {} shading)", s.subpixel,
+                                                   passes::toString(s.subpixelShading))
+                                     : std::string(passes::toString(s.map));
+    std::string out = fmt::format("device: {}\nshading {}x{} for a {}x{} render, map {}, up to {} area-light samples, "
                                   "{}, median of {} runs after {} warm-up\n",
-                                  result.deviceName, sw, sh, options.width, options.height,
-                                  passes::toString(options.settings.map), options.settings.areaLightSamples,
+                                  result.deviceName, sw, sh, options.width, options.height, map,
+                                  options.settings.areaLightSamples,
                                   options.settings.shadows.enabled
                                       ? fmt::format("shadows at most {}^2 per face (by need, {} px per texel), pcf {}",
                                                     options.settings.shadows.resolution,

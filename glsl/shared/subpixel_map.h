@@ -29,6 +29,24 @@
 //      what the metrics count as an error, and smooth shading (a wide penumbra, a highlight, a hot
 //      spot: gradients far below tau across one pixel) gives 0.
 //
+// Shared shading (snapshot.subpixel_shading: pixel, SUBPIXEL_SPEC_SHARED = 1): the colour is shaded
+// once per render pixel (W x H, at the pixel's centre) and shared by its k x k geometry samples,
+// so shading costs what a render-resolution raster costs. Step 3 is unchanged (the geometry
+// samples are still k x k); steps 1-2 become, with d(q) the display value of pixel q's shade
+// (a neighbour outside the image counts as p itself):
+//   2'. own(q): some inside pair of q's samples differs in geometry (step 3's test); border(p, q):
+//      some boundary pair between p and its 4-neighbour q does. The shading step between p and q,
+//      d(q) - d(p), belongs to both pixels, except to p when own(q) and not own(p) and not
+//      border(p, q): a geometric edge inside q, none in p, makes the step q's. Per axis, with
+//      a = d(p+) - d(p) and b = d(p) - d(p-) (0 for a step p does not own), per channel
+//      e = |a - b| / 2 + (a b > 0 ? min(|a|, |b|) / 4 : 0), and E = max over axes and channels:
+//      a step between p and a neighbour gives both its owners half its contrast (the edge lies
+//      in one of them, as a boundary pair above), a linear gradient g per pixel gives g / 4 (the
+//      one-ray error of a pixel that a linear ramp crosses), so smooth shading stays unflagged.
+// Shading detail smaller than a pixel (a shadow edge or texture inside one triangle) is seen only
+// through the shades of neighbouring pixels; geometry at any scale down to 1/k pixel is seen
+// through step 3.
+//
 // tau from t (FLIP's colour pipeline, eval/metrics/flip_color.h, below its knee): a HyAB distance
 // D gives t = pt * D^qc / (pc * cmax), so D(t) = (t * pc * cmax / pt)^(1/qc); a grey step of D in
 // L* is about D / 100 in sRGB-encoded display value (L* is within about 15 % of 100 x the encoded
@@ -55,15 +73,27 @@
 #define SUBPIXEL_DEPTH_TOLERANCE 0.05
 #define SUBPIXEL_GEOMETRY_ERROR 2.0
 
-#define SUBPIXEL_SPEC_K 0  // specialisation constant of subpixel_map.comp: k (a pipeline per k)
+#define SUBPIXEL_SPEC_K 0       // specialisation constants of subpixel_map.comp: k,
+#define SUBPIXEL_SPEC_SHARED 1  // and 1 for shared shading (colour W x H); a pipeline per pair
 #define SUBPIXEL_GROUP_X 8
 #define SUBPIXEL_GROUP_Y 8
 
+// Step 3 runs first, once per pixel, in its own pass (subpixel_geometry.comp): it writes the
+// pixel's geometry flags, which subpixel_map.comp reads for the pixel and its neighbours, so that
+// no sample pair is tested twice. A sum of these bits, stored exactly in an r32f texel:
+#define SUBPIXEL_FLAG_OWN 1u    // an inside pair of the pixel's samples differs: own(p)
+#define SUBPIXEL_FLAG_RIGHT 2u  // a boundary pair with the pixel to the right differs
+#define SUBPIXEL_FLAG_DOWN 4u   // a boundary pair with the pixel below differs
+
+// Bindings of subpixel_geometry.comp.
+#define SUBPIXEL_GEOMETRY_BINDING_NORMAL_DEPTH 0  // rgba32f storage image (geometric_edges.h layout), k W x k H, read
+#define SUBPIXEL_GEOMETRY_BINDING_IDS 1           // rgba32f storage image, k W x k H, read
+#define SUBPIXEL_GEOMETRY_BINDING_OUTPUT 2        // r32f storage image, W x H, the flags, written
+
 // Bindings of subpixel_map.comp.
-#define SUBPIXEL_BINDING_COLOUR 0        // rgba32f storage image, k W x k H, read
-#define SUBPIXEL_BINDING_NORMAL_DEPTH 1  // rgba32f storage image (geometric_edges.h layout), read
-#define SUBPIXEL_BINDING_IDS 2           // rgba32f storage image, read
-#define SUBPIXEL_BINDING_OUTPUT 3        // r32f storage image, W x H, written
+#define SUBPIXEL_BINDING_COLOUR 0    // rgba32f storage image, k W x k H (shared shading: W x H), read
+#define SUBPIXEL_BINDING_GEOMETRY 1  // r32f storage image, W x H, the geometry flags, read
+#define SUBPIXEL_BINDING_OUTPUT 2    // r32f storage image, W x H, written
 
 #ifdef __cplusplus
 #include <cmath>

@@ -58,15 +58,26 @@ Samples randomSamples(int W, int H, int k, std::uint32_t seed) {
     return s;
 }
 
+// Shared shading's colour: one shade per pixel, its last sample of the first row (the step's far
+// side in a step pixel, so that neighbouring shades differ there).
+ImageRGB pixelShades(const ImageRGB& samples, int k) {
+    ImageRGB shades(samples.width() / k, samples.height() / k);
+    for (int y = 0; y < shades.height(); ++y)
+        for (int x = 0; x < shades.width(); ++x) shades.at(x, y) = samples.at(k * x + k - 1, k * y);
+    return shades;
+}
+
 TEST_F(SubpixelTest, PassMatchesCpuReference) {
     passes::GpuSubpixelMap gpu(context());
     const float tau = subpixelTolerance(0.1f);
+    for (bool shared : {false, true})
     for (int k = SUBPIXEL_MIN_K; k <= SUBPIXEL_MAX_K; ++k)
         for (auto [W, H] : {std::pair{37, 23}, std::pair{1, 1}, std::pair{5, 1}}) {
-            const Samples s = randomSamples(W, H, k, static_cast<std::uint32_t>(k * 1000 + W));
+            Samples s = randomSamples(W, H, k, static_cast<std::uint32_t>(k * 1000 + W));
+            if (shared) s.colour = pixelShades(s.colour, k);
             for (float exposure : {1.0f, 2.5f}) {
-                const cpu::SubpixelImages expected = cpu::subpixelMap(s.colour, s.geometry, k, exposure, tau);
-                const ImageGrey got = gpu.map(s.colour, s.geometry, {k, exposure, tau});
+                const cpu::SubpixelImages expected = cpu::subpixelMap(s.colour, s.geometry, k, exposure, tau, shared);
+                const ImageGrey got = gpu.map(s.colour, s.geometry, {k, exposure, tau, shared});
                 ASSERT_EQ(got.width(), W);
                 ASSERT_EQ(got.height(), H);
                 int flagged = 0;
@@ -74,21 +85,24 @@ TEST_F(SubpixelTest, PassMatchesCpuReference) {
                     for (int x = 0; x < W; ++x) {
                         const float e = expected.error.at(x, y);
                         // The same samples, the same rule: equal up to the GPU's pow and division.
-                        EXPECT_NEAR(got.at(x, y), expected.map.at(x, y), 1e-5f) << k << " " << x << "," << y;
+                        EXPECT_NEAR(got.at(x, y), expected.map.at(x, y), 1e-5f)
+                            << shared << " " << k << " " << x << "," << y;
                         if (std::abs(e - tau) > 1e-4f) {
-                            EXPECT_EQ(got.at(x, y) > 0.0f, e > tau) << k << " " << x << "," << y;
+                            EXPECT_EQ(got.at(x, y) > 0.0f, e > tau) << shared << " " << k << " " << x << "," << y;
                         }
                         flagged += e > tau;
                     }
                 if (W * H > 100) {  // a real mix of flagged and smooth pixels
-                    EXPECT_GT(flagged, W * H / 10);
-                    EXPECT_LT(flagged, W * H * 9 / 10);
+                    EXPECT_GT(flagged, W * H / 10) << shared << " " << k;
+                    EXPECT_LT(flagged, W * H * 9 / 10) << shared << " " << k;
                 }
             }
         }
     const Samples s = randomSamples(4, 4, 2, 1);
-    EXPECT_THROW(cpu::subpixelMap(s.colour, s.geometry, 5, 1.0f, tau), std::invalid_argument);
-    EXPECT_THROW(cpu::subpixelMap(s.colour, s.geometry, 3, 1.0f, tau), std::invalid_argument);  // 8 not a multiple of 3
+    EXPECT_THROW(cpu::subpixelMap(s.colour, s.geometry, 5, 1.0f, tau, false), std::invalid_argument);
+    EXPECT_THROW(cpu::subpixelMap(s.colour, s.geometry, 3, 1.0f, tau, false), std::invalid_argument);  // 8 not a multiple of 3
+    EXPECT_THROW(cpu::subpixelMap(s.colour, s.geometry, 2, 1.0f, tau, true), std::invalid_argument);  // colour k W x k H
+    EXPECT_THROW(cpu::subpixelMap(pixelShades(s.colour, 2), s.geometry, 2, 1.0f, tau, false), std::invalid_argument);
 }
 
 // tau is the display-value step at which FLIP's colour error (without its spatial filter)
@@ -139,6 +153,13 @@ void addQuadAt(Scene& s, glm::vec2 a, glm::vec2 b, glm::vec2 c, glm::vec2 d, flo
     s.mesh.objectIds.insert(s.mesh.objectIds.end(), 2, material);
 }
 
+constexpr passes::SubpixelShading kShadings[] = {passes::SubpixelShading::Pixel, passes::SubpixelShading::Sample};
+
+// Colour raster texels per render pixel side.
+int colourScale(const SnapshotSettings& settings) {
+    return settings.subpixelShading == passes::SubpixelShading::Pixel ? 1 : settings.subpixel;
+}
+
 int countFlagged(const ImageGrey& map) {
     return static_cast<int>(std::count_if(map.pixels().begin(), map.pixels().end(), [](float v) { return v > 0.0f; }));
 }
@@ -173,14 +194,17 @@ TEST_F(SubpixelTest, PlaneInAWidePenumbraFlagsNothing) {
     SnapshotSettings settings;
     settings.map = passes::AamapSource::Subpixel;
     const int W = 48, H = 48;
+    for (const passes::SubpixelShading shading : kShadings)
     for (int k : {2, 3}) {
         settings.subpixel = k;
+        settings.subpixelShading = shading;
         const SnapshotResult r = renderer.render(view, W, H, settings);
-        ASSERT_EQ(r.snapshot.width(), k * W);
+        const int cs = colourScale(settings);
+        ASSERT_EQ(r.snapshot.width(), cs * W);
         // The shading does vary: the penumbra darkens the floor towards -x.
-        const float left = r.snapshot.at(2, k * H / 2).r, right = r.snapshot.at(k * W - 3, k * H / 2).r;
+        const float left = r.snapshot.at(1, cs * H / 2).r, right = r.snapshot.at(cs * W - 2, cs * H / 2).r;
         EXPECT_GT(right, 1.02f * left) << "k " << k;
-        EXPECT_EQ(countFlagged(r.aamap), 0) << "k " << k;
+        EXPECT_EQ(countFlagged(r.aamap), 0) << toString(shading) << " k " << k;
     }
 }
 
@@ -207,9 +231,12 @@ TEST_F(SubpixelTest, GlossySphereFlagsOnlyItsSilhouette) {
     settings.map = passes::AamapSource::Subpixel;
     const int W = 128, H = 128;
     const float disk = std::asin(1.0f / 4.0f);  // the sphere's angular radius from the camera
+    for (const passes::SubpixelShading shading : kShadings)
     for (int k : {2, 3}) {
         settings.subpixel = k;
+        settings.subpixelShading = shading;
         const SnapshotResult r = renderer.render(view, W, H, settings);
+        const int cs = colourScale(settings);
         int interior = 0, silhouette = 0, silhouetteFlagged = 0;
         float brightest = 0.0f, sum = 0.0f;
         for (int y = 0; y < H; ++y)
@@ -221,9 +248,9 @@ TEST_F(SubpixelTest, GlossySphereFlagsOnlyItsSilhouette) {
                     std::acos(std::clamp(glm::dot(d, glm::normalize(camera.direction(u + 1.0f / W, v))), -1.0f, 1.0f));
                 if (angle < disk - 2.5f * pixelAngle) {  // well inside the silhouette, tessellation included
                     ++interior;
-                    EXPECT_EQ(r.aamap.at(x, y), 0.0f) << "k " << k << " pixel " << x << "," << y;
-                    brightest = std::max(brightest, r.snapshot.at(k * x, k * y).r);
-                    sum += r.snapshot.at(k * x, k * y).r;
+                    EXPECT_EQ(r.aamap.at(x, y), 0.0f) << toString(shading) << " k " << k << " pixel " << x << "," << y;
+                    brightest = std::max(brightest, r.snapshot.at(cs * x, cs * y).r);
+                    sum += r.snapshot.at(cs * x, cs * y).r;
                 }
                 if (std::abs(angle - disk) < 0.25f * pixelAngle) {  // the outline runs through the pixel
                     ++silhouette;
@@ -233,7 +260,7 @@ TEST_F(SubpixelTest, GlossySphereFlagsOnlyItsSilhouette) {
         EXPECT_GT(interior, 5000);
         EXPECT_GT(brightest, 2.0f * sum / static_cast<float>(interior)) << "no highlight to test";
         EXPECT_GT(silhouette, 50);
-        EXPECT_EQ(silhouetteFlagged, silhouette) << "k " << k;
+        EXPECT_EQ(silhouetteFlagged, silhouette) << toString(shading) << " k " << k;
     }
 }
 
@@ -284,8 +311,10 @@ TEST_F(SubpixelTest, HardEdgesAndAOnePixelWireAreFlagged) {
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;
     settings.map = passes::AamapSource::Subpixel;
+    for (const passes::SubpixelShading shading : kShadings)
     for (int k : {2, 3, 4}) {
         settings.subpixel = k;
+        settings.subpixelShading = shading;
         const SnapshotResult r = renderer.render(view, W, H, settings);
         int crossed = 0, wirePixels = 0, far = 0;
         for (int y = 0; y < H; ++y)
@@ -295,7 +324,8 @@ TEST_F(SubpixelTest, HardEdgesAndAOnePixelWireAreFlagged) {
                 const float wire = coverage(camera, x, y, W, H, onWire);
                 if (square > 0.0f && square < 1.0f) {
                     ++crossed;
-                    EXPECT_TRUE(flagged) << "k " << k << ": edge pixel " << x << "," << y << " coverage " << square;
+                    EXPECT_TRUE(flagged) << toString(shading) << " k " << k << ": edge pixel " << x << "," << y
+                                         << " coverage " << square;
                 }
                 // The wire's centre line runs through the pixel (away from its two ends).
                 const glm::vec2 mid = onFloor(camera, (x + 0.5f) / W, (y + 0.5f) / H);
@@ -303,7 +333,7 @@ TEST_F(SubpixelTest, HardEdgesAndAOnePixelWireAreFlagged) {
                 if (wire > 0.0f && along > 2.0f * pixel && along < 1.6f - 2.0f * pixel &&
                     std::abs(glm::dot(mid - w0, side)) < 0.5f * pixel) {
                     ++wirePixels;
-                    EXPECT_TRUE(flagged) << "k " << k << ": wire pixel " << x << "," << y;
+                    EXPECT_TRUE(flagged) << toString(shading) << " k " << k << ": wire pixel " << x << "," << y;
                 }
                 // Nothing is flagged two pixels or more from every edge and from the wire.
                 bool near = false;
@@ -317,12 +347,13 @@ TEST_F(SubpixelTest, HardEdgesAndAOnePixelWireAreFlagged) {
             }
         EXPECT_GT(crossed, 100);
         EXPECT_GT(wirePixels, 40);
-        EXPECT_EQ(far, 0) << "k " << k;
+        EXPECT_EQ(far, 0) << toString(shading) << " k " << k;
     }
 }
 
-// The subpixel Snapshot rasterises at k x the render size and runs the geometry raster and the
-// subpixel pass, not the luminance chain; k outside [2, 4] is refused.
+// The subpixel Snapshot rasterises geometry at k x the render size, colour at that size or once
+// per pixel, and runs the geometry raster and the subpixel pass, not the luminance chain; k
+// outside [2, 4] is refused.
 TEST_F(SubpixelTest, GraphRunsOnlyWhatTheMapNeeds) {
     Scene scene;
     scene.materials = {emitter("glow", glm::vec3(0.5f))};
@@ -332,16 +363,23 @@ TEST_F(SubpixelTest, GraphRunsOnlyWhatTheMapNeeds) {
     SnapshotSettings settings;
     settings.map = passes::AamapSource::Subpixel;
     settings.subpixel = 3;
+    settings.subpixelShading = passes::SubpixelShading::Sample;
     const SnapshotResult r = renderer.render(view, 20, 12, settings);
     EXPECT_EQ(r.snapshot.width(), 60);
     EXPECT_EQ(r.snapshot.height(), 36);
+    // Shared shading: one shade per render pixel, the geometry still at 3 x.
+    settings.subpixelShading = passes::SubpixelShading::Pixel;
+    const SnapshotResult shared = renderer.render(view, 20, 12, settings);
+    EXPECT_EQ(shared.snapshot.width(), 20);
+    EXPECT_EQ(shared.snapshot.height(), 12);
+    EXPECT_NE(shared.explain.find("60x36"), std::string::npos) << shared.explain;
     EXPECT_EQ(r.aamap.width(), 20);
     EXPECT_EQ(r.aamap.height(), 12);
     EXPECT_TRUE(r.laplacian.empty());
     EXPECT_TRUE(r.edges.empty());
     std::vector<std::string> ran;
     for (const PassTiming& p : r.passTimes) ran.push_back(p.pass);
-    for (const char* pass : {"gbuffer", "geometry_buffer", "subpixel_map"})
+    for (const char* pass : {"gbuffer", "geometry_buffer", "subpixel_geometry", "subpixel_map"})
         EXPECT_NE(std::find(ran.begin(), ran.end(), pass), ran.end()) << pass << "\n" << r.explain;
     for (const char* pass : {"luminance", "laplacian", "blur", "reduce", "geometric_edges"})
         EXPECT_EQ(std::find(ran.begin(), ran.end(), pass), ran.end()) << pass << "\n" << r.explain;
