@@ -185,9 +185,22 @@ Json paramsJson(const RenderConfig& r) {
     return p;
 }
 
-Json lightsJson(const ExperimentConfig& c) {
+// A file as the cache keys name it: absolute and without . or .. (symbolic links resolved), so
+// that a config reached by another path, or from another working directory, keeps its keys.
+std::string keyPath(const std::filesystem::path& p) {
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(p, ec);
+    return (ec ? std::filesystem::absolute(p).lexically_normal() : canonical).string();
+}
+
+// forKey: for a cache key, with keyPath's environment-map paths.
+Json lightsJson(const ExperimentConfig& c, bool forKey = false) {
     Json lights = Json::array();
-    for (const LightConfig& l : c.lights) lights.push_back(lightJson(l));
+    for (const LightConfig& l : c.lights) {
+        Json j = lightJson(l);
+        if (forKey && !l.map.empty()) j["map"] = keyPath(l.map);
+        lights.push_back(std::move(j));
+    }
     return lights;
 }
 
@@ -244,8 +257,9 @@ Json cameraJson(const CameraConfig& cam) {
 
 Json sceneJson(const ExperimentConfig& c) {
     const auto view = c.resolvedView();
-    Json j = {{"scene", c.resolvedScene()}, {"view", view ? Json(view->string()) : Json(nullptr)},
-              {"view_index", c.viewIndex}, {"lights", lightsJson(c)},
+    const std::string scene = c.scene.starts_with("builtin:") ? c.scene : keyPath(c.resolvedScene());
+    Json j = {{"scene", scene}, {"view", view ? Json(keyPath(*view)) : Json(nullptr)},
+              {"view_index", c.viewIndex}, {"lights", lightsJson(c, true)},
               {"image", {{"width", c.image.width}, {"height", c.image.height}, {"exposure", c.image.exposure}}}};
     // Only when they apply, so that other configs keep their keys.
     if (c.camera) j["camera"] = cameraJson(*c.camera);

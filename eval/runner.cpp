@@ -531,7 +531,9 @@ void Runner::traceOracle(Results& results, const std::vector<Job>& jobs, std::si
         if (!usesAamap(jobs[i].render)) continue;
         Job o{jobs[i].render, "", &*oracleMap_, digest};
         o.render.name = "oracle_" + jobs[i].render.name;
-        o.key = "oracle-" + fnv1a64Hex(keyObject(c_, o).dump());
+        const std::string keyJson = keyObject(c_, o).dump();
+        o.key = "oracle-" + fnv1a64Hex(keyJson);
+        spdlog::debug("{}: cache key {} from {}", o.render.name, o.key, keyJson);
         oracleJobs.push_back(std::move(o));
         mapRenders.push_back(jobs[i].render.name);
     }

@@ -159,11 +159,12 @@ class Run:
         return 1000 * num(s, "total_s") if s else math.nan
 
 
-def run_aamap(aamap, config, out, overrides):
+def run_aamap(aamap, config, out, overrides, sweep=False):
+    """Runs (or resumes) one experiment; its Run, or None for a sweep (each variant has its own)."""
     cmd = [aamap, "run", config, "-o", out, "--no-plots"] + [a for kv in overrides for a in ("--set", kv)]
     print("$ " + " ".join(os.path.relpath(c, REPO) if c.startswith(REPO) else c for c in cmd), file=sys.stderr, flush=True)
     subprocess.run(cmd, check=True, cwd=REPO)
-    return Run(os.path.join(out, "results.json"))
+    return None if sweep else Run(os.path.join(out, "results.json"))
 
 
 def runs_text(repeats):
@@ -248,27 +249,41 @@ def selective_tables(args, machine):
 
 
 def maps_tables(args, machine):
+    """One sweep of snapshot.map per shipped config (shared renders traced once, one cache): each
+    map kind's quality, its Non-adaptive and Space 8 renders at the top rpp, and its efficiency
+    against the same render on the oracle map."""
+    kinds = [k.strip() for k in args.map_kinds.split(",") if k.strip()]
     rows = []
-    for key, label, config in SCENES[:2]:
-        for kind in MAP_KINDS:
-            out = os.path.join(args.work, f"maps-{key}-{kind}")
-            run = run_aamap(args.aamap, os.path.join(REPO, config), out,
-                            [f"snapshot.map={kind}", "metrics.oracle=true", "metrics.causes=false",
-                             f"timing.repeats={args.repeats}"] + args.override)
+    for key, label, config in SCENES:
+        out = os.path.join(args.work, f"maps-{key}")
+        run_aamap(args.aamap, os.path.join(REPO, config), out,
+                  [f"snapshot.map=[{','.join(kinds)}]", "metrics.oracle=true", f"timing.repeats={args.repeats}"] +
+                  args.override, sweep=True)
+        for kind in kinds:
+            run = Run(os.path.join(out, f"map-{kind}", "results.json"))
             q = run.j.get("map_quality", {})
-            r = next((x for x in run.renders if x.get("strategy") == "aamap" and x["max_rays_per_pixel"] == 16), None)
-            b = run.baseline(16)
-            o = run.oracle_of(r["name"]) if r else None
-            eff = speedup(b, r)[0] / speedup(b, o)[0] if r and o and b else math.nan
-            rows.append([label.split(" (")[0], kind, pct(100 * num(q, "flagged_fraction"), 1), f"{num(q, 'precision'):.3f}",
-                         f"{num(q, 'recall'):.3f}", f"{num(q, 'own_recall'):.3f}",
-                         f"{fmt_speedup(speedup(b, r))} at {pct(flip_pct(r))}" if r and b else "—",
-                         f"{num(r, 'mean_primary_rpp'):.2f}" if r else "—", f"{eff:.2f}",
-                         f"{run.snapshot_ms():.0f} ms"])
-    return {"maps": ("`.venv/bin/python tools/results_tables.py --tables maps` (each shipped config with "
-                     "`--set snapshot.map=KIND`; Non-adaptive 16 against uniform 16 and against its twin on the oracle map).",
-                     md_table(["scene", "map", "flagged", "precision", "recall", "own recall", "Non-adaptive 16",
-                               "rays/px", "efficiency", "Snapshot per frame"], rows))}
+            top = run.top_rpp()
+            b = run.baseline(top) if top else None
+            cells = []
+            for series in ("Non-adaptive", "Space 8"):
+                r = run.find(series, top) if top else None
+                o = run.oracle_of(r["name"]) if r else None
+                eff = speedup(b, r)[0] / speedup(b, o)[0] if r and o and b else math.nan
+                cells += [f"{fmt_speedup(speedup(b, r))} at {pct(flip_pct(r))}" if r and b else "—",
+                          f"{num(r, 'mean_primary_rpp'):.2f}" if r else "—",
+                          f"{eff:.2f}" + (f" (oracle {pct(flip_pct(o))})" if o else "") if math.isfinite(eff) else "—"]
+            rows.append([label, top or "—", kind, pct(100 * num(q, "flagged_fraction"), 1), f"{num(q, 'precision'):.3f}",
+                         f"{num(q, 'recall'):.3f}", f"{num(q, 'own_recall'):.3f}"] + cells +
+                        [f"{run.snapshot_ms():.0f} ms"])
+    kinds_text = ",".join(kinds)
+    return {"maps": (f"`.venv/bin/python tools/results_tables.py --tables maps --map-kinds {kinds_text}` (each "
+                     f"shipped config with `--set snapshot.map=[{kinds_text}] --set metrics.oracle=true --set "
+                     f"timing.repeats={args.repeats}`, one sweep per scene; {runs_text(args.repeats)}; speedups over "
+                     "uniform sampling at the same rpp, error as % of pixels above FLIP 0.1; efficiency: the "
+                     "speedup over the same render's on the oracle map)",
+                     md_table(["scene", "rpp", "map", "flagged", "precision", "recall", "own recall",
+                               "Non-adaptive", "rays/px", "efficiency", "Space 8", "rays/px", "efficiency",
+                               "Snapshot per frame"], rows))}
 
 
 def peer_json(script, extra):
@@ -340,6 +355,8 @@ def main():
                     help="an aamap --set for every run of the selective and maps sets")
     ap.add_argument("--work", default=os.path.join(REPO, "out", "results"), help="where the runs go (they resume)")
     ap.add_argument("--repeats", type=int, default=3, help="timed runs per render (interleaved)")
+    ap.add_argument("--map-kinds", default="luminance,subpixel",
+                    help="the maps set: the snapshot.map kinds to sweep, comma-separated")
     ap.add_argument("--aamap", default=os.path.join(REPO, "build", "release", "aamap"))
     ap.add_argument("--print", action="store_true", help="print the tables; leave docs/results.md alone")
     args = ap.parse_args()

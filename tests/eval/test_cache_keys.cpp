@@ -197,6 +197,36 @@ TEST(CacheKeys, LabelsThreadsAndMetricsLeaveEveryKeyAlone) {
     }
 }
 
+// The files a config names enter the keys by where they are, not by how the config was reached:
+// an absolute path, a relative one from another working directory, or one through "..", give the
+// same keys, so a run resumed from elsewhere finds its cache.
+TEST(CacheKeys, TheConfigsPathAndTheWorkingDirectoryLeaveEveryKeyAlone) {
+    test::TempDir dir;
+    dir.write("scenes/room.obj", kRoom);
+    dir.write("scenes/a.vf", "rview -vtv -vp 0 1 3.5 -vd 0 0 -1 -vu 0 1 0 -vh 40 -vv 40\n");
+    writeExr(dir.path() / "scenes" / "sky.exr", skyImage(0.5f));
+    const std::string config = "scene: ../scenes/room.obj\nview: ../scenes/a.vf\n"
+                               "lights:\n  - {type: environment, map: ../scenes/sky.exr}\n"
+                               "renders:\n  - {strategy: uniform, rpp: 4}\n  - {strategy: aamap, rpp: 4}\n";
+    std::filesystem::create_directories(dir.path() / "configs" / "more");
+    const auto keys = [&](const std::filesystem::path& file) {
+        const ExperimentConfig c = parseConfig(config, file, {});
+        std::vector<std::string> k{snapshotKey(c)};
+        for (const RenderConfig& r : c.renders) k.push_back(renderKey(c, r));
+        return k;
+    };
+    const std::vector<std::string> absolute = keys(dir.path() / "configs" / "exp.yaml");
+    EXPECT_EQ(absolute, keys(dir.path() / "configs" / "more" / ".." / "exp.yaml"));
+    const std::filesystem::path cwd = std::filesystem::current_path();
+    std::filesystem::current_path(dir.path());
+    const std::vector<std::string> relative = keys("configs/exp.yaml");
+    std::filesystem::current_path(dir.path() / "configs");
+    const std::vector<std::string> here = keys("exp.yaml");
+    std::filesystem::current_path(cwd);
+    EXPECT_EQ(absolute, relative);
+    EXPECT_EQ(absolute, here);
+}
+
 // A folder under a key's name is an entry only once its record.json is there (the record is
 // written last): a folder without one, left by hand or by a crash, is traced again, not reused.
 TEST(RenderCache, AFolderWithoutItsRecordIsNoEntry) {
