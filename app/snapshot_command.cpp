@@ -182,6 +182,7 @@ int runSnapshotCommand(const SnapshotOptions& o, bool validation, const std::str
         SnapshotRenderer renderer(context, scene);
         r = renderer.render(view, width, height, settings);
     }  // GPU objects freed here, so their destruction is validated too
+    for (const std::string& w : r.warnings) spdlog::warn("{}", w);
 
     const std::filesystem::path out(o.outDir);
     std::filesystem::create_directories(out);

@@ -209,6 +209,7 @@ public:
             std::sort(timed.begin(), timed.end(),
                       [](const SnapshotResult& a, const SnapshotResult& b) { return a.totalSeconds < b.totalSeconds; });
             SnapshotResult& r = timed[timed.size() / 2];
+            out.warnings = withImages.warnings;
             out.snapshot = std::move(withImages.snapshot);
             out.laplacian = std::move(withImages.laplacian);
             if (!r.blockSums.empty()) {

@@ -191,6 +191,7 @@ void Runner::loadOrRenderSnapshot(bool writeOutputs) {
         const SceneInfo& s = scene();
         spdlog::info("snapshot: rendering (cache key {})", key);
         SnapshotOutput snap = backend_.snapshot();
+        for (const std::string& w : snap.warnings) warn(w);
         SnapshotRecord record;
         record.key = key;
         record.width = s.width;

@@ -42,6 +42,7 @@ struct SnapshotOutput {
     double totalSeconds = 0, readbackSeconds = 0, setupSeconds = 0;
     std::vector<std::pair<std::string, double>> passesGpuMs;
     std::string device;
+    std::vector<std::string> warnings;  // SnapshotResult::warnings: what the device made it change
 };
 
 struct TraceOutput {

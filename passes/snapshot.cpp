@@ -237,17 +237,49 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     if (!(settings.areaLightSolidAngle >= 0.0f) || !std::isfinite(settings.areaLightSolidAngle))
         throw std::invalid_argument("SnapshotSettings::areaLightSolidAngle must be finite and non-negative");
 
-    auto scaled = [&](int v) {
-        return static_cast<std::uint32_t>(std::max(1L, std::lround(settings.scale * static_cast<float>(v))));
-    };
     const bool subpixelMap = settings.map == passes::AamapSource::Subpixel;
     if (subpixelMap && (settings.subpixel < SUBPIXEL_MIN_K || settings.subpixel > SUBPIXEL_MAX_K))
         throw std::invalid_argument("SnapshotSettings::subpixel must be in [2, 4], got " +
                                     std::to_string(settings.subpixel));
+    // What the device's images allow: a Snapshot larger than that falls back to the nearest
+    // resolution it has (fewer samples a side, a smaller scale), with a warning.
+    SnapshotResult result;
+    const std::uint32_t limit = s.context.maxImageDimension2D();
+    const auto longest = static_cast<std::uint32_t>(std::max(width, height));
+    if (longest > limit)
+        throw std::invalid_argument(fmt::format("a {}x{} render is larger than Vulkan device '{}' allows for an image "
+                                                "({} texels a side)",
+                                                width, height, s.context.deviceName(), limit));
+    int k = settings.subpixel;
+    if (subpixelMap && static_cast<std::uint64_t>(k) * longest > limit) {
+        const auto fits = static_cast<int>(limit / longest);
+        if (fits < SUBPIXEL_MIN_K)
+            throw std::invalid_argument(fmt::format("snapshot.subpixel: even {} samples a side need {}-texel images; "
+                                                    "Vulkan device '{}' allows {}",
+                                                    SUBPIXEL_MIN_K, SUBPIXEL_MIN_K * longest, s.context.deviceName(),
+                                                    limit));
+        result.warnings.push_back(fmt::format("snapshot.subpixel: {} samples a side need {}-texel images; Vulkan "
+                                              "device '{}' allows {}: using {}",
+                                              k, static_cast<std::uint64_t>(k) * longest, s.context.deviceName(),
+                                              limit, fits));
+        k = fits;
+    }
+    float scale = settings.scale;
+    if (!subpixelMap && std::lround(scale * static_cast<float>(longest)) > static_cast<long>(limit)) {
+        scale = static_cast<float>(limit) / static_cast<float>(longest);
+        result.warnings.push_back(fmt::format("snapshot.scale: {} needs {}-texel images; Vulkan device '{}' allows "
+                                              "{}: using {:.3f}",
+                                              settings.scale, std::lround(settings.scale * static_cast<float>(longest)),
+                                              s.context.deviceName(), limit, scale));
+    }
+    result.subpixel = subpixelMap ? k : 0;
+    auto scaled = [&](int v) {
+        return std::min(limit, static_cast<std::uint32_t>(std::max(1L, std::lround(scale * static_cast<float>(v)))));
+    };
     // The subpixel map reads k x k geometry samples per render pixel, texel (k x + i, k y + j), and
     // one shade per pixel (shared) or per sample.
     const bool sharedShading = settings.subpixelShading == passes::SubpixelShading::Pixel;
-    const auto colourScale = static_cast<std::uint32_t>(sharedShading ? 1 : settings.subpixel);
+    const auto colourScale = static_cast<std::uint32_t>(sharedShading ? 1 : k);
     const std::uint32_t snapW = subpixelMap ? colourScale * static_cast<std::uint32_t>(width) : scaled(width);
     const std::uint32_t snapH = subpixelMap ? colourScale * static_cast<std::uint32_t>(height) : scaled(height);
     passes::SnapshotView snapshotView;
@@ -327,8 +359,7 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     passes::MapChainInputs mapInputs{passes::kSnapshot, snapshotView, width, height, settings.filter};
     mapInputs.shadows = shadows;  // the geometric map's occlusion mask: the same shadow maps
     mapInputs.greyFromGBuffer = !grey.resource.empty();
-    mapInputs.subpixel = {settings.subpixel, settings.filter.exposure, subpixelTolerance(settings.flipThreshold),
-                          sharedShading};
+    mapInputs.subpixel = {k, settings.filter.exposure, subpixelTolerance(settings.flipThreshold), sharedShading};
     passes::addAamapChain(graph, s.executor, s.chain, s.geometry, s.geometricEdges, s.subpixel, settings.map,
                           mapInputs);
     // Always declared: culled (with the reason in `explain`) unless a strategy asked for it.
@@ -349,7 +380,6 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     if (spdlog::should_log(spdlog::level::debug)) spdlog::debug("Snapshot {}", compiled.explain());
     const vk::ExecutionResult run = s.executor.execute(compiled);
 
-    SnapshotResult result;
     const auto convert = Clock::now();
     result.aamap = passes::toImageGrey(run.outputs.at(passes::kAamap));
     if (settings.keepDebugImages) {

@@ -39,6 +39,8 @@ struct SnapshotResult {
     // Texels per side of each shadowed light's cube faces (point lights, area-light samples, then
     // directional lights; passes/view_budget.h shadowFaceSizes); empty without the shadow pass.
     std::vector<int> shadowFaceSizes;
+    int subpixel = 0;  // the subpixel map's k as run (below the asked k where the device's images are smaller)
+    std::vector<std::string> warnings;  // what the Snapshot changed from its settings, and why
 };
 
 // What of the scene the Snapshot cannot show the way the tracer will, one sentence each (curved

@@ -116,8 +116,9 @@ const Schema<SnapshotSettings>& snapshotSchema() {
     static const Schema<S> schema = [] {
         Schema<S> s;
         s.field(&S::scale, "scale", in(1.0, 4.0), 1.5,
-                "snapshot resolution / render resolution (the paper: 768 for 512); the subpixel map rasterises at "
-                "`snapshot.subpixel` x the render resolution instead")
+                "snapshot resolution / render resolution (the paper: 768 for 512; a device whose images are "
+                "smaller gets the largest scale that fits, with a warning); not the subpixel map's, which "
+                "rasterises geometry at `snapshot.subpixel` x the render resolution")
             .field(&S::areaLightSamples, "area_light_samples", in(1, 64), 5,
                    "at most this many point lights approximating each area light (the paper: 5)")
             .field(&S::areaLightSolidAngle, "area_light_solid_angle", in(0.0, 12.6), 0.04,
@@ -136,12 +137,13 @@ const Schema<SnapshotSettings>& snapshotSchema() {
                     "(depth, normal, object and material id, shadow-map visibility per light when shadows are on; "
                     "alpha cut-outs are holes), or their per-texel max, each followed by the same blur, dead zone "
                     "and reduction ([architecture.md](architecture.md), \"Geometric aamap\"); or `subpixel`: each "
-                    "pixel's predicted one-ray display error from k x k raster samples, against "
+                    "pixel's predicted one-ray display error from k x k geometry samples and the shading, against "
                     "`metrics.flip_threshold` ([architecture.md](architecture.md), \"Sub-pixel aamap\"; the blur, "
                     "dead zone and `scale` keys do not apply). Only non-default values enter the cache keys")
             .field(&S::subpixel, "subpixel", in(SUBPIXEL_MIN_K, SUBPIXEL_MAX_K), SUBPIXEL_DEFAULT_K,
                    "`map: subpixel`: samples per pixel side k; the Snapshot rasterises geometry (and with "
-                   "`subpixel_shading: sample` colour) at k x the render resolution. With `map: subpixel`, "
+                   "`subpixel_shading: sample` colour) at k x the render resolution (a device whose images are "
+                   "smaller gets the largest k that fits, with a warning). With `map: subpixel`, "
                    "`metrics.flip_threshold` enters the Snapshot's cache key too")
             .choice(&S::subpixelShading, "subpixel_shading", passes::shadingNames(),
                     "`map: subpixel`: `pixel` shades once per render pixel and shares that shade with the pixel's k x "

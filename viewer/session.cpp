@@ -141,6 +141,7 @@ void ViewerSession::update() {
     settings.filter.noiseFloor = static_cast<float>(params_.noiseFloor);
     settings.keepDebugImages = true;
     snapshot_ = snapshotRenderer_.render(view, width_, height_, settings);
+    for (const std::string& w : snapshot_->warnings) spdlog::warn("{}", w);
     snapshotView_ = view;
     snapshotDirty_ = false;
 }

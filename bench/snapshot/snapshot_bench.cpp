@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -31,6 +32,7 @@ SnapshotBenchResult runSnapshotBench(VulkanContext& context, const Scene& scene,
     for (int i = 0; i < options.iterations; ++i) {
         const SnapshotResult r = renderer.render(view, options.width, options.height, options.settings);
         if (names.empty()) {
+            for (const std::string& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
             for (const PassTiming& t : r.passTimes) names.push_back(t.pass);
             perPass.resize(names.size());
         }

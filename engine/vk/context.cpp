@@ -355,6 +355,7 @@ VkDevice VulkanContext::device() const { return impl_->device; }
 VkQueue VulkanContext::queue() const { return impl_->queue; }
 std::uint32_t VulkanContext::queueFamily() const { return impl_->family; }
 double VulkanContext::timestampPeriodNs() const { return impl_->props.limits.timestampPeriod; }
+std::uint32_t VulkanContext::maxImageDimension2D() const { return impl_->props.limits.maxImageDimension2D; }
 std::uint32_t VulkanContext::timestampValidBits() const { return impl_->timestampBits; }
 const VkPhysicalDeviceMemoryProperties& VulkanContext::memoryProperties() const { return impl_->memory; }
 VkCommandPool VulkanContext::commandPool() const { return impl_->pool; }

@@ -48,6 +48,7 @@ public:
     VkQueue queue() const;  // one queue with graphics + compute + transfer
     std::uint32_t queueFamily() const;
     double timestampPeriodNs() const;
+    std::uint32_t maxImageDimension2D() const;  // the largest 2D image side the device allows
 
     // Engine-side additions (not needed by integration code).
     std::uint32_t timestampValidBits() const;

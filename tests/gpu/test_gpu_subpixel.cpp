@@ -389,5 +389,38 @@ TEST_F(SubpixelTest, GraphRunsOnlyWhatTheMapNeeds) {
     EXPECT_THROW(renderer.render(view, 20, 12, settings), std::invalid_argument);
 }
 
+// A device whose images are smaller than k x the render falls back to the largest k that fits,
+// with a warning; below k = 2, or a render larger than an image, is refused.
+TEST_F(SubpixelTest, FallsBackToTheSamplesTheDevicesImagesHold) {
+    Scene scene;
+    scene.materials = {emitter("glow", glm::vec3(0.5f))};
+    addQuadZ(scene, 0.0f, -0.5f, 0.5f, -0.5f, 0.5f, 0);
+    const View view = viewDownZ({0.0f, 0.0f, 2.0f}, 50.0f);
+    SnapshotRenderer renderer(context(), scene);
+    SnapshotSettings settings;
+    settings.map = passes::AamapSource::Subpixel;
+    settings.subpixel = 4;
+    const int limit = static_cast<int>(context().maxImageDimension2D());
+    const int W = limit / 4 + 1;  // 4 W is one step too wide, 3 W fits
+    ASSERT_LE(3 * W, limit);
+    const SnapshotResult r = renderer.render(view, W, 2, settings);
+    EXPECT_EQ(r.subpixel, 3);
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("using 3"), std::string::npos) << r.warnings[0];
+    EXPECT_EQ(r.aamap.width(), W);
+    settings.subpixel = 2;
+    EXPECT_EQ(renderer.render(view, 64, 2, settings).subpixel, 2);
+    EXPECT_TRUE(renderer.render(view, 64, 2, settings).warnings.empty());
+    EXPECT_THROW(renderer.render(view, limit / 2 + 1, 2, settings), std::invalid_argument);  // not even k = 2
+    settings.map = passes::AamapSource::Luminance;
+    settings.scale = 1.5f;  // the luminance map's raster: the largest scale that fits
+    const SnapshotResult scaled = renderer.render(view, limit * 4 / 5, 2, settings);
+    ASSERT_EQ(scaled.warnings.size(), 1u);
+    EXPECT_NE(scaled.warnings[0].find("snapshot.scale"), std::string::npos) << scaled.warnings[0];
+    EXPECT_LE(scaled.snapshot.width(), limit);
+    EXPECT_EQ(scaled.aamap.width(), limit * 4 / 5);
+    EXPECT_THROW(renderer.render(view, limit + 1, 1, settings), std::invalid_argument);  // no image that wide
+}
+
 }  // namespace
 }  // namespace aamap::test
