@@ -25,37 +25,30 @@ const std::vector<std::pair<std::string, SubpixelShading>>& shadingNames() {
     return names;
 }
 
+// A choice's name, and the value of a name, from its list of names.
+template <class E>
+const char* nameIn(const std::vector<std::pair<std::string, E>>& names, E value) {
+    for (const auto& n : names)
+        if (n.second == value) return n.first.c_str();
+    return "?";
+}
+
+template <class E>
+bool parseIn(const std::vector<std::pair<std::string, E>>& names, const std::string& name, E& value) {
+    for (const auto& n : names)
+        if (n.first == name) {
+            value = n.second;
+            return true;
+        }
+    return false;
+}
+
 }  // namespace
 
-const char* toString(SubpixelShading shading) {
-    for (const auto& n : shadingNames())
-        if (n.second == shading) return n.first.c_str();
-    return "?";
-}
-
-bool parse(const std::string& name, SubpixelShading& shading) {
-    for (const auto& n : shadingNames())
-        if (n.first == name) {
-            shading = n.second;
-            return true;
-        }
-    return false;
-}
-
-const char* toString(AamapSource source) {
-    for (const auto& n : mapNames())
-        if (n.second == source) return n.first.c_str();
-    return "?";
-}
-
-bool parse(const std::string& name, AamapSource& source) {
-    for (const auto& n : mapNames())
-        if (n.first == name) {
-            source = n.second;
-            return true;
-        }
-    return false;
-}
+const char* toString(SubpixelShading shading) { return nameIn(shadingNames(), shading); }
+bool parse(const std::string& name, SubpixelShading& shading) { return parseIn(shadingNames(), name, shading); }
+const char* toString(AamapSource source) { return nameIn(mapNames(), source); }
+bool parse(const std::string& name, AamapSource& source) { return parseIn(mapNames(), name, source); }
 
 }  // namespace passes
 

@@ -351,13 +351,19 @@ TEST_F(SubpixelTest, HardEdgesAndAOnePixelWireAreFlagged) {
     }
 }
 
+// A glowing unit square at the origin, in the plane z = 0.
+Scene glowingSquare() {
+    Scene scene;
+    scene.materials = {emitter("glow", glm::vec3(0.5f))};
+    addQuadZ(scene, 0.0f, -0.5f, 0.5f, -0.5f, 0.5f, 0);
+    return scene;
+}
+
 // The subpixel Snapshot rasterises geometry at k x the render size, colour at that size or once
 // per pixel, and runs the geometry raster and the subpixel pass, not the luminance chain; k
 // outside [2, 4] is refused.
 TEST_F(SubpixelTest, GraphRunsOnlyWhatTheMapNeeds) {
-    Scene scene;
-    scene.materials = {emitter("glow", glm::vec3(0.5f))};
-    addQuadZ(scene, 0.0f, -0.5f, 0.5f, -0.5f, 0.5f, 0);
+    const Scene scene = glowingSquare();
     const View view = viewDownZ({0.0f, 0.0f, 2.0f}, 50.0f);
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;
@@ -392,9 +398,7 @@ TEST_F(SubpixelTest, GraphRunsOnlyWhatTheMapNeeds) {
 // A device whose images are smaller than k x the render falls back to the largest k that fits,
 // with a warning; below k = 2, or a render larger than an image, is refused.
 TEST_F(SubpixelTest, FallsBackToTheSamplesTheDevicesImagesHold) {
-    Scene scene;
-    scene.materials = {emitter("glow", glm::vec3(0.5f))};
-    addQuadZ(scene, 0.0f, -0.5f, 0.5f, -0.5f, 0.5f, 0);
+    const Scene scene = glowingSquare();
     const View view = viewDownZ({0.0f, 0.0f, 2.0f}, 50.0f);
     SnapshotRenderer renderer(context(), scene);
     SnapshotSettings settings;
