@@ -86,6 +86,42 @@ std::string explainWithPurposes(const graph::RenderGraph& graph, const graph::Co
     return text;
 }
 
+// The subpixel map's samples a side and the luminance maps' scale, as far as the device's images
+// allow: the largest that fit, each change with a warning; a render no image holds is refused.
+struct RasterScale {
+    int k;
+    float scale;
+};
+
+RasterScale fitToImages(const SnapshotSettings& settings, int width, int height, std::uint32_t limit,
+                        const std::string& device, std::vector<std::string>& warnings) {
+    const auto longest = static_cast<std::uint32_t>(std::max(width, height));
+    if (longest > limit)
+        throw std::invalid_argument(fmt::format("a {}x{} render is larger than Vulkan device '{}' allows for an image "
+                                                "({} texels a side)",
+                                                width, height, device, limit));
+    RasterScale fit{settings.subpixel, settings.scale};
+    if (settings.map == passes::AamapSource::Subpixel) {
+        if (static_cast<std::uint64_t>(fit.k) * longest <= limit) return fit;
+        const auto fits = static_cast<int>(limit / longest);
+        if (fits < SUBPIXEL_MIN_K)
+            throw std::invalid_argument(fmt::format("snapshot.subpixel: even {} samples a side need {}-texel images; "
+                                                    "Vulkan device '{}' allows {}",
+                                                    SUBPIXEL_MIN_K, SUBPIXEL_MIN_K * longest, device, limit));
+        warnings.push_back(fmt::format("snapshot.subpixel: {} samples a side need {}-texel images; Vulkan device '{}' "
+                                       "allows {}: using {}",
+                                       fit.k, static_cast<std::uint64_t>(fit.k) * longest, device, limit, fits));
+        fit.k = fits;
+    } else if (std::lround(fit.scale * static_cast<float>(longest)) > static_cast<long>(limit)) {
+        fit.scale = static_cast<float>(limit) / static_cast<float>(longest);
+        warnings.push_back(fmt::format("snapshot.scale: {} needs {}-texel images; Vulkan device '{}' allows {}: using "
+                                       "{:.3f}",
+                                       settings.scale, std::lround(settings.scale * static_cast<float>(longest)),
+                                       device, limit, fit.scale));
+    }
+    return fit;
+}
+
 }  // namespace
 
 struct SnapshotRenderer::Impl {
@@ -245,33 +281,9 @@ SnapshotResult SnapshotRenderer::render(const View& view, int width, int height,
     // resolution it has (fewer samples a side, a smaller scale), with a warning.
     SnapshotResult result;
     const std::uint32_t limit = s.context.maxImageDimension2D();
-    const auto longest = static_cast<std::uint32_t>(std::max(width, height));
-    if (longest > limit)
-        throw std::invalid_argument(fmt::format("a {}x{} render is larger than Vulkan device '{}' allows for an image "
-                                                "({} texels a side)",
-                                                width, height, s.context.deviceName(), limit));
-    int k = settings.subpixel;
-    if (subpixelMap && static_cast<std::uint64_t>(k) * longest > limit) {
-        const auto fits = static_cast<int>(limit / longest);
-        if (fits < SUBPIXEL_MIN_K)
-            throw std::invalid_argument(fmt::format("snapshot.subpixel: even {} samples a side need {}-texel images; "
-                                                    "Vulkan device '{}' allows {}",
-                                                    SUBPIXEL_MIN_K, SUBPIXEL_MIN_K * longest, s.context.deviceName(),
-                                                    limit));
-        result.warnings.push_back(fmt::format("snapshot.subpixel: {} samples a side need {}-texel images; Vulkan "
-                                              "device '{}' allows {}: using {}",
-                                              k, static_cast<std::uint64_t>(k) * longest, s.context.deviceName(),
-                                              limit, fits));
-        k = fits;
-    }
-    float scale = settings.scale;
-    if (!subpixelMap && std::lround(scale * static_cast<float>(longest)) > static_cast<long>(limit)) {
-        scale = static_cast<float>(limit) / static_cast<float>(longest);
-        result.warnings.push_back(fmt::format("snapshot.scale: {} needs {}-texel images; Vulkan device '{}' allows "
-                                              "{}: using {:.3f}",
-                                              settings.scale, std::lround(settings.scale * static_cast<float>(longest)),
-                                              s.context.deviceName(), limit, scale));
-    }
+    const RasterScale fit = fitToImages(settings, width, height, limit, s.context.deviceName(), result.warnings);
+    const int k = fit.k;
+    const float scale = fit.scale;
     result.subpixel = subpixelMap ? k : 0;
     auto scaled = [&](int v) {
         return std::min(limit, static_cast<std::uint32_t>(std::max(1L, std::lround(scale * static_cast<float>(v)))));
