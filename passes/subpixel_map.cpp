@@ -66,17 +66,23 @@ graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor&
         constants[SUBPIXEL_SPEC_K] = static_cast<std::uint32_t>(k);
         build(geometry_[k], spirv::subpixel_geometry_comp, 3, constants);
     };
-    geometry.record = [this, normalDepth, ids, push, k](vk::PassContext& pc) {
-        const vk::Image& out = pc.image(kSubpixelGeometry);
-        const vk::Pipeline& pipeline = geometry_[k];
+    // Both passes bind two images read and the one written, at bindings 0, 1 and 2, and run one
+    // invocation per render pixel.
+    static_assert(SUBPIXEL_GEOMETRY_BINDING_NORMAL_DEPTH == 0 && SUBPIXEL_GEOMETRY_BINDING_IDS == 1 &&
+                  SUBPIXEL_GEOMETRY_BINDING_OUTPUT == 2 && SUBPIXEL_BINDING_COLOUR == 0 &&
+                  SUBPIXEL_BINDING_GEOMETRY == 1 && SUBPIXEL_BINDING_OUTPUT == 2);
+    const auto dispatch = [this, push](vk::PassContext& pc, const vk::Pipeline& pipeline, const std::string& a,
+                                       const std::string& b, const std::string& output) {
+        const vk::Image& out = pc.image(output);
         pipeline.bind(pc.cmd());
         vk::DescriptorPush descriptors;
-        descriptors.storageImage(SUBPIXEL_GEOMETRY_BINDING_NORMAL_DEPTH, pc.image(normalDepth).view())
-            .storageImage(SUBPIXEL_GEOMETRY_BINDING_IDS, pc.image(ids).view())
-            .storageImage(SUBPIXEL_GEOMETRY_BINDING_OUTPUT, out.view());
+        descriptors.storageImage(0, pc.image(a).view()).storageImage(1, pc.image(b).view()).storageImage(2, out.view());
         descriptors.push(*context_, pc.cmd(), pipeline);
         pipeline.pushConstants(pc.cmd(), push(out));
         vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, SUBPIXEL_GROUP_X, SUBPIXEL_GROUP_Y);
+    };
+    geometry.record = [this, normalDepth, ids, dispatch, k](vk::PassContext& pc) {
+        dispatch(pc, geometry_[k], normalDepth, ids, kSubpixelGeometry);
     };
     vk::declarePass(graph, executor, std::move(geometry));
 
@@ -94,17 +100,8 @@ graph::PassId SubpixelMapPass::add(graph::RenderGraph& graph, vk::GraphExecutor&
         constants[SUBPIXEL_SPEC_SHARED] = static_cast<std::uint32_t>(shared);
         build(pipelines_[k][shared], spirv::subpixel_map_comp, 3, constants);
     };
-    pass.record = [this, colour, output, push, k, shared](vk::PassContext& pc) {
-        const vk::Image& out = pc.image(output);
-        const vk::Pipeline& pipeline = pipelines_[k][shared];
-        pipeline.bind(pc.cmd());
-        vk::DescriptorPush descriptors;
-        descriptors.storageImage(SUBPIXEL_BINDING_COLOUR, pc.image(colour).view())
-            .storageImage(SUBPIXEL_BINDING_GEOMETRY, pc.image(kSubpixelGeometry).view())
-            .storageImage(SUBPIXEL_BINDING_OUTPUT, out.view());
-        descriptors.push(*context_, pc.cmd(), pipeline);
-        pipeline.pushConstants(pc.cmd(), push(out));
-        vk::dispatch2D(pc.cmd(), out.info().width, out.info().height, SUBPIXEL_GROUP_X, SUBPIXEL_GROUP_Y);
+    pass.record = [this, colour, output, dispatch, k, shared](vk::PassContext& pc) {
+        dispatch(pc, pipelines_[k][shared], colour, kSubpixelGeometry, output);
     };
     return vk::declarePass(graph, executor, std::move(pass));
 }
