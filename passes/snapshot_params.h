@@ -69,8 +69,8 @@ struct SnapshotSettings {
     // Edges the aamap is built from: the luminance Laplacian (the paper), G-buffer
     // discontinuities, or their max (passes/geometric_aamap.h), or the subpixel prediction.
     passes::AamapSource map;
-    // The subpixel map: k x k samples per render pixel (the raster runs at k x the render
-    // resolution; `scale` does not apply), and the FLIP threshold its predicted error is held
+    // The subpixel map: k x k geometry samples per render pixel (that raster runs at k x the
+    // render resolution; `scale` does not apply), and the FLIP threshold its predicted error is held
     // against (glsl/shared/subpixel_map.h; metrics.flip_threshold).
     int subpixel;
     passes::SubpixelShading subpixelShading;  // one shade per pixel, or one per sample

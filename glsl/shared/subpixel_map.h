@@ -1,8 +1,9 @@
 // The sub-pixel aamap's predictor, shared by the GLSL pass (subpixel_map.comp) and the CPU
 // reference (passes/cpu_subpixel.cpp) so both compute the same thing. Plain C/GLSL: no C++ in here.
 //
-// The Snapshot rasterises k x k samples per render pixel (colour and geometry at k times the render
-// resolution; sample (i, j) of pixel (x, y) is texel (k x + i, k y + j)). For each render pixel:
+// The Snapshot rasterises k x k samples per render pixel (geometry at k times the render
+// resolution; sample (i, j) of pixel (x, y) is texel (k x + i, k y + j)). With a shade per sample
+// (snapshot.subpixel_shading: sample) the colour is rasterised alike, and for each render pixel:
 //   1. display values, as the metrics see a pixel (core displayEncode, toneMap without rounding):
 //      d_s = srgbEncode(clamp(exposure * rgb_s, 0, 1)) per channel for each sample s, and
 //      m   = srgbEncode(clamp(exposure * mean_s(rgb_s), 0, 1)), the pixel's converged value
