@@ -5,6 +5,7 @@
 // flagged, and so is a one-pixel wire along its length.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -103,6 +104,34 @@ TEST_F(SubpixelTest, PassMatchesCpuReference) {
     EXPECT_THROW(cpu::subpixelMap(s.colour, s.geometry, 3, 1.0f, tau, false), std::invalid_argument);  // 8 not a multiple of 3
     EXPECT_THROW(cpu::subpixelMap(s.colour, s.geometry, 2, 1.0f, tau, true), std::invalid_argument);  // colour k W x k H
     EXPECT_THROW(cpu::subpixelMap(pixelShades(s.colour, 2), s.geometry, 2, 1.0f, tau, false), std::invalid_argument);
+}
+
+// Shades at the extremes (NaN, infinities, negative, 1e30) and exposures from 1e-6 to 1e6: the
+// display transform takes them to [0, 1] (non-finite to 0), so GPU and CPU agree and every map
+// value stays finite in [0, 1), at both shading rates.
+TEST_F(SubpixelTest, ExtremeShadesStayInRange) {
+    passes::GpuSubpixelMap gpu(context());
+    const float tau = subpixelTolerance(0.1f);
+    const float extremes[] = {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(), -1.0f, 1e30f, 0.0f, 1e-30f};
+    for (bool shared : {false, true})
+        for (int k : {2, 4}) {
+            Samples s = randomSamples(19, 11, k, static_cast<std::uint32_t>(77 + k));
+            if (shared) s.colour = pixelShades(s.colour, k);
+            std::mt19937 rng(5);
+            for (glm::vec3& c : s.colour.pixels())
+                if (rng() % 3 == 0) c[rng() % 3] = extremes[rng() % std::size(extremes)];
+            for (float exposure : {1e-6f, 1.0f, 1e6f}) {
+                const cpu::SubpixelImages expected = cpu::subpixelMap(s.colour, s.geometry, k, exposure, tau, shared);
+                const ImageGrey got = gpu.map(s.colour, s.geometry, {k, exposure, tau, shared});
+                for (int y = 0; y < got.height(); ++y)
+                    for (int x = 0; x < got.width(); ++x) {
+                        const float v = got.at(x, y);
+                        ASSERT_TRUE(std::isfinite(v) && v >= 0.0f && v < 1.0f) << v << " at " << x << "," << y;
+                        EXPECT_NEAR(v, expected.map.at(x, y), 1e-5f) << shared << " " << k << " " << exposure;
+                    }
+            }
+        }
 }
 
 // tau is the display-value step at which FLIP's colour error (without its spatial filter)
