@@ -42,10 +42,11 @@ float sharedError(ivec2 p) {
     const vec3 dp = display(imageLoad(colour, p).rgb);
     const uint fp = flagsAt(p);
     const bool ownP = (fp & SUBPIXEL_FLAG_OWN) != 0u;
+    uint fq[4];  // the neighbours' flags, each loaded once
+    for (int n = 0; n < 4; ++n) fq[n] = flagsAt(p + steps[n]);
     // border(p, q) for q = right, down, left, up: the right and down flags of p, of left and up.
     const bool border[4] = bool[4]((fp & SUBPIXEL_FLAG_RIGHT) != 0u, (fp & SUBPIXEL_FLAG_DOWN) != 0u,
-                                   (flagsAt(p - ivec2(1, 0)) & SUBPIXEL_FLAG_RIGHT) != 0u,
-                                   (flagsAt(p - ivec2(0, 1)) & SUBPIXEL_FLAG_DOWN) != 0u);
+                                   (fq[2] & SUBPIXEL_FLAG_RIGHT) != 0u, (fq[3] & SUBPIXEL_FLAG_DOWN) != 0u);
     bool geometry = ownP;
     vec3 diff[4];  // d(q) - d(p) where p owns the step, else 0
     for (int n = 0; n < 4; ++n) {
@@ -53,8 +54,7 @@ float sharedError(ivec2 p) {
         diff[n] = vec3(0.0);
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, pc.outSize))) continue;
         geometry = geometry || border[n];
-        const bool ownQ = (flagsAt(q) & SUBPIXEL_FLAG_OWN) != 0u;
-        if (!ownP && !border[n] && ownQ) continue;  // q's edge, q's step
+        if (!ownP && !border[n] && (fq[n] & SUBPIXEL_FLAG_OWN) != 0u) continue;  // q's edge, q's step
         diff[n] = display(imageLoad(colour, q).rgb) - dp;
     }
     float error = 0.0;
